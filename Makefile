@@ -1,0 +1,35 @@
+# Two commands for a new user (README "Quick start"):
+#   make run    install what is missing, build, open the workbench on the default preset
+#   make test   install what is missing, build, run every test
+BUILD ?= build
+JOBS ?= $(shell nproc)
+CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
+
+.PHONY: setup configure build run test bench export clean format
+
+setup:
+	bash scripts/setup.sh
+
+configure: setup
+	cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
+
+build: configure
+	cmake --build $(BUILD) -j $(JOBS)
+
+run: build
+	$(BUILD)/app/kfw $(ARGS)
+
+test: build
+	cd $(BUILD) && ctest -j $(JOBS) --output-on-failure
+
+bench: build
+	$(BUILD)/bench/kfw_bench
+
+export: build
+	QT_QPA_PLATFORM=offscreen $(BUILD)/app/kfw --export screenshots presets/helicopter.json
+
+format:
+	clang-format -i $$(git ls-files '*.h' '*.cpp')
+
+clean:
+	rm -rf $(BUILD)

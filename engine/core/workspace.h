@@ -1,0 +1,30 @@
+// What both front ends (kfw, kfw-cli) do first: a preset, an optional dataset override and
+// --set assignments become a scenario, validated parameter values and a dataset.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/expected.h"
+#include "core/preset.h"
+#include "core/scenario.h"
+
+namespace kfw {
+
+struct Workspace {
+  Preset preset;
+  std::shared_ptr<const Scenario> scenario;
+  ParamValues values;                    // preset values with --set applied
+  std::optional<std::string> data_path;  // --data, else the preset's; none = simulate
+};
+
+// `preset` may be a path, or a name in presets/ ("helicopter"). Errors name the file or key.
+Expected<Workspace> open_workspace(const std::string& preset, const std::optional<std::string>& data,
+                                   const std::vector<std::string>& assignments);
+// The file's dataset (checked against the scenario's columns), or a simulated one.
+Expected<Dataset> load_dataset(const Workspace& ws);
+Expected<Dataset> load_dataset_file(const Scenario& scenario, const std::string& path);
+
+}  // namespace kfw

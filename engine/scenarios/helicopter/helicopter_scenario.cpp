@@ -1,0 +1,152 @@
+// The `helicopter` scenario (SPEC §1, seed 000): parameter table, schema, simulator and runner.
+#include <cmath>
+#include <memory>
+
+#include "core/scenario.h"
+#include "core/statistics.h"
+#include "scenarios/helicopter/helicopter_model.h"
+#include "scenarios/helicopter/helicopter_sim.h"
+#include "scenarios/helicopter/indirect_kf.h"
+
+namespace kfw {
+
+namespace {
+
+ParamTable make_table() {
+  const std::string F = "Filter", S = "Simulator";
+  return ParamTable({
+      {"Q", "Q = N_ω, gyro noise variance", "(deg/s)²", 1e-6, 1e6, 67.24, Scale::kLog, F,
+       "Gyro white-noise variance N_ω driving the angle error (seed 000, eq. 7)."},
+      {"R", "R = N_θ, angle noise variance", "deg²", 1e-6, 1e6, 1.96, Scale::kLog, F,
+       "Absolute angle sensor noise variance N_θ (seed 000, eq. 8)."},
+      {"m", "m, gyro samples per angle update", "", 1, 200, 1, Scale::kInteger, F,
+       "The angle sensor updates every m-th gyro sample (seed 000, eq. 10)."},
+      {"gamma", "γ, bias cutoff ratio", "", 0.0, 0.1, 0.0, Scale::kLinear, F,
+       "b_k = (1-γ) b_{k-1} + γ ω_m (seed 000, eq. 12); 0 = constant bias.", 4},
+      {"P0_theta", "P0 angle variance", "deg²", 1e-6, 1e6, 100.0, Scale::kLog, F,
+       "Initial P11 (seed 000: 100 deg²)."},
+      {"P0_bias", "P0 bias variance", "(deg/s)²", 1e-6, 1e6, 4.0, Scale::kLog, F,
+       "Initial P22 (seed 000: 4 (deg/s)²)."},
+      {"sim.seed", "seed", "", 0, 1e6, 1, Scale::kInteger, S, "Random seed of the simulator."},
+      {"sim.duration", "duration", "s", 1, 3600, 120, Scale::kLinear, S, "Length of the run.", 0},
+      {"sim.Ts", "gyro period Ts", "s", 0.001, 0.1, 0.02, Scale::kLinear, S,
+       "Sample period of gyro and angle sensor (seed 000: 20 ms).", 3},
+      {"sim.amplitude", "attitude amplitude", "deg", 0, 45, 10, Scale::kLinear, S,
+       "Size of the hover sway.", 1},
+      {"sim.sigma_gyro", "σ gyro", "deg/s", 0, 20, 8.2, Scale::kLinear, S,
+       "Gyro white noise per sample (seed 000, engine on: 7.72–8.71 deg/s).", 2},
+      {"sim.sigma_angle", "σ angle", "deg", 0, 10, 1.4, Scale::kLinear, S,
+       "Angle sensor noise (seed 000, engine on: 1.37–1.45 deg).", 2},
+      {"sim.bias0", "initial gyro bias", "deg/s", -10, 10, 1.5, Scale::kLinear, S, "", 2},
+      {"sim.bias_walk", "bias random walk", "(deg/s)/√s", 0, 1, 0.05, Scale::kLinear, S,
+       "Bias drift density: the slowly varying bias that γ tracks.", 3},
+      {"sim.angle_dropout", "angle dropout", "", 0, 0.99, 0.0, Scale::kLinear, S,
+       "Probability that an angle sample is missing.", 2},
+  });
+}
+
+class HelicopterScenario final : public Scenario {
+ public:
+  std::string name() const override { return "helicopter"; }
+  std::string title() const override {
+    return "Helicopter attitude: indirect KF, gyro + angle sensor (seed 000)";
+  }
+  const ParamTable& params() const override {
+    static const ParamTable table = make_table();
+    return table;
+  }
+  std::vector<ColumnSpec> columns() const override {
+    return {{"t", "s", "time", true},
+            {"gyro", "deg/s", "rate gyro", true},
+            {"angle", "deg", "absolute angle sensor; empty = no sample", true},
+            {"truth", "deg", "true angle; empty where unknown", false}};
+  }
+
+  Expected<Dataset> simulate(const ParamValues& v) const override {
+    if (auto st = params().check(v); !st) return Error{st.error()};
+    helicopter::SimParams s;
+    s.seed = static_cast<std::uint64_t>(param(v, "sim.seed"));
+    s.duration_s = param(v, "sim.duration");
+    s.Ts_s = param(v, "sim.Ts");
+    s.amplitude_deg = param(v, "sim.amplitude");
+    s.sigma_gyro = param(v, "sim.sigma_gyro");
+    s.sigma_angle = param(v, "sim.sigma_angle");
+    s.bias0 = param(v, "sim.bias0");
+    s.bias_walk = param(v, "sim.bias_walk");
+    s.angle_dropout = param(v, "sim.angle_dropout");
+    return helicopter::simulate(s);
+  }
+
+  Expected<std::shared_ptr<const RunResult>> run(const Dataset& d, const ParamValues& v,
+                                                 const RunControl& control) const override {
+    if (auto st = params().check(v); !st) return Error{st.error()};
+    if (auto st = require_columns(d, columns()); !st) return Error{st.error()};
+    if (d.rows() < 2) return Error{d.source + ": need at least two rows"};
+    helicopter::FilterParams fp;
+    fp.N_omega = param(v, "Q");
+    fp.N_theta = param(v, "R");
+    fp.m = static_cast<int>(param(v, "m"));
+    fp.gamma = param(v, "gamma");
+    fp.P0_theta = param(v, "P0_theta");
+    fp.P0_bias = param(v, "P0_bias");
+    auto r = std::make_shared<helicopter::HelicopterResult>(
+        helicopter::run_indirect_kf(d.col("t"), d.col("gyro"), d.col("angle"), fp, control));
+    r->truth = d.has("truth") ? d.col("truth") : std::vector<double>(d.rows(), kNoSample);
+
+    r->Ts_s = d.median_dt();
+    r->beta = helicopter::beta(fp.m, r->Ts_s, fp.N_omega, fp.N_theta);
+    r->k1_closed = helicopter::k1_closed_form(r->beta);
+    r->p11_over_R_steady = helicopter::p11_over_R(r->beta);
+    auto ss = helicopter::steady_gain_dare(fp.m, r->Ts_s, fp.gamma, fp.N_omega, fp.N_theta);
+    r->k1_steady = ss ? ss->k1 : kNoSample;
+    if (!ss) r->warnings.push_back("steady-state gain: " + ss.error());
+
+    Metrics& m = r->metrics;
+    m["rmse"] = rmse_finite(r->theta, r->truth);
+    m["rmse_sensor"] = rmse_finite(r->angle, r->truth);
+    m["k1_final"] = last_finite(r->k1);
+    m["k1_steady"] = r->k1_steady;
+    m["k1_closed_form"] = r->k1_closed;
+    m["beta"] = r->beta;
+    m["nis_mean"] = mean_finite(r->nis);
+    m["nis_in_bounds"] = fraction_inside(r->nis, 1.0);
+    m["bias_final"] = r->bias.empty() ? kNoSample : r->bias.back();
+    m["updates"] = static_cast<double>(r->updates);
+    m["steps"] = static_cast<double>(r->steps());
+    m["Ts"] = r->Ts_s;
+    if (d.has("bias_truth")) m["bias_rmse"] = rmse_finite(r->bias, d.col("bias_truth"));
+    return std::shared_ptr<const RunResult>(std::move(r));
+  }
+
+  Expected<Metrics> gain(const ParamValues& v, const Dataset* data) const override {
+    if (auto st = params().check(v); !st) return Error{st.error()};
+    const int m = static_cast<int>(param(v, "m"));
+    const double Ts = data && data->rows() >= 2 ? data->median_dt() : param(v, "sim.Ts");
+    return gain_at(v, m, Ts);
+  }
+
+  static Expected<Metrics> gain_at(const ParamValues& v, int m, double Ts) {
+    const double Nw = param(v, "Q"), Nt = param(v, "R"), gamma = param(v, "gamma");
+    Metrics g;
+    g["beta"] = helicopter::beta(m, Ts, Nw, Nt);
+    g["k1"] = helicopter::k1_closed_form(g["beta"]);
+    g["p11_over_R"] = helicopter::p11_over_R(g["beta"]);
+    auto ss = helicopter::steady_gain_dare(m, Ts, gamma, Nw, Nt);
+    if (!ss) return Error{ss.error()};
+    g["k1_dare"] = ss->k1;
+    g["k2_dare"] = ss->k2;
+    g["p11_over_R_dare"] = ss->p11_pred / Nt;
+    g["Ts"] = Ts;
+    g["m"] = m;
+    g["gamma"] = gamma;
+    return g;
+  }
+};
+
+}  // namespace
+
+void register_scenario_helicopter(ScenarioRegistry& registry) {
+  registry.add("helicopter", [] { return std::make_unique<HelicopterScenario>(); });
+}
+
+}  // namespace kfw

@@ -1,0 +1,41 @@
+// The indirect KF of seed 000 run over a whole dataset: the gyro propagates every sample, the
+// angle sensor updates every m-th sample (when it has one).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "core/scenario.h"
+
+namespace kfw::helicopter {
+
+struct FilterParams {
+  double N_omega = 1.0;   // Q: gyro noise variance, (deg/s)²
+  double N_theta = 1.0;   // R: angle noise variance, deg²
+  int m = 1;              // angle update every m-th gyro sample
+  double gamma = 0.0;     // bias cutoff ratio (0: constant bias)
+  double P0_theta = 100;  // deg²
+  double P0_bias = 4;     // (deg/s)²
+};
+
+struct HelicopterResult final : RunResult {
+  // Inputs, per step.
+  std::vector<double> gyro, angle, truth;  // angle: NaN where no sample
+  // Filter output, per step (post-update when updated, else the prediction).
+  std::vector<double> theta, bias, P11, P22;
+  // Per step; NaN where no update happened.
+  std::vector<double> innovation, S, k1, k2, nis;
+  std::size_t updates = 0;
+  // Operating point of the current tuning, from the dataset's Ts.
+  double Ts_s = 0.0, beta = 0.0, k1_steady = 0.0, p11_over_R_steady = 0.0;
+  double k1_closed = 0.0;
+
+  Dataset table() const override;
+};
+
+// Runs the filter; columns must hold t, gyro, angle (NaN = no sample) and optionally truth.
+HelicopterResult run_indirect_kf(const std::vector<double>& t, const std::vector<double>& gyro,
+                                 const std::vector<double>& angle, const FilterParams& p,
+                                 const RunControl& control = {});
+
+}  // namespace kfw::helicopter

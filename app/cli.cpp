@@ -1,5 +1,6 @@
 #include "cli.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -21,7 +22,10 @@ constexpr const char* kUsage =
     "  run PRESET [--data FILE] [--set key=value]... [--out estimates.csv] [--metrics m.json]\n"
     "  gain PRESET [--data FILE] [--set key=value]...\n"
     "  params SCENARIO|PRESET      the parameter table (key, unit, range, default)\n"
-    "  list                        the scenarios and presets\n";
+    "  preset SCENARIO|PRESET [--set key=value]... --out FILE.json   write a full preset\n"
+    "  list                        the scenarios and presets\n"
+    "  CMD SCENARIO|PRESET [--data FILE] [--set key=value]...\n"
+    "                              a scenario's own analysis (e.g. stats for underwater)\n";
 
 struct Args {
   std::vector<std::string> positional;
@@ -78,7 +82,9 @@ nlohmann::json to_json(const Metrics& m) {
 // A scenario name or a preset path both open a workspace.
 Expected<Workspace> open_any(const std::string& name, const Args& a) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(resolve_preset_path(name), ec)) {
+  const bool looks_like_file = name.find('/') != std::string::npos ||
+                               std::filesystem::path(name).extension() == ".json";
+  if (!looks_like_file && !std::filesystem::is_regular_file(resolve_preset_path(name), ec)) {
     auto p = default_preset(name);
     if (!p) return Error{p.error()};
     Workspace ws;
@@ -154,6 +160,18 @@ int cmd_gain(const Args& a, std::ostream& out, std::ostream& err) {
   return 0;
 }
 
+int cmd_preset(const Args& a, std::ostream& out, std::ostream& err) {
+  if (a.positional.size() != 1) return fail(err, "preset takes one scenario or preset");
+  if (!a.out) return fail(err, "preset needs --out FILE.json");
+  auto ws = open_any(a.positional[0], a);
+  if (!ws) return fail(err, ws.error());
+  Preset p = ws->preset;
+  p.values = ws->values;
+  if (auto st = save_preset(*a.out, p); !st) return fail(err, st.error());
+  out << "wrote " << *a.out << "\n";
+  return 0;
+}
+
 int cmd_params(const Args& a, std::ostream& out, std::ostream& err) {
   if (a.positional.size() != 1) return fail(err, "params takes one scenario or preset");
   auto ws = open_any(a.positional[0], a);
@@ -163,6 +181,26 @@ int cmd_params(const Args& a, std::ostream& out, std::ostream& err) {
     out << s.key << "\t" << t.format(s.key, ws->values.at(s.key)) << "\t[" << s.min << ", " << s.max
         << "]\t" << s.unit << "\t" << s.label << "\n";
   }
+  return 0;
+}
+
+// A command a scenario offers (Scenario::commands()), e.g. `kfw-cli stats underwater --data f.csv`.
+int cmd_scenario(const std::string& cmd, const Args& a, std::ostream& out, std::ostream& err) {
+  if (a.positional.size() != 1) {
+    return fail(err, "unknown command '" + cmd + "' (try --help)");
+  }
+  auto ws = open_any(a.positional[0], a);
+  if (!ws) return fail(err, ws.error());
+  const auto cmds = ws->scenario->commands();
+  if (std::find(cmds.begin(), cmds.end(), cmd) == cmds.end()) {
+    return fail(err, "unknown command '" + cmd + "' for scenario '" + ws->scenario->name() +
+                         "' (try --help)");
+  }
+  auto d = load_dataset(*ws);
+  if (!d) return fail(err, d.error());
+  auto text = ws->scenario->command(cmd, *d, ws->values);
+  if (!text) return fail(err, text.error());
+  out << *text << "\n";
   return 0;
 }
 
@@ -195,8 +233,9 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   if (cmd == "run") return cmd_run(*a, out, err);
   if (cmd == "gain") return cmd_gain(*a, out, err);
   if (cmd == "params") return cmd_params(*a, out, err);
+  if (cmd == "preset") return cmd_preset(*a, out, err);
   if (cmd == "list") return cmd_list(out);
-  return fail(err, "unknown command '" + cmd + "' (try --help)");
+  return cmd_scenario(cmd, *a, out, err);
 }
 
 }  // namespace kfw

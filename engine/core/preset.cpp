@@ -180,7 +180,7 @@ Expected<Preset> default_preset(const std::string& scenario) {
 }
 
 std::string preset_to_json(const Preset& preset) {
-  json j;
+  nlohmann::ordered_json j;
   j["format"] = kPresetFormat;
   j["version"] = kPresetVersion;
   j["scenario"] = preset.scenario;
@@ -195,10 +195,10 @@ std::string preset_to_json(const Preset& preset) {
     j["data"] = dp.string();
   }
   auto scenario = make_scenario(preset.scenario);
-  json params = json::object();
+  nlohmann::ordered_json params = nlohmann::ordered_json::object();
   if (scenario) {
     for (const auto& spec : (*scenario)->params().specs()) {
-      json e;
+      nlohmann::ordered_json e;
       auto v = preset.values.find(spec.key);
       e["value"] = v == preset.values.end() ? spec.def : v->second;
       auto r = preset.ranges.find(spec.key);

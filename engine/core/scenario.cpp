@@ -8,6 +8,11 @@ Expected<Metrics> Scenario::gain(const ParamValues&, const Dataset*) const {
   return Error{"scenario '" + name() + "' has no steady-state gain"};
 }
 
+Expected<std::string> Scenario::command(const std::string& cmd, const Dataset&,
+                                       const ParamValues&) const {
+  return Error{"scenario '" + name() + "' has no command '" + cmd + "'"};
+}
+
 void ScenarioRegistry::add(std::string name, Factory factory) {
   factories_[std::move(name)] = std::move(factory);
 }

@@ -54,6 +54,13 @@ class Scenario {
   // Steady-state gains for the current parameters (closed form and DARE), when the scenario has any.
   // With a dataset, its sample period is used; without, the simulator's.
   virtual Expected<Metrics> gain(const ParamValues& p, const Dataset* data = nullptr) const;
+
+  // Scenario-specific analyses offered on the command line as
+  // `kfw-cli NAME SCENARIO|PRESET [--data FILE] [--set k=v]...` (e.g. underwater "stats").
+  virtual std::vector<std::string> commands() const { return {}; }
+  // Runs one of commands() on a dataset; returns the JSON text to print.
+  virtual Expected<std::string> command(const std::string& name, const Dataset& d,
+                                        const ParamValues& p) const;
 };
 
 class ScenarioRegistry {

@@ -114,7 +114,10 @@ class HelicopterScenario final : public Scenario {
     m["updates"] = static_cast<double>(r->updates);
     m["steps"] = static_cast<double>(r->steps());
     m["Ts"] = r->Ts_s;
-    if (d.has("bias_truth")) m["bias_rmse"] = rmse_finite(r->bias, d.col("bias_truth"));
+    if (d.has("bias_truth")) {
+      r->bias_truth = d.col("bias_truth");
+      m["bias_rmse"] = rmse_finite(r->bias, r->bias_truth);
+    }
     return std::shared_ptr<const RunResult>(std::move(r));
   }
 

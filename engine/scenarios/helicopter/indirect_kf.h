@@ -21,6 +21,7 @@ struct FilterParams {
 struct HelicopterResult final : RunResult {
   // Inputs, per step.
   std::vector<double> gyro, angle, truth;  // angle: NaN where no sample
+  std::vector<double> bias_truth;          // from a simulated dataset; empty otherwise
   // Filter output, per step (post-update when updated, else the prediction).
   std::vector<double> theta, bias, P11, P22;
   // Per step; NaN where no update happened.

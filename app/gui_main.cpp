@@ -1,0 +1,61 @@
+// kfw: the workbench window, headless export (--export) and GUI latency measurement.
+#include <QApplication>
+#include <QFont>
+#include <QFontDatabase>
+#include <cstdio>
+#include <cstdlib>
+
+#include "app_options.h"
+#include "latency_bench.h"
+#include "main_window.h"
+#include "plot_export.h"
+
+int main(int argc, char** argv) {
+  QStringList raw;
+  for (int i = 1; i < argc; ++i) raw << QString::fromLocal8Bit(argv[i]);
+  auto opt = kfw::parseAppOptions(raw);
+  if (!opt) {
+    std::fprintf(stderr, "kfw: %s\n%s", opt.error().c_str(), kfw::kAppUsage);
+    return 2;
+  }
+  if (opt->help) {
+    std::printf("%s", kfw::kAppUsage);
+    return 0;
+  }
+  const bool headless = opt->export_dir || opt->bench_latency;
+  if (headless && qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) {
+    qputenv("QT_QPA_PLATFORM", "offscreen");
+  }
+  QApplication app(argc, argv);
+  QApplication::setApplicationName("kfw");
+  QApplication::setFont(QFont("DejaVu Sans", 9));
+
+  kfw::MainWindow w;
+  if (auto st = w.loadPreset(opt->preset, opt->data, opt->sets); !st) {
+    std::fprintf(stderr, "kfw: %s\n", st.error().c_str());
+    return 2;
+  }
+  if (opt->export_dir) {
+    auto formats = kfw::parseFormats(opt->formats);
+    if (!formats) {
+      std::fprintf(stderr, "kfw: %s\n", formats.error().c_str());
+      return 2;
+    }
+    auto files = w.exportAll(*opt->export_dir, *formats);
+    if (!files) {
+      std::fprintf(stderr, "kfw: %s\n", files.error().c_str());
+      return 1;
+    }
+    for (const auto& f : *files) std::printf("%s\n", qPrintable(f));
+    return 0;
+  }
+  if (opt->bench_latency) {
+    w.show();
+    const auto s = kfw::measureLatency(w, opt->bench_changes);
+    std::printf("latency p50 %.1f ms p95 %.1f ms (max %.1f ms, %d changes, %zu steps)\n", s.p50_ms,
+                s.p95_ms, s.max_ms, opt->bench_changes, w.result() ? w.result()->steps() : 0);
+    return 0;
+  }
+  w.show();
+  return app.exec();
+}

@@ -1,0 +1,97 @@
+// kfw-cli as a user runs it: JSON fields, files written, one-line errors with non-zero exit.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/dataset.h"
+
+namespace {
+
+struct Out {
+  int code = -1;
+  std::string text;  // stdout + stderr
+};
+
+Out cli(const std::string& args) {
+  const std::string cmd = std::string(KFW_CLI) + " " + args + " 2>&1";
+  Out o;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return o;
+  std::array<char, 4096> buf{};
+  std::size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) o.text.append(buf.data(), n);
+  const int status = pclose(p);
+  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return o;
+}
+
+const std::string kPreset = std::string(KFW_SOURCE_DIR) + "/presets/helicopter.json";
+
+TEST(HelicopterCli, GainPrintsClosedFormAndDare) {
+  auto o = cli("gain " + kPreset + " --set m=25");
+  ASSERT_EQ(o.code, 0) << o.text;
+  auto j = nlohmann::json::parse(o.text);
+  for (const char* k : {"k1", "p11_over_R", "k1_dare", "beta"}) EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_NEAR(j["k1"].get<double>(), j["k1_dare"].get<double>(), 1e-8);
+  EXPECT_NEAR(j["beta"].get<double>(), 25 * 0.02 * 0.02 * 67.24 / 1.96, 1e-9);
+}
+
+TEST(HelicopterCli, RunWritesMetricsAndEstimates) {
+  const std::string dir = ::testing::TempDir();
+  const std::string est = dir + "/kfw_est.csv", met = dir + "/kfw_met.json";
+  auto o = cli("run " + kPreset + " --data " + KFW_SOURCE_DIR + "/data/helicopter.csv --out " + est +
+               " --metrics " + met);
+  ASSERT_EQ(o.code, 0) << o.text;
+  auto j = nlohmann::json::parse(o.text);
+  for (const char* k : {"rmse", "rmse_sensor", "k1_final", "k1_steady", "nis_mean"}) {
+    ASSERT_TRUE(j.contains(k) && j[k].is_number()) << k;
+  }
+  EXPECT_LT(j["rmse"].get<double>(), j["rmse_sensor"].get<double>());
+  auto d = kfw::read_csv(est);
+  ASSERT_TRUE(d.ok()) << d.error();
+  EXPECT_EQ(d->rows(), 6001u);
+  EXPECT_TRUE(d->has("theta") && d->has("P11") && d->has("innovation") && d->has("nis"));
+  EXPECT_TRUE(std::filesystem::exists(met));
+}
+
+TEST(HelicopterCli, SimulateIsReproducible) {
+  const std::string a = ::testing::TempDir() + "/kfw_a.csv", b = ::testing::TempDir() + "/kfw_b.csv";
+  ASSERT_EQ(cli("simulate helicopter --seed 5 --set sim.duration=10 --out " + a).code, 0);
+  ASSERT_EQ(cli("simulate helicopter --seed 5 --set sim.duration=10 --out " + b).code, 0);
+  auto da = kfw::read_csv(a), db = kfw::read_csv(b);
+  ASSERT_TRUE(da.ok() && db.ok());
+  EXPECT_EQ(da->columns, db->columns);
+  EXPECT_EQ(da->rows(), 501u);
+}
+
+TEST(HelicopterCli, BadInputExitsNonZeroWithOneLine) {
+  struct Case {
+    std::string args, fragment;
+  };
+  const std::string bad_csv = ::testing::TempDir() + "/kfw_bad.csv";
+  {
+    FILE* f = fopen(bad_csv.c_str(), "w");
+    fputs("t,gyro,angle\n0,1,2\n0.01,2,3\n0.005,1,1\n", f);
+    fclose(f);
+  }
+  for (const Case& c : {Case{"run " + kPreset + " --set bogus=1", "unknown parameter 'bogus'"},
+                        Case{"run " + kPreset + " --set R=-3", "'R' = -3 is out of range"},
+                        Case{"run " + kPreset + " --set m=2.5", "must be a whole number"},
+                        Case{"run " + kPreset + " --data /no/such.csv", "/no/such.csv: cannot open"},
+                        Case{"run " + kPreset + " --data " + bad_csv, ":4: time is not increasing"},
+                        Case{"run /no/preset.json", "cannot open preset"},
+                        Case{"frobnicate", "unknown command"},
+                        Case{"simulate helicopter", "needs --out"}}) {
+    auto o = cli(c.args);
+    EXPECT_NE(o.code, 0) << c.args;
+    EXPECT_NE(o.text.find(c.fragment), std::string::npos) << c.args << " → " << o.text;
+    EXPECT_EQ(std::count(o.text.begin(), o.text.end(), '\n'), 1) << o.text;
+  }
+}
+
+}  // namespace

@@ -1,0 +1,82 @@
+// Seed 000: closed-form steady state vs the DARE, and the model matrices.
+#include "scenarios/helicopter/helicopter_model.h"
+
+#include <gtest/gtest.h>
+
+#include "common/matrix_matchers.h"
+
+namespace kfw::helicopter {
+namespace {
+
+struct Row {
+  double beta, k1, p11;
+};
+
+// SPEC §1 table (checked against the DARE to 4 digits).
+class ClosedForm : public ::testing::TestWithParam<Row> {};
+
+TEST_P(ClosedForm, MatchesSpecTable) {
+  const Row r = GetParam();
+  EXPECT_NEAR(k1_closed_form(r.beta), r.k1, 5e-5);
+  EXPECT_NEAR(p11_over_R(r.beta), r.p11, 5e-5);
+}
+
+TEST_P(ClosedForm, EqualsDareOfTheMStepModel) {
+  const Row r = GetParam();
+  // Pick Ts, N_θ and m, then N_ω so that β = m Ts² N_ω / N_θ.
+  for (int m : {1, 5, 25, 100}) {
+    const double Ts = 0.02, Nt = 1.9;
+    const double Nw = r.beta * Nt / (m * Ts * Ts);
+    ASSERT_NEAR(beta(m, Ts, Nw, Nt), r.beta, 1e-12);
+    auto g = steady_gain_dare(m, Ts, 0.0, Nw, Nt);
+    ASSERT_TRUE(g.ok()) << g.error();
+    EXPECT_NEAR(g->k1, k1_closed_form(r.beta), 1e-8) << "m = " << m;
+    EXPECT_NEAR(g->k2, 0.0, 1e-6) << "m = " << m;
+    EXPECT_NEAR(g->p11_pred / Nt, p11_over_R(r.beta), 1e-7) << "m = " << m;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(SpecTable, ClosedForm,
+                         ::testing::Values(Row{0.01, 0.0951, 0.1051}, Row{0.05, 0.2000, 0.2500},
+                                           Row{0.27, 0.4019, 0.6719}, Row{1.06, 0.6280, 1.6880}));
+
+TEST(HelicopterModel, ConstantBiasMatrices) {
+  const Model md = model(0.02, 0.0);
+  EXPECT_TRUE(testing::MatricesNear(md.F, (Mat<2>() << 1, -0.02, 0, 1).finished(), 0));
+  EXPECT_TRUE(testing::MatricesNear(md.B, Vec<2>(0.02, 0), 0));
+  EXPECT_TRUE(testing::MatricesNear(md.G, Vec<2>(-0.02, 0), 0));
+  EXPECT_TRUE(testing::MatricesNear(md.H, (Mat<1, 2>() << 1, 0).finished(), 0));
+}
+
+// Seed 000 eq. 12: F = [[1, -Ts], [0, 1-γ]], B = [Ts, γ]^T.
+TEST(HelicopterModel, SlowlyVaryingBiasMatrices) {
+  const Model md = model(0.02, 0.006);
+  EXPECT_TRUE(testing::MatricesNear(md.F, (Mat<2>() << 1, -0.02, 0, 0.994).finished(), 1e-15));
+  EXPECT_TRUE(testing::MatricesNear(md.B, Vec<2>(0.02, 0.006), 0));
+  // The bias low-passes the measured rate: a constant ω_m = c drives b to c.
+  Vec<2> x(0, 0);
+  for (int k = 0; k < 20000; ++k) x = md.F * x + md.B * 3.0;
+  EXPECT_NEAR(x(1), 3.0, 1e-9);
+}
+
+TEST(HelicopterModel, DareWithGammaHasGainBelowOne) {
+  auto g = steady_gain_dare(1, 0.02, 0.006, 67.0, 1.96);
+  ASSERT_TRUE(g.ok()) << g.error();
+  EXPECT_GT(g->k1, 0.0);
+  EXPECT_LT(g->k1, 1.0);
+  EXPECT_FALSE(steady_gain_dare(0, 0.02, 0.0, 1, 1).ok());
+}
+
+TEST(HelicopterModel, GainCurveIsMonotoneAndLogSpaced) {
+  const auto c = gain_curve(1e-4, 1e2, 61);
+  ASSERT_EQ(c.beta.size(), 61u);
+  EXPECT_NEAR(c.beta.front(), 1e-4, 1e-16);
+  EXPECT_NEAR(c.beta.back(), 1e2, 1e-10);
+  for (std::size_t i = 1; i < c.beta.size(); ++i) {
+    EXPECT_GT(c.k1[i], c.k1[i - 1]);
+    EXPECT_GT(c.p11_over_R[i], c.p11_over_R[i - 1]);
+  }
+}
+
+}  // namespace
+}  // namespace kfw::helicopter

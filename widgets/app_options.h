@@ -1,0 +1,32 @@
+// Command line of the GUI executable, shared by app/gui_main.cpp and the tests.
+#pragma once
+
+#include <QString>
+#include <QStringList>
+#include <optional>
+
+#include "core/expected.h"
+
+namespace kfw {
+
+struct AppOptions {
+  QString preset;  // path or name; default "helicopter"
+  std::optional<QString> data;
+  QStringList sets;
+  std::optional<QString> export_dir;
+  QString formats = "png";
+  bool bench_latency = false;
+  int bench_changes = 200;
+  bool help = false;
+};
+
+inline constexpr const char* kAppUsage =
+    "usage: kfw [PRESET] [--data FILE] [--set key=value]...\n"
+    "       kfw --export DIR [PRESET] [--data FILE] [--set key=value]... [--format png,pdf,svg]\n"
+    "       kfw --bench-latency [PRESET] [--data FILE] [--changes N]\n"
+    "PRESET is a preset file or a name in presets/ (default: helicopter).\n"
+    "--export and --bench-latency need no display (they default QT_QPA_PLATFORM to offscreen).\n";
+
+Expected<AppOptions> parseAppOptions(const QStringList& args);
+
+}  // namespace kfw

@@ -1,0 +1,372 @@
+#include "main_window.h"
+
+#include <qcustomplot.h>
+
+#include <QApplication>
+#include <QCoreApplication>
+#include <QDeadlineTimer>
+#include <QDir>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QGridLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QPushButton>
+#include <QScrollArea>
+#include <QSplitter>
+#include <QStatusBar>
+#include <QTableWidget>
+#include <QVBoxLayout>
+#include <cmath>
+
+#include "core/workspace.h"
+#include "param_panel.h"
+#include "plot_export.h"
+#include "run_controller.h"
+#include "transport_bar.h"
+
+namespace kfw {
+
+namespace {
+const ParamValues kEmpty;
+QString q(const std::string& s) { return QString::fromStdString(s); }
+}  // namespace
+
+MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
+  setWindowTitle("kfw — Kalman filter tuning workbench");
+  resize(1600, 1000);
+  runner_ = new RunController(this);
+  connect(runner_, &RunController::finished, this, &MainWindow::applyResult);
+  connect(runner_, &RunController::failed, this, [this](const QString& m) {
+    applied_latest_ = !runner_->busy();
+    showError(m, true);
+    if (applied_latest_) emit resultApplied();
+  });
+
+  auto* left_host = new QWidget;
+  left_ = new QVBoxLayout(left_host);
+  left_->setContentsMargins(4, 4, 4, 4);
+  presets_ = new QComboBox;
+  presets_->setObjectName("presets");
+  presets_->setToolTip("Presets in " + q(preset_dir()));
+  left_->addWidget(new QLabel("<b>Preset</b>"));
+  left_->addWidget(presets_);
+  connect(presets_, &QComboBox::activated, this, [this](int i) {
+    const QString path = presets_->itemData(i).toString();
+    if (auto st = loadPreset(path); !st) {
+      QMessageBox::warning(this, "Preset", q(st.error()));
+      refreshPresetList();
+    }
+  });
+  data_label_ = new QLabel;
+  data_label_->setObjectName("dataLabel");
+  data_label_->setWordWrap(true);
+  left_->addWidget(data_label_);
+  auto* data_row = new QHBoxLayout;
+  auto* open_csv = new QPushButton("Open CSV…");
+  open_csv->setObjectName("openCsv");
+  sim_button_ = new QPushButton("Use simulated data");
+  sim_button_->setObjectName("useSimulated");
+  data_row->addWidget(open_csv);
+  data_row->addWidget(sim_button_);
+  left_->addLayout(data_row);
+  connect(open_csv, &QPushButton::clicked, this, [this] {
+    const QString f = QFileDialog::getOpenFileName(this, "Open dataset", QString(), "CSV (*.csv);;All files (*)");
+    if (f.isEmpty()) return;
+    if (auto st = openDataset(f); !st) QMessageBox::warning(this, "Open CSV", q(st.error()));
+  });
+  connect(sim_button_, &QPushButton::clicked, this, &MainWindow::useSimulatedData);
+  // The panel and scenario controls are inserted here by rebuildScenarioUi().
+  left_->addStretch(0);
+  metrics_ = new QTableWidget(0, 2);
+  metrics_->setObjectName("metrics");
+  metrics_->setHorizontalHeaderLabels({"metric", "value"});
+  metrics_->horizontalHeader()->setStretchLastSection(true);
+  metrics_->verticalHeader()->setVisible(false);
+  metrics_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  metrics_->setMinimumHeight(160);
+
+  auto* left_scroll = new QScrollArea;
+  left_scroll->setWidget(left_host);
+  left_scroll->setWidgetResizable(true);
+  left_scroll->setMinimumWidth(340);
+  auto* left_split = new QSplitter(Qt::Vertical);
+  left_split->addWidget(left_scroll);
+  left_split->addWidget(metrics_);
+  left_split->setStretchFactor(0, 4);
+  left_split->setStretchFactor(1, 1);
+
+  plot_area_ = new QScrollArea;
+  plot_area_->setWidgetResizable(true);
+  auto* center = new QWidget;
+  auto* cl = new QVBoxLayout(center);
+  cl->setContentsMargins(0, 0, 0, 0);
+  error_ = new QLabel;
+  error_->setObjectName("errorBanner");
+  error_->setWordWrap(true);
+  error_->setStyleSheet("QLabel { background: #fde2e1; color: #8a1c13; padding: 6px; }");
+  error_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  error_->hide();
+  cl->addWidget(error_);
+  cl->addWidget(plot_area_, 1);
+  transport_ = new TransportBar;
+  transport_->setObjectName("transport");
+  cl->addWidget(transport_);
+  connect(transport_, &TransportBar::cursorChanged, this, [this](std::size_t i) {
+    if (view_) view_->setCursor(i);
+  });
+
+  auto* split = new QSplitter(Qt::Horizontal);
+  split->addWidget(left_split);
+  split->addWidget(center);
+  split->setStretchFactor(1, 1);
+  split->setSizes({380, 1220});
+  setCentralWidget(split);
+  status_ = new QLabel;
+  statusBar()->addWidget(status_, 1);
+  buildMenus();
+  refreshPresetList();
+}
+
+MainWindow::~MainWindow() = default;
+
+void MainWindow::buildMenus() {
+  QMenu* file = menuBar()->addMenu("&File");
+  file->addAction("Open &preset…", this, [this] {
+    const QString f = QFileDialog::getOpenFileName(this, "Open preset", q(preset_dir()), "Presets (*.json)");
+    if (f.isEmpty()) return;
+    if (auto st = loadPreset(f); !st) QMessageBox::warning(this, "Open preset", q(st.error()));
+  });
+  file->addAction("&Open CSV…", QKeySequence::Open, this, [this] {
+    const QString f = QFileDialog::getOpenFileName(this, "Open dataset", QString(), "CSV (*.csv);;All files (*)");
+    if (f.isEmpty()) return;
+    if (auto st = openDataset(f); !st) QMessageBox::warning(this, "Open CSV", q(st.error()));
+  });
+  file->addAction("Use &simulated data", this, &MainWindow::useSimulatedData);
+  file->addAction("&Save preset as…", QKeySequence::SaveAs, this, [this] {
+    const QString f = QFileDialog::getSaveFileName(this, "Save preset", QString(), "Presets (*.json)");
+    if (f.isEmpty()) return;
+    if (auto st = savePreset(f); !st) QMessageBox::warning(this, "Save preset", q(st.error()));
+  });
+  file->addAction("&Export plots…", this, [this] {
+    const QString dir = QFileDialog::getExistingDirectory(this, "Export plots to");
+    if (dir.isEmpty()) return;
+    auto r = exportAll(dir, {"png", "pdf", "svg"});
+    if (!r) {
+      QMessageBox::warning(this, "Export", q(r.error()));
+    } else {
+      status_->setText(QString("exported %1 files to %2").arg(r->size()).arg(dir));
+    }
+  });
+  file->addSeparator();
+  file->addAction("&Quit", QKeySequence::Quit, this, &QWidget::close);
+  QMenu* replay = menuBar()->addMenu("&Replay");
+  replay->addAction("&Play / pause", QKeySequence(Qt::Key_Space), this,
+                    [this] { transport_->playing() ? transport_->pause() : transport_->play(); });
+  replay->addAction("Show &all", this, [this] { transport_->setShowAll(true); });
+}
+
+void MainWindow::refreshPresetList() {
+  const QSignalBlocker b(presets_);
+  presets_->clear();
+  const QDir dir(q(preset_dir()));
+  for (const QFileInfo& f : dir.entryInfoList({"*.json"}, QDir::Files, QDir::Name)) {
+    presets_->addItem(f.completeBaseName(), f.absoluteFilePath());
+  }
+  if (!preset_.path.empty()) {
+    const int i = presets_->findData(QFileInfo(q(preset_.path)).absoluteFilePath());
+    if (i >= 0) {
+      presets_->setCurrentIndex(i);
+    } else {
+      presets_->addItem(QFileInfo(q(preset_.path)).completeBaseName(), q(preset_.path));
+      presets_->setCurrentIndex(presets_->count() - 1);
+    }
+  }
+}
+
+Status MainWindow::loadPreset(const QString& preset, const std::optional<QString>& data_file,
+                              const QStringList& assignments) {
+  std::vector<std::string> sets;
+  for (const auto& a : assignments) sets.push_back(a.toStdString());
+  std::optional<std::string> d;
+  if (data_file) d = data_file->toStdString();
+  auto ws = open_workspace(preset.toStdString(), d, sets);
+  if (!ws) return Error{ws.error()};
+  std::shared_ptr<const Dataset> file;
+  if (ws->data_path) {
+    auto ds = load_dataset_file(*ws->scenario, *ws->data_path);
+    if (!ds) return Error{ds.error()};
+    file = std::make_shared<const Dataset>(std::move(*ds));
+  }
+  auto view = views().make(ws->scenario->name());
+  if (!view) return Error{"no plots registered for scenario '" + ws->scenario->name() + "'"};
+  preset_ = ws->preset;
+  preset_.values = ws->values;
+  scenario_ = ws->scenario;
+  file_data_ = file;
+  view_ = std::move(view);
+  result_.reset();
+  runner_->setScenario(scenario_);
+  runner_->setFileDataset(file_data_);
+  rebuildScenarioUi();
+  refreshPresetList();
+  clearError();
+  setWindowTitle("kfw — " + q(preset_.title.empty() ? scenario_->title() : preset_.title));
+  requestRun();
+  return Ok{};
+}
+
+void MainWindow::rebuildScenarioUi() {
+  delete panel_;
+  delete controls_;
+  controls_ = nullptr;
+  panel_ = new ParamPanel(scenario_->params(), preset_.ranges);
+  panel_->setObjectName("paramPanel");
+  panel_->setValues(preset_.values);
+  left_->insertWidget(left_->count() - 1, panel_);
+  connect(panel_, &ParamPanel::valueChanged, this, [this](const QString&, double) { requestRun(); });
+  controls_ = view_->createControls(nullptr);
+  if (controls_) left_->insertWidget(left_->count() - 1, controls_);
+  connect(view_.get(), &ScenarioView::parameterEdited, this,
+          [this](const QString& key, double v) { setParam(key.toStdString(), v); });
+
+  // Plots: two columns in a scroll area.
+  delete plot_host_;
+  plot_host_ = new QWidget;
+  auto* grid = new QGridLayout(plot_host_);
+  grid->setContentsMargins(2, 2, 2, 2);
+  grid->setSpacing(4);
+  plots_ = view_->createPlots(plot_host_);
+  for (int i = 0; i < plots_.size(); ++i) {
+    plots_[i].plot->setObjectName("plot." + plots_[i].name);
+    plots_[i].plot->setMinimumHeight(300);
+    grid->addWidget(plots_[i].plot, i / 2, i % 2);
+  }
+  plot_area_->setWidget(plot_host_);
+  updateDataLabel();
+}
+
+void MainWindow::updateDataLabel() {
+  const bool file = static_cast<bool>(file_data_);
+  if (file) {
+    data_label_->setText(QString("<b>Data:</b> %1 (%2 rows)")
+                             .arg(QFileInfo(q(file_data_->source)).fileName())
+                             .arg(file_data_->rows()));
+    data_label_->setToolTip(q(file_data_->source));
+  } else {
+    data_label_->setText("<b>Data:</b> simulated from the Simulator parameters");
+    data_label_->setToolTip({});
+  }
+  sim_button_->setEnabled(file);
+  if (panel_) {
+    panel_->setGroupEnabled("Simulator", !file, file ? "off: data from file" : QString());
+  }
+}
+
+Status MainWindow::openDataset(const QString& path) {
+  if (!scenario_) return Error{"load a preset first"};
+  auto ds = load_dataset_file(*scenario_, path.toStdString());
+  if (!ds) {
+    showError(q(ds.error()));
+    return Error{ds.error()};
+  }
+  file_data_ = std::make_shared<const Dataset>(std::move(*ds));
+  runner_->setFileDataset(file_data_);
+  clearError();
+  updateDataLabel();
+  requestRun();
+  return Ok{};
+}
+
+void MainWindow::useSimulatedData() {
+  if (!file_data_) return;
+  file_data_.reset();
+  runner_->setFileDataset(nullptr);
+  updateDataLabel();
+  requestRun();
+}
+
+void MainWindow::setParam(const std::string& key, double value) {
+  if (panel_) panel_->setValue(key, value);
+}
+
+Status MainWindow::savePreset(const QString& path) const {
+  if (!scenario_) return Error{"nothing to save"};
+  Preset p = preset_;
+  p.values = values();
+  if (file_data_) {
+    p.data_path = file_data_->source;
+  } else {
+    p.data_path.reset();
+  }
+  return save_preset(path.toStdString(), p);
+}
+
+const ParamValues& MainWindow::values() const { return panel_ ? panel_->values() : kEmpty; }
+
+std::shared_ptr<const Dataset> MainWindow::dataset() const { return runner_->dataset(); }
+
+void MainWindow::requestRun() {
+  if (!scenario_ || !panel_) return;
+  if (applied_latest_) since_request_.start();
+  applied_latest_ = false;
+  runner_->request(panel_->values());
+}
+
+void MainWindow::applyResult(std::shared_ptr<const RunResult> r, const ParamValues& v, double ms) {
+  result_ = r;
+  transport_->setTimes(r->t);
+  view_->setResult(r, v);
+  view_->setCursor(transport_->cursor());
+  metrics_->setRowCount(static_cast<int>(r->metrics.size()));
+  int row = 0;
+  for (const auto& [k, x] : r->metrics) {
+    metrics_->setItem(row, 0, new QTableWidgetItem(q(k)));
+    metrics_->setItem(row, 1, new QTableWidgetItem(std::isfinite(x) ? QString::number(x, 'g', 6) : "–"));
+    ++row;
+  }
+  applied_latest_ = !runner_->busy();
+  if (applied_latest_) last_latency_ms_ = static_cast<double>(since_request_.nsecsElapsed()) / 1e6;
+  QString msg = QString("%1 steps · run %2 ms · request→plots %3 ms")
+                    .arg(r->steps())
+                    .arg(ms, 0, 'f', 1)
+                    .arg(last_latency_ms_, 0, 'f', 1);
+  for (const auto& w : r->warnings) msg += " · ⚠ " + q(w);
+  status_->setText(msg);
+  if (applied_latest_) {
+    if (error_->isVisible() && error_->property("fromRun").toBool()) clearError();
+    emit resultApplied();
+  }
+}
+
+void MainWindow::showError(const QString& message, bool from_run) {
+  last_error_ = message;
+  error_->setText("⚠ " + message);
+  error_->setProperty("fromRun", from_run);
+  error_->show();
+  emit errorShown(message);
+}
+
+void MainWindow::clearError() {
+  error_->hide();
+  error_->clear();
+}
+
+bool MainWindow::waitForRun(int timeout_ms) {
+  QDeadlineTimer deadline(timeout_ms);
+  while (!applied_latest_ || runner_->busy()) {
+    if (deadline.hasExpired()) return false;
+    QCoreApplication::processEvents(QEventLoop::AllEvents, 5);
+  }
+  return true;
+}
+
+Expected<QStringList> MainWindow::exportAll(const QString& dir, const QStringList& formats) {
+  if (!waitForRun()) return Error{"export: the run did not finish"};
+  if (!result_) return Error{"export: no result to plot (" + last_error_.toStdString() + ")"};
+  return exportPanels(plots_, dir, formats, q(scenario_->name()) + "_");
+}
+
+}  // namespace kfw

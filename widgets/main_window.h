@@ -1,0 +1,106 @@
+// The workbench window: preset picker, generated parameter panel, scenario plots, replay
+// transport, CSV loading and export. Knows no scenario by name: everything comes from the
+// engine's registry and the view registry.
+#pragma once
+
+#include <QElapsedTimer>
+#include <QList>
+#include <QMainWindow>
+#include <QString>
+#include <QStringList>
+#include <memory>
+#include <optional>
+
+#include "core/expected.h"
+#include "core/preset.h"
+#include "core/scenario.h"
+#include "scenario_view.h"
+
+class QComboBox;
+class QLabel;
+class QScrollArea;
+class QTableWidget;
+class QVBoxLayout;
+class QGridLayout;
+class QPushButton;
+
+namespace kfw {
+
+class ParamPanel;
+class RunController;
+class TransportBar;
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+ public:
+  explicit MainWindow(QWidget* parent = nullptr);
+  ~MainWindow() override;
+
+  // Loads a preset (path or name in presets/), optionally with another dataset and --set values.
+  // On failure nothing changes and the message names the file/line/key.
+  Status loadPreset(const QString& preset, const std::optional<QString>& data_file = {},
+                    const QStringList& assignments = {});
+  // Loads a CSV for the current scenario. On failure the loaded dataset stays and the error shows.
+  Status openDataset(const QString& path);
+  // Switches back to data simulated from the sim.* parameters.
+  void useSimulatedData();
+  // Sets a parameter as a user would (through its control); the run follows.
+  void setParam(const std::string& key, double value);
+  Status savePreset(const QString& path) const;
+
+  // Waits (processing events) until the latest request has run and its plots are drawn.
+  bool waitForRun(int timeout_ms = 20000);
+  Expected<QStringList> exportAll(const QString& dir, const QStringList& formats);
+
+  ParamPanel* paramPanel() const { return panel_; }
+  ScenarioView* view() const { return view_.get(); }
+  const QList<PlotPanel>& plots() const { return plots_; }
+  TransportBar* transport() const { return transport_; }
+  std::shared_ptr<const RunResult> result() const { return result_; }
+  std::shared_ptr<const Dataset> dataset() const;
+  const ParamValues& values() const;
+  QString lastError() const { return last_error_; }
+  const Preset& preset() const { return preset_; }
+  // Request → plots replotted, for the last run, ms.
+  double lastLatencyMs() const { return last_latency_ms_; }
+
+ signals:
+  void resultApplied();
+  void errorShown(const QString& message);
+
+ private:
+  void buildMenus();
+  void rebuildScenarioUi();
+  void requestRun();
+  void applyResult(std::shared_ptr<const RunResult> r, const ParamValues& v, double ms);
+  void showError(const QString& message, bool from_run = false);
+  void clearError();
+  void refreshPresetList();
+  void updateDataLabel();
+
+  std::shared_ptr<const Scenario> scenario_;
+  std::unique_ptr<ScenarioView> view_;
+  Preset preset_;
+  std::shared_ptr<const Dataset> file_data_;
+  std::shared_ptr<const RunResult> result_;
+  QList<PlotPanel> plots_;
+  RunController* runner_ = nullptr;
+  ParamPanel* panel_ = nullptr;
+  QWidget* controls_ = nullptr;
+  TransportBar* transport_ = nullptr;
+  QComboBox* presets_ = nullptr;
+  QLabel* data_label_ = nullptr;
+  QPushButton* sim_button_ = nullptr;
+  QVBoxLayout* left_ = nullptr;
+  QScrollArea* plot_area_ = nullptr;
+  QWidget* plot_host_ = nullptr;
+  QTableWidget* metrics_ = nullptr;
+  QLabel* error_ = nullptr;
+  QLabel* status_ = nullptr;
+  QString last_error_;
+  QElapsedTimer since_request_;
+  double last_latency_ms_ = 0.0;
+  bool applied_latest_ = true;
+};
+
+}  // namespace kfw

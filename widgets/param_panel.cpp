@@ -1,0 +1,208 @@
+#include "param_panel.h"
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QGridLayout>
+#include <QGroupBox>
+#include <QLabel>
+#include <QSignalBlocker>
+#include <QSlider>
+#include <QVBoxLayout>
+#include <algorithm>
+#include <cmath>
+
+namespace kfw {
+
+// A spin box that shows any magnitude readably (1e-06 … 1e+06) and steps in ratio on log scales.
+class ValueSpinBox : public QDoubleSpinBox {
+ public:
+  ValueSpinBox(bool log, QWidget* parent) : QDoubleSpinBox(parent), log_(log) {
+    setDecimals(12);
+    setKeyboardTracking(false);
+    setMinimumWidth(92);
+    setAlignment(Qt::AlignRight);
+  }
+  QString textFromValue(double v) const override { return QString::number(v, 'g', 6); }
+  double valueFromText(const QString& text) const override { return text.trimmed().toDouble(); }
+  QValidator::State validate(QString& text, int&) const override {
+    bool ok = false;
+    const double v = text.trimmed().toDouble(&ok);
+    if (text.trimmed().isEmpty() || text.trimmed() == "-" || text.endsWith('e') ||
+        text.endsWith("e-") || text.endsWith("e+") || text.endsWith('.')) {
+      return QValidator::Intermediate;
+    }
+    if (!ok) return QValidator::Invalid;
+    return (v >= minimum() && v <= maximum()) ? QValidator::Acceptable : QValidator::Intermediate;
+  }
+  void stepBy(int steps) override {
+    if (log_ && value() > 0) {
+      setValue(value() * std::pow(10.0, 0.1 * steps));
+    } else {
+      QDoubleSpinBox::stepBy(steps);
+    }
+  }
+
+ private:
+  bool log_;
+};
+
+int ParamPanel::toSlider(const ParamSpec& s, double lo, double hi, double v) {
+  double f = 0.0;
+  if (s.scale == Scale::kLog && lo > 0) {
+    f = (std::log10(std::max(v, lo)) - std::log10(lo)) / (std::log10(hi) - std::log10(lo));
+  } else if (s.scale == Scale::kInteger && hi - lo <= kSliderSteps) {
+    return static_cast<int>(std::lround(v - lo));
+  } else {
+    f = (v - lo) / (hi - lo);
+  }
+  return static_cast<int>(std::lround(std::clamp(f, 0.0, 1.0) * kSliderSteps));
+}
+
+double ParamPanel::fromSlider(const ParamSpec& s, double lo, double hi, int pos) {
+  if (s.scale == Scale::kInteger && hi - lo <= kSliderSteps) return lo + pos;
+  const double f = static_cast<double>(pos) / kSliderSteps;
+  double v = 0.0;
+  if (s.scale == Scale::kLog && lo > 0) {
+    v = std::pow(10.0, std::log10(lo) + f * (std::log10(hi) - std::log10(lo)));
+    // Three significant digits: values a user can read back and type.
+    const double mag = std::pow(10.0, std::floor(std::log10(v)) - 2);
+    v = std::clamp(std::round(v / mag) * mag, lo, hi);
+  } else {
+    v = lo + f * (hi - lo);
+  }
+  if (s.scale == Scale::kInteger) v = std::round(v);
+  return v;
+}
+
+ParamPanel::ParamPanel(const ParamTable& table, const Ranges& ranges, QWidget* parent)
+    : QWidget(parent) {
+  auto* outer = new QVBoxLayout(this);
+  outer->setContentsMargins(0, 0, 0, 0);
+  values_ = table.defaults();
+  for (const ParamSpec& s : table.specs()) {
+    const QString gname = QString::fromStdString(s.group.empty() ? "Parameters" : s.group);
+    QGroupBox* box = groups_.value(gname, nullptr);
+    if (!box) {
+      box = new QGroupBox(gname, this);
+      box->setObjectName("group." + gname);
+      auto* grid = new QGridLayout(box);
+      grid->setContentsMargins(6, 4, 6, 4);
+      grid->setVerticalSpacing(2);
+      grid->setColumnStretch(1, 1);
+      groups_.insert(gname, box);
+      outer->addWidget(box);
+    }
+    auto* grid = static_cast<QGridLayout*>(box->layout());
+    const int r = grid->rowCount();
+    Row row;
+    row.spec = s;
+    row.group = box;
+    row.lo = s.min;
+    row.hi = s.max;
+    if (auto it = ranges.find(s.key); it != ranges.end()) {
+      row.lo = it->second.first;
+      row.hi = it->second.second;
+    }
+    const QString key = QString::fromStdString(s.key);
+    QString text = QString::fromStdString(s.label);
+    auto* label = new QLabel(text, box);
+    label->setToolTip(QString::fromStdString(s.key + ": " + s.description));
+    label->setObjectName("label." + key);
+    grid->addWidget(label, r, 0, 1, 3);
+    const QString unit = QString::fromStdString(s.unit);
+    if (s.scale == Scale::kChoice) {
+      row.combo = new QComboBox(box);
+      row.combo->setObjectName("combo." + key);
+      for (const auto& c : s.choices) row.combo->addItem(QString::fromStdString(c));
+      grid->addWidget(row.combo, r + 1, 0, 1, 3);
+      connect(row.combo, &QComboBox::currentIndexChanged, this, [this, k = s.key](int i) {
+        commit(rows_.at(k), static_cast<double>(i));
+      });
+    } else if (s.scale == Scale::kToggle) {
+      row.check = new QCheckBox("on", box);
+      row.check->setObjectName("check." + key);
+      grid->addWidget(row.check, r + 1, 0, 1, 3);
+      connect(row.check, &QCheckBox::toggled, this,
+              [this, k = s.key](bool on) { commit(rows_.at(k), on ? 1.0 : 0.0); });
+    } else {
+      row.slider = new QSlider(Qt::Horizontal, box);
+      row.slider->setObjectName("slider." + key);
+      const bool direct = s.scale == Scale::kInteger && row.hi - row.lo <= kSliderSteps;
+      row.slider->setRange(0, direct ? static_cast<int>(row.hi - row.lo) : kSliderSteps);
+      row.slider->setToolTip(label->toolTip());
+      row.spin = new ValueSpinBox(s.scale == Scale::kLog, box);
+      row.spin->setObjectName("spin." + key);
+      row.spin->setRange(row.lo, row.hi);
+      if (s.scale == Scale::kInteger) {
+        row.spin->setSingleStep(1.0);
+      } else if (s.scale == Scale::kLinear) {
+        row.spin->setSingleStep(std::pow(10.0, -std::min(s.decimals, 6)));
+      }
+      auto* unit_label = new QLabel(unit, box);
+      unit_label->setMinimumWidth(56);
+      grid->addWidget(row.slider, r + 1, 0);
+      grid->addWidget(row.spin, r + 1, 1);
+      grid->addWidget(unit_label, r + 1, 2);
+      connect(row.slider, &QSlider::valueChanged, this, [this, k = s.key](int pos) {
+        Row& rw = rows_.at(k);
+        commit(rw, fromSlider(rw.spec, rw.lo, rw.hi, pos));
+      });
+      connect(row.spin, &QDoubleSpinBox::valueChanged, this, [this, k = s.key](double v) {
+        Row& rw = rows_.at(k);
+        if (rw.spec.scale == Scale::kInteger) v = std::round(v);
+        commit(rw, v);
+      });
+    }
+    rows_.emplace(s.key, row);
+  }
+  outer->addStretch(1);
+  setValues(values_);
+}
+
+void ParamPanel::show(Row& row, double v) {
+  const QSignalBlocker b1(row.slider), b2(row.spin), b3(row.combo), b4(row.check);
+  if (row.slider) row.slider->setValue(toSlider(row.spec, row.lo, row.hi, v));
+  if (row.spin) row.spin->setValue(v);
+  if (row.combo) row.combo->setCurrentIndex(static_cast<int>(v));
+  if (row.check) row.check->setChecked(v != 0.0);
+}
+
+void ParamPanel::commit(Row& row, double v) {
+  v = std::clamp(v, row.spec.min, row.spec.max);
+  show(row, v);
+  auto it = values_.find(row.spec.key);
+  if (it != values_.end() && it->second == v) return;
+  values_[row.spec.key] = v;
+  emit valueChanged(QString::fromStdString(row.spec.key), v);
+}
+
+void ParamPanel::setValues(const ParamValues& values) {
+  for (const auto& [key, v] : values) {
+    auto it = rows_.find(key);
+    if (it == rows_.end()) continue;
+    values_[key] = v;
+    // A preset value outside the slider's narrowed range widens it to the table's limits.
+    if (v < it->second.lo || v > it->second.hi) {
+      it->second.lo = it->second.spec.min;
+      it->second.hi = it->second.spec.max;
+      if (it->second.spin) it->second.spin->setRange(it->second.lo, it->second.hi);
+    }
+    show(it->second, v);
+  }
+}
+
+void ParamPanel::setValue(const std::string& key, double value) {
+  auto it = rows_.find(key);
+  if (it != rows_.end()) commit(it->second, value);
+}
+
+void ParamPanel::setGroupEnabled(const QString& group, bool enabled, const QString& why) {
+  if (QGroupBox* box = groups_.value(group, nullptr)) {
+    box->setEnabled(enabled);
+    box->setToolTip(enabled ? QString() : why);
+    box->setTitle(enabled || why.isEmpty() ? group : group + " — " + why);
+  }
+}
+
+}  // namespace kfw

@@ -1,0 +1,213 @@
+#include "plot_kit.h"
+
+#include <qcustomplot.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace kfw::plot {
+
+QColor color::cycle(int i) {
+  static const QColor c[] = {kEstimate, kSecond, kThird, kFourth, kFifth,
+                             QColor(140, 86, 75), QColor(227, 119, 194), QColor(23, 190, 207),
+                             QColor(188, 189, 34), QColor(127, 127, 127)};
+  return c[static_cast<std::size_t>(i) % (sizeof c / sizeof c[0])];
+}
+
+QCustomPlot* makePlot(QWidget* parent, const QString& title, const QString& xLabel,
+                      const QString& yLabel) {
+  auto* p = new QCustomPlot(parent);
+  p->setMinimumHeight(240);
+  p->setNoAntialiasingOnDrag(true);
+  p->setInteractions(QCP::iRangeDrag | QCP::iRangeZoom);
+  QFont base = p->font();
+  base.setPointSizeF(9.0);
+  p->setFont(base);
+  p->plotLayout()->insertRow(0);
+  QFont tf = base;
+  tf.setPointSizeF(10.5);
+  tf.setBold(true);
+  auto* te = new QCPTextElement(p, title, tf);
+  te->setObjectName("title");
+  p->plotLayout()->addElement(0, 0, te);
+  p->xAxis->setLabel(xLabel);
+  p->yAxis->setLabel(yLabel);
+  for (QCPAxis* a : {p->xAxis, p->yAxis, p->yAxis2}) {
+    a->setLabelFont(base);
+    a->setTickLabelFont(base);
+  }
+  p->legend->setVisible(true);
+  QFont lf = base;
+  lf.setPointSizeF(8.0);
+  p->legend->setFont(lf);
+  p->legend->setBrush(QBrush(QColor(255, 255, 255, 210)));
+  p->legend->setBorderPen(QPen(QColor(180, 180, 180)));
+  p->legend->setRowSpacing(-2);
+  p->axisRect()->insetLayout()->setInsetAlignment(0, Qt::AlignTop | Qt::AlignRight);
+  return p;
+}
+
+QCPGraph* addGraph(QCustomPlot* p, const QString& name, const QColor& c, Style s, double width) {
+  QCPGraph* g = p->addGraph();
+  g->setName(name);
+  QPen pen(c);
+  pen.setWidthF(width);
+  switch (s) {
+    case Style::kLine: break;
+    case Style::kDashed: pen.setStyle(Qt::DashLine); break;
+    case Style::kDots:
+      g->setLineStyle(QCPGraph::lsNone);
+      g->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssDisc, c, c, 2.5));
+      break;
+    case Style::kStep: g->setLineStyle(QCPGraph::lsStepLeft); break;
+  }
+  g->setPen(pen);
+  return g;
+}
+
+QCPGraph* addGraphRight(QCustomPlot* p, const QString& name, const QColor& c,
+                        const QString& rightLabel) {
+  QCPGraph* g = p->addGraph(p->xAxis, p->yAxis2);
+  g->setName(name);
+  QPen pen(c);
+  pen.setWidthF(1.4);
+  g->setPen(pen);
+  p->yAxis2->setVisible(true);
+  p->yAxis2->setLabel(rightLabel);
+  return g;
+}
+
+void setLog(QCPAxis* axis) {
+  axis->setScaleType(QCPAxis::stLogarithmic);
+  QSharedPointer<QCPAxisTickerLog> t(new QCPAxisTickerLog);
+  t->setLogBase(10);
+  t->setSubTickCount(8);
+  axis->setTicker(t);
+  axis->setNumberFormat("gb");
+  axis->setNumberPrecision(3);
+}
+
+void setSeries(QCPGraph* g, const std::vector<double>& x, const std::vector<double>& y,
+               std::size_t n, bool skipNaN) {
+  n = std::min({n, x.size(), y.size()});
+  QVector<QCPGraphData> data;
+  data.reserve(static_cast<qsizetype>(n));
+  const bool logY = g->valueAxis()->scaleType() == QCPAxis::stLogarithmic;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double v = y[i];
+    const bool good = std::isfinite(v) && std::isfinite(x[i]) && (!logY || v > 0.0);
+    if (good) {
+      data.append(QCPGraphData(x[i], v));
+    } else if (!skipNaN && std::isfinite(x[i])) {
+      data.append(QCPGraphData(x[i], std::numeric_limits<double>::quiet_NaN()));
+    }
+  }
+  g->data()->set(data, true);
+}
+
+Band addBand(QCustomPlot* p, const QString& name, const QColor& c) {
+  Band b;
+  QColor fill = c;
+  fill.setAlpha(50);
+  QColor edge = c;
+  edge.setAlpha(90);
+  b.upper = p->addGraph();
+  b.upper->setName(name);
+  b.upper->setPen(QPen(edge));
+  b.lower = p->addGraph();
+  b.lower->setPen(QPen(edge));
+  b.lower->setBrush(QBrush(fill));
+  b.lower->setChannelFillGraph(b.upper);
+  b.lower->removeFromLegend();
+  b.upper->setBrush(Qt::NoBrush);
+  // Legend swatch shows the fill.
+  b.upper->setBrush(Qt::NoBrush);
+  return b;
+}
+
+void setBand(const Band& b, const std::vector<double>& x, const std::vector<double>& center,
+             const std::vector<double>& halfwidth, std::size_t n) {
+  n = std::min({n, x.size(), center.size(), halfwidth.size()});
+  QVector<QCPGraphData> up, lo;
+  up.reserve(static_cast<qsizetype>(n));
+  lo.reserve(static_cast<qsizetype>(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    const double c = center[i], h = halfwidth[i];
+    if (!std::isfinite(c) || !std::isfinite(h)) continue;
+    up.append(QCPGraphData(x[i], c + h));
+    lo.append(QCPGraphData(x[i], c - h));
+  }
+  b.upper->data()->set(up, true);
+  b.lower->data()->set(lo, true);
+}
+
+void setBandLimits(const Band& b, const std::vector<double>& x, const std::vector<double>& lo,
+                   const std::vector<double>& hi, std::size_t n) {
+  n = std::min({n, x.size(), lo.size(), hi.size()});
+  QVector<QCPGraphData> u, l;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(lo[i]) || !std::isfinite(hi[i])) continue;
+    u.append(QCPGraphData(x[i], hi[i]));
+    l.append(QCPGraphData(x[i], lo[i]));
+  }
+  b.upper->data()->set(u, true);
+  b.lower->data()->set(l, true);
+}
+
+QCPItemStraightLine* addCursor(QCustomPlot* p) {
+  auto* line = new QCPItemStraightLine(p);
+  QPen pen(QColor(200, 0, 0, 160));
+  pen.setWidthF(1.0);
+  line->setPen(pen);
+  line->point1->setTypeX(QCPItemPosition::ptPlotCoords);
+  line->point1->setTypeY(QCPItemPosition::ptAxisRectRatio);
+  line->point2->setTypeX(QCPItemPosition::ptPlotCoords);
+  line->point2->setTypeY(QCPItemPosition::ptAxisRectRatio);
+  line->point1->setCoords(0, 0);
+  line->point2->setCoords(0, 1);
+  line->setVisible(false);
+  line->setSelectable(false);
+  return line;
+}
+
+void setCursorAt(QCPItemStraightLine* line, double x, bool visible) {
+  line->point1->setCoords(x, 0);
+  line->point2->setCoords(x, 1);
+  line->setVisible(visible);
+}
+
+QCPItemStraightLine* addHLine(QCustomPlot* p, double y, const QColor& c, Qt::PenStyle s) {
+  auto* line = new QCPItemStraightLine(p);
+  QPen pen(c);
+  pen.setStyle(s);
+  line->setPen(pen);
+  line->point1->setTypeX(QCPItemPosition::ptAxisRectRatio);
+  line->point2->setTypeX(QCPItemPosition::ptAxisRectRatio);
+  setHLine(line, y);
+  line->setSelectable(false);
+  return line;
+}
+
+void setHLine(QCPItemStraightLine* line, double y) {
+  line->point1->setCoords(0, y);
+  line->point2->setCoords(1, y);
+}
+
+void rescale(QCustomPlot* p, double x0, double x1) {
+  p->rescaleAxes(true);
+  for (QCPAxis* a : {p->yAxis, p->yAxis2}) {
+    if (!a->visible() && a == p->yAxis2) continue;
+    QCPRange r = a->range();
+    if (a->scaleType() == QCPAxis::stLogarithmic) {
+      if (r.lower > 0 && r.upper > 0) a->setRange(r.lower / 1.5, r.upper * 1.5);
+    } else {
+      const double span = r.size() > 0 ? r.size() : std::max(1.0, std::abs(r.center()));
+      a->setRange(r.lower - 0.06 * span, r.upper + 0.12 * span);
+    }
+  }
+  if (x1 > x0) p->xAxis->setRange(x0, x1);
+}
+
+void replot(QCustomPlot* p) { p->replot(QCustomPlot::rpQueuedRefresh); }
+
+}  // namespace kfw::plot

@@ -1,0 +1,74 @@
+// Shared QCustomPlot conventions: one look for every scenario's plots (titles, units, legends,
+// colours), and NaN-aware series setters that reveal data up to the replay cursor.
+#pragma once
+
+#include <QColor>
+#include <QString>
+#include <cstddef>
+#include <vector>
+
+class QCustomPlot;
+class QCPGraph;
+class QCPAxis;
+class QCPItemStraightLine;
+class QCPItemTracer;
+class QWidget;
+
+namespace kfw::plot {
+
+// Colours with fixed meanings across the workbench.
+namespace color {
+inline const QColor kTruth{0, 0, 0};
+inline const QColor kSensor{150, 150, 150};
+inline const QColor kEstimate{31, 119, 180};
+inline const QColor kSecond{214, 39, 40};
+inline const QColor kThird{44, 160, 44};
+inline const QColor kFourth{255, 127, 14};
+inline const QColor kFifth{148, 103, 189};
+inline const QColor kBound{120, 120, 120};
+QColor cycle(int i);  // a distinct colour for series i
+}  // namespace color
+
+// A plot with title, axis labels (units in them), legend and the house fonts.
+QCustomPlot* makePlot(QWidget* parent, const QString& title, const QString& xLabel,
+                      const QString& yLabel);
+enum class Style { kLine, kDots, kStep, kDashed };
+QCPGraph* addGraph(QCustomPlot* p, const QString& name, const QColor& c, Style s = Style::kLine,
+                   double width = 1.4);
+// A graph drawn on the right-hand y axis (which the call turns on, labelled).
+QCPGraph* addGraphRight(QCustomPlot* p, const QString& name, const QColor& c,
+                        const QString& rightLabel);
+// Log scale with decade ticks.
+void setLog(QCPAxis* axis);
+
+// Sets the first n points (n clipped to the data). skipNaN: drop non-finite points (the line
+// joins across them); otherwise a non-finite y draws a gap.
+void setSeries(QCPGraph* g, const std::vector<double>& x, const std::vector<double>& y,
+               std::size_t n, bool skipNaN = true);
+inline constexpr std::size_t kAll = static_cast<std::size_t>(-1);
+
+// A shaded band center ± halfwidth (two graphs, the lower filled to the upper).
+struct Band {
+  QCPGraph* upper = nullptr;
+  QCPGraph* lower = nullptr;
+};
+Band addBand(QCustomPlot* p, const QString& name, const QColor& c);
+void setBand(const Band& b, const std::vector<double>& x, const std::vector<double>& center,
+             const std::vector<double>& halfwidth, std::size_t n);
+// A band between two given curves.
+void setBandLimits(const Band& b, const std::vector<double>& x, const std::vector<double>& lo,
+                   const std::vector<double>& hi, std::size_t n);
+
+// A vertical line at the replay cursor.
+QCPItemStraightLine* addCursor(QCustomPlot* p);
+void setCursorAt(QCPItemStraightLine* line, double x, bool visible);
+// A horizontal reference line (χ² bound, set-point, ...) that stays put when rescaling.
+QCPItemStraightLine* addHLine(QCustomPlot* p, double y, const QColor& c, Qt::PenStyle s = Qt::DashLine);
+void setHLine(QCPItemStraightLine* line, double y);
+
+// Rescales both axes to the visible data with a small margin; keeps x fixed to [x0, x1] when
+// x1 > x0 (so replay does not squeeze the time axis). Replots (queued refresh).
+void rescale(QCustomPlot* p, double x0 = 0.0, double x1 = 0.0);
+void replot(QCustomPlot* p);
+
+}  // namespace kfw::plot

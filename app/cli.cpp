@@ -82,8 +82,8 @@ nlohmann::json to_json(const Metrics& m) {
 // A scenario name or a preset path both open a workspace.
 Expected<Workspace> open_any(const std::string& name, const Args& a) {
   std::error_code ec;
-  const bool looks_like_file = name.find('/') != std::string::npos ||
-                               std::filesystem::path(name).extension() == ".json";
+  const bool looks_like_file =
+      name.find('/') != std::string::npos || std::filesystem::path(name).extension() == ".json";
   if (!looks_like_file && !std::filesystem::is_regular_file(resolve_preset_path(name), ec)) {
     auto p = default_preset(name);
     if (!p) return Error{p.error()};
@@ -132,7 +132,8 @@ int cmd_run(const Args& a, std::ostream& out, std::ostream& err) {
   auto r = ws->scenario->run(*d, ws->values);
   if (!r) return fail(err, r.error());
   const RunResult& res = **r;
-  for (const auto& w : res.warnings) err << "kfw-cli: warning: " << w << "\n";
+  for (const auto& w : res.warnings)
+    err << "kfw-cli: warning: " << w << "\n";
   if (a.out) {
     if (auto st = write_csv_file(*a.out, res.table()); !st) return fail(err, st.error());
   }
@@ -206,7 +207,8 @@ int cmd_scenario(const std::string& cmd, const Args& a, std::ostream& out, std::
 
 int cmd_list(std::ostream& out) {
   out << "scenarios:";
-  for (const auto& n : scenarios().names()) out << " " << n;
+  for (const auto& n : scenarios().names())
+    out << " " << n;
   out << "\npresets (" << preset_dir() << "):";
   std::error_code ec;
   std::vector<std::string> names;
@@ -214,7 +216,8 @@ int cmd_list(std::ostream& out) {
     if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
   }
   std::sort(names.begin(), names.end());
-  for (const auto& n : names) out << " " << n;
+  for (const auto& n : names)
+    out << " " << n;
   out << "\n";
   return 0;
 }

@@ -6,13 +6,16 @@
 #include <cstdlib>
 
 #include "app_options.h"
+#include "core/memory.h"
 #include "latency_bench.h"
 #include "main_window.h"
 #include "plot_export.h"
 
 int main(int argc, char** argv) {
+  kfw::retain_freed_memory();
   QStringList raw;
-  for (int i = 1; i < argc; ++i) raw << QString::fromLocal8Bit(argv[i]);
+  for (int i = 1; i < argc; ++i)
+    raw << QString::fromLocal8Bit(argv[i]);
   auto opt = kfw::parseAppOptions(raw);
   if (!opt) {
     std::fprintf(stderr, "kfw: %s\n%s", opt.error().c_str(), kfw::kAppUsage);
@@ -22,7 +25,7 @@ int main(int argc, char** argv) {
     std::printf("%s", kfw::kAppUsage);
     return 0;
   }
-  const bool headless = opt->export_dir || opt->bench_latency;
+  const bool headless = opt->export_dir || opt->bench_latency || opt->screenshot;
   if (headless && qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) {
     qputenv("QT_QPA_PLATFORM", "offscreen");
   }
@@ -46,7 +49,23 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "kfw: %s\n", files.error().c_str());
       return 1;
     }
-    for (const auto& f : *files) std::printf("%s\n", qPrintable(f));
+    for (const auto& f : *files)
+      std::printf("%s\n", qPrintable(f));
+    return 0;
+  }
+  if (opt->screenshot) {
+    w.resize(1600, 1000);
+    w.show();
+    if (!w.waitForRun()) {
+      std::fprintf(stderr, "kfw: the run did not finish\n");
+      return 1;
+    }
+    QApplication::processEvents();
+    if (!w.grab().save(*opt->screenshot)) {
+      std::fprintf(stderr, "kfw: %s: cannot write the screenshot\n", qPrintable(*opt->screenshot));
+      return 1;
+    }
+    std::printf("%s\n", qPrintable(*opt->screenshot));
     return 0;
   }
   if (opt->bench_latency) {

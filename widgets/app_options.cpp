@@ -28,19 +28,24 @@ Expected<AppOptions> parseAppOptions(const QStringList& args) {
     } else if (a == "--format") {
       if (!next(v)) return Error{"--format needs a list such as png,pdf,svg"};
       o.formats = v;
+    } else if (a == "--screenshot") {
+      if (!next(v)) return Error{"--screenshot needs a file name"};
+      o.screenshot = v;
     } else if (a == "--bench-latency") {
       o.bench_latency = true;
     } else if (a == "--changes") {
       if (!next(v)) return Error{"--changes needs a number"};
       bool ok = false;
       o.bench_changes = v.toInt(&ok);
-      if (!ok || o.bench_changes < 2) return Error{"--changes: '" + v.toStdString() + "' is not a count >= 2"};
+      if (!ok || o.bench_changes < 2)
+        return Error{"--changes: '" + v.toStdString() + "' is not a count >= 2"};
     } else if (a.startsWith("-")) {
       return Error{"unknown option " + a.toStdString()};
     } else if (o.preset.isEmpty()) {
       o.preset = a;
     } else {
-      return Error{"more than one preset given ('" + o.preset.toStdString() + "', '" + a.toStdString() + "')"};
+      return Error{"more than one preset given ('" + o.preset.toStdString() + "', '" +
+                   a.toStdString() + "')"};
     }
   }
   if (o.preset.isEmpty()) o.preset = "helicopter";

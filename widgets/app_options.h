@@ -15,6 +15,7 @@ struct AppOptions {
   QStringList sets;
   std::optional<QString> export_dir;
   QString formats = "png";
+  std::optional<QString> screenshot;  // grab the whole window to this PNG and exit
   bool bench_latency = false;
   int bench_changes = 200;
   bool help = false;
@@ -23,9 +24,11 @@ struct AppOptions {
 inline constexpr const char* kAppUsage =
     "usage: kfw [PRESET] [--data FILE] [--set key=value]...\n"
     "       kfw --export DIR [PRESET] [--data FILE] [--set key=value]... [--format png,pdf,svg]\n"
+    "       kfw --screenshot FILE.png [PRESET] [--data FILE] [--set key=value]...\n"
     "       kfw --bench-latency [PRESET] [--data FILE] [--changes N]\n"
     "PRESET is a preset file or a name in presets/ (default: helicopter).\n"
-    "--export and --bench-latency need no display (they default QT_QPA_PLATFORM to offscreen).\n";
+    "--export, --screenshot and --bench-latency need no display (they default QT_QPA_PLATFORM to "
+    "offscreen).\n";
 
 Expected<AppOptions> parseAppOptions(const QStringList& args);
 

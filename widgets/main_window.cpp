@@ -31,7 +31,9 @@ namespace kfw {
 
 namespace {
 const ParamValues kEmpty;
-QString q(const std::string& s) { return QString::fromStdString(s); }
+QString q(const std::string& s) {
+  return QString::fromStdString(s);
+}
 }  // namespace
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
@@ -73,7 +75,8 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   data_row->addWidget(sim_button_);
   left_->addLayout(data_row);
   connect(open_csv, &QPushButton::clicked, this, [this] {
-    const QString f = QFileDialog::getOpenFileName(this, "Open dataset", QString(), "CSV (*.csv);;All files (*)");
+    const QString f =
+        QFileDialog::getOpenFileName(this, "Open dataset", QString(), "CSV (*.csv);;All files (*)");
     if (f.isEmpty()) return;
     if (auto st = openDataset(f); !st) QMessageBox::warning(this, "Open CSV", q(st.error()));
   });
@@ -135,18 +138,21 @@ MainWindow::~MainWindow() = default;
 void MainWindow::buildMenus() {
   QMenu* file = menuBar()->addMenu("&File");
   file->addAction("Open &preset…", this, [this] {
-    const QString f = QFileDialog::getOpenFileName(this, "Open preset", q(preset_dir()), "Presets (*.json)");
+    const QString f =
+        QFileDialog::getOpenFileName(this, "Open preset", q(preset_dir()), "Presets (*.json)");
     if (f.isEmpty()) return;
     if (auto st = loadPreset(f); !st) QMessageBox::warning(this, "Open preset", q(st.error()));
   });
   file->addAction("&Open CSV…", QKeySequence::Open, this, [this] {
-    const QString f = QFileDialog::getOpenFileName(this, "Open dataset", QString(), "CSV (*.csv);;All files (*)");
+    const QString f =
+        QFileDialog::getOpenFileName(this, "Open dataset", QString(), "CSV (*.csv);;All files (*)");
     if (f.isEmpty()) return;
     if (auto st = openDataset(f); !st) QMessageBox::warning(this, "Open CSV", q(st.error()));
   });
   file->addAction("Use &simulated data", this, &MainWindow::useSimulatedData);
   file->addAction("&Save preset as…", QKeySequence::SaveAs, this, [this] {
-    const QString f = QFileDialog::getSaveFileName(this, "Save preset", QString(), "Presets (*.json)");
+    const QString f =
+        QFileDialog::getSaveFileName(this, "Save preset", QString(), "Presets (*.json)");
     if (f.isEmpty()) return;
     if (auto st = savePreset(f); !st) QMessageBox::warning(this, "Save preset", q(st.error()));
   });
@@ -189,7 +195,8 @@ void MainWindow::refreshPresetList() {
 Status MainWindow::loadPreset(const QString& preset, const std::optional<QString>& data_file,
                               const QStringList& assignments) {
   std::vector<std::string> sets;
-  for (const auto& a : assignments) sets.push_back(a.toStdString());
+  for (const auto& a : assignments)
+    sets.push_back(a.toStdString());
   std::optional<std::string> d;
   if (data_file) d = data_file->toStdString();
   auto ws = open_workspace(preset.toStdString(), d, sets);
@@ -226,7 +233,8 @@ void MainWindow::rebuildScenarioUi() {
   panel_->setObjectName("paramPanel");
   panel_->setValues(preset_.values);
   left_->insertWidget(left_->count() - 1, panel_);
-  connect(panel_, &ParamPanel::valueChanged, this, [this](const QString&, double) { requestRun(); });
+  connect(panel_, &ParamPanel::valueChanged, this,
+          [this](const QString&, double) { requestRun(); });
   controls_ = view_->createControls(nullptr);
   if (controls_) left_->insertWidget(left_->count() - 1, controls_);
   connect(view_.get(), &ScenarioView::parameterEdited, this,
@@ -304,9 +312,13 @@ Status MainWindow::savePreset(const QString& path) const {
   return save_preset(path.toStdString(), p);
 }
 
-const ParamValues& MainWindow::values() const { return panel_ ? panel_->values() : kEmpty; }
+const ParamValues& MainWindow::values() const {
+  return panel_ ? panel_->values() : kEmpty;
+}
 
-std::shared_ptr<const Dataset> MainWindow::dataset() const { return runner_->dataset(); }
+std::shared_ptr<const Dataset> MainWindow::dataset() const {
+  return runner_->dataset();
+}
 
 void MainWindow::requestRun() {
   if (!scenario_ || !panel_) return;
@@ -317,14 +329,24 @@ void MainWindow::requestRun() {
 
 void MainWindow::applyResult(std::shared_ptr<const RunResult> r, const ParamValues& v, double ms) {
   result_ = r;
+  QElapsedTimer apply;
+  apply.start();
+  const std::size_t cursor_before = transport_->cursor();
   transport_->setTimes(r->t);
-  view_->setResult(r, v);
-  view_->setCursor(transport_->cursor());
+  view_->setResult(r, v);  // draws up to the view's cursor
+  if (transport_->cursor() != cursor_before) view_->setCursor(transport_->cursor());
+  if (qEnvironmentVariableIsSet("KFW_TIMING")) {
+    qInfo("run %.1f ms, plots %.1f ms, since request %.1f ms", ms, apply.nsecsElapsed() / 1e6,
+          since_request_.nsecsElapsed() / 1e6);
+    for (const auto& p : plots_)
+      qInfo("  %s replot %.1f ms", qPrintable(p.name), p.plot->replotTime());
+  }
   metrics_->setRowCount(static_cast<int>(r->metrics.size()));
   int row = 0;
   for (const auto& [k, x] : r->metrics) {
     metrics_->setItem(row, 0, new QTableWidgetItem(q(k)));
-    metrics_->setItem(row, 1, new QTableWidgetItem(std::isfinite(x) ? QString::number(x, 'g', 6) : "–"));
+    metrics_->setItem(row, 1,
+                      new QTableWidgetItem(std::isfinite(x) ? QString::number(x, 'g', 6) : "–"));
     ++row;
   }
   applied_latest_ = !runner_->busy();
@@ -333,7 +355,8 @@ void MainWindow::applyResult(std::shared_ptr<const RunResult> r, const ParamValu
                     .arg(r->steps())
                     .arg(ms, 0, 'f', 1)
                     .arg(last_latency_ms_, 0, 'f', 1);
-  for (const auto& w : r->warnings) msg += " · ⚠ " + q(w);
+  for (const auto& w : r->warnings)
+    msg += " · ⚠ " + q(w);
   status_->setText(msg);
   if (applied_latest_) {
     if (error_->isVisible() && error_->property("fromRun").toBool()) clearError();

@@ -114,11 +114,11 @@ ParamPanel::ParamPanel(const ParamTable& table, const Ranges& ranges, QWidget* p
     if (s.scale == Scale::kChoice) {
       row.combo = new QComboBox(box);
       row.combo->setObjectName("combo." + key);
-      for (const auto& c : s.choices) row.combo->addItem(QString::fromStdString(c));
+      for (const auto& c : s.choices)
+        row.combo->addItem(QString::fromStdString(c));
       grid->addWidget(row.combo, r + 1, 0, 1, 3);
-      connect(row.combo, &QComboBox::currentIndexChanged, this, [this, k = s.key](int i) {
-        commit(rows_.at(k), static_cast<double>(i));
-      });
+      connect(row.combo, &QComboBox::currentIndexChanged, this,
+              [this, k = s.key](int i) { commit(rows_.at(k), static_cast<double>(i)); });
     } else if (s.scale == Scale::kToggle) {
       row.check = new QCheckBox("on", box);
       row.check->setObjectName("check." + key);

@@ -8,8 +8,27 @@
 
 namespace kfw {
 
+namespace {
+// Exports are drawn antialiased; the on-screen setting comes back afterwards.
+class AntialiasForExport {
+ public:
+  explicit AntialiasForExport(QCustomPlot* p) : p_(p), saved_(p->notAntialiasedElements()) {
+    p_->setNotAntialiasedElements(QCP::aeNone);
+  }
+  ~AntialiasForExport() {
+    p_->setNotAntialiasedElements(saved_);
+    p_->replot(QCustomPlot::rpQueuedReplot);
+  }
+
+ private:
+  QCustomPlot* p_;
+  QCP::AntialiasedElements saved_;
+};
+}  // namespace
+
 Status exportPlot(QCustomPlot* plot, const QString& path, int width, int height) {
   const QString ext = QFileInfo(path).suffix().toLower();
+  const AntialiasForExport aa(plot);
   bool ok = false;
   if (ext == "png") {
     ok = plot->savePng(path, width, height, 1.0, -1, 96);

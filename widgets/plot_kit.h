@@ -33,8 +33,10 @@ QColor cycle(int i);  // a distinct colour for series i
 QCustomPlot* makePlot(QWidget* parent, const QString& title, const QString& xLabel,
                       const QString& yLabel);
 enum class Style { kLine, kDots, kStep, kDashed };
+// Pens wider than 1 px go through Qt's stroker, several times slower on dense data: keep data
+// pens at 1 px unless a curve has few points (width > 1 is for those).
 QCPGraph* addGraph(QCustomPlot* p, const QString& name, const QColor& c, Style s = Style::kLine,
-                   double width = 1.4);
+                   double width = 1.0);
 // A graph drawn on the right-hand y axis (which the call turns on, labelled).
 QCPGraph* addGraphRight(QCustomPlot* p, const QString& name, const QColor& c,
                         const QString& rightLabel);
@@ -63,7 +65,8 @@ void setBandLimits(const Band& b, const std::vector<double>& x, const std::vecto
 QCPItemStraightLine* addCursor(QCustomPlot* p);
 void setCursorAt(QCPItemStraightLine* line, double x, bool visible);
 // A horizontal reference line (χ² bound, set-point, ...) that stays put when rescaling.
-QCPItemStraightLine* addHLine(QCustomPlot* p, double y, const QColor& c, Qt::PenStyle s = Qt::DashLine);
+QCPItemStraightLine* addHLine(QCustomPlot* p, double y, const QColor& c,
+                              Qt::PenStyle s = Qt::DashLine);
 void setHLine(QCPItemStraightLine* line, double y);
 
 // Rescales both axes to the visible data with a small margin; keeps x fixed to [x0, x1] when

@@ -29,7 +29,9 @@ ParamValues sim_subset(const ParamValues& v) {
 }
 }  // namespace
 
-RunController::RunController(QObject* parent) : QObject(parent) { pool_.setMaxThreadCount(1); }
+RunController::RunController(QObject* parent) : QObject(parent) {
+  pool_.setMaxThreadCount(1);
+}
 
 RunController::~RunController() {
   if (cancel_) cancel_->store(true);
@@ -100,7 +102,8 @@ void RunController::start(const ParamValues& values) {
         out->error = r.error();
       }
     }
-    out->ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    out->ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     QMetaObject::invokeMethod(
         QCoreApplication::instance(),
         [self, out]() {

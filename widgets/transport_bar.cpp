@@ -78,8 +78,8 @@ void TransportBar::setTimes(const std::vector<double>& t) {
     seek_->setRange(0, t_.empty() ? 0 : static_cast<int>(t_.size() - 1));
   }
   const auto it = std::lower_bound(t_.begin(), t_.end(), keep);
-  index_ = it == t_.end() ? (t_.empty() ? 0 : t_.size() - 1)
-                          : static_cast<std::size_t>(it - t_.begin());
+  index_ =
+      it == t_.end() ? (t_.empty() ? 0 : t_.size() - 1) : static_cast<std::size_t>(it - t_.begin());
   const QSignalBlocker b(seek_);
   seek_->setValue(static_cast<int>(index_));
   time_->setText(t_.empty() ? "t = – s" : QString("t = %1 s").arg(t_[index_], 0, 'f', 2));
@@ -89,9 +89,15 @@ std::size_t TransportBar::cursor() const {
   return showAll() ? static_cast<std::size_t>(-1) : index_;
 }
 
-bool TransportBar::showAll() const { return all_->isChecked(); }
-void TransportBar::setShowAll(bool all) { all_->setChecked(all); }
-double TransportBar::speed() const { return speed_->currentData().toDouble(); }
+bool TransportBar::showAll() const {
+  return all_->isChecked();
+}
+void TransportBar::setShowAll(bool all) {
+  all_->setChecked(all);
+}
+double TransportBar::speed() const {
+  return speed_->currentData().toDouble();
+}
 
 void TransportBar::seek(std::size_t index) {
   if (t_.empty()) return;

@@ -34,7 +34,8 @@ double Dataset::median_dt() const {
   if (i < 0 || rows() < 2) return kNoSample;
   const auto& t = columns[static_cast<std::size_t>(i)];
   std::vector<double> dt(t.size() - 1);
-  for (std::size_t k = 1; k < t.size(); ++k) dt[k - 1] = t[k] - t[k - 1];
+  for (std::size_t k = 1; k < t.size(); ++k)
+    dt[k - 1] = t[k] - t[k - 1];
   auto mid = dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2);
   std::nth_element(dt.begin(), mid, dt.end());
   return *mid;
@@ -46,7 +47,8 @@ Status require_columns(const Dataset& d, const std::vector<ColumnSpec>& spec) {
       std::string msg = d.source + ": missing required column '" + c.name + "'";
       if (!c.meaning.empty()) msg += " (" + c.meaning + (c.unit.empty() ? "" : ", " + c.unit) + ")";
       msg += "; columns present:";
-      for (const auto& n : d.names) msg += " " + n;
+      for (const auto& n : d.names)
+        msg += " " + n;
       return Error{msg};
     }
   }
@@ -56,8 +58,10 @@ Status require_columns(const Dataset& d, const std::vector<ColumnSpec>& spec) {
 namespace {
 
 std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t'))
+    s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+    s.remove_suffix(1);
   return s;
 }
 
@@ -105,7 +109,8 @@ Expected<Dataset> parse_csv(std::istream& in, const std::string& source, const C
       return Error{source + ":" + std::to_string(line_no) + ": column " + std::to_string(c + 1) +
                    " has an empty header name"};
     }
-    if (c == 0 && std::from_chars(name.data(), name.data() + name.size(), dummy).ec == std::errc()) {
+    if (c == 0 &&
+        std::from_chars(name.data(), name.data() + name.size(), dummy).ec == std::errc()) {
       return Error{source + ":" + std::to_string(line_no) +
                    ": the first row must be a header row of column names, found the number '" +
                    name + "'"};
@@ -142,8 +147,8 @@ Expected<Dataset> parse_csv(std::istream& in, const std::string& source, const C
         if (*b == '+') ++b;
         auto [ptr, ec] = std::from_chars(b, f.data() + f.size(), v);
         if (ec != std::errc() || ptr != f.data() + f.size()) {
-          return Error{source + ":" + std::to_string(line_no) + ": column '" + d.names[c] +
-                       "': '" + std::string(f) + "' is not a number"};
+          return Error{source + ":" + std::to_string(line_no) + ": column '" + d.names[c] + "': '" +
+                       std::string(f) + "' is not a number"};
         }
         if (!std::isfinite(v)) {
           return Error{source + ":" + std::to_string(line_no) + ": column '" + d.names[c] +
@@ -179,7 +184,8 @@ Expected<Dataset> read_csv(const std::string& path, const CsvOptions& opt) {
 }
 
 void write_csv(std::ostream& out, const Dataset& d) {
-  for (std::size_t c = 0; c < d.names.size(); ++c) out << (c ? "," : "") << d.names[c];
+  for (std::size_t c = 0; c < d.names.size(); ++c)
+    out << (c ? "," : "") << d.names[c];
   out << '\n';
   char buf[64];
   for (std::size_t r = 0; r < d.rows(); ++r) {

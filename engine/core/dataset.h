@@ -51,7 +51,8 @@ struct CsvOptions {
 // Parses CSV with a header row. Empty cells and NaN are "no sample". Errors name file, line and
 // column: malformed numbers, ragged rows, duplicate or empty header names, a missing, non-finite
 // or non-increasing time column, infinities.
-Expected<Dataset> parse_csv(std::istream& in, const std::string& source, const CsvOptions& opt = {});
+Expected<Dataset> parse_csv(std::istream& in, const std::string& source,
+                            const CsvOptions& opt = {});
 Expected<Dataset> read_csv(const std::string& path, const CsvOptions& opt = {});
 
 // Writes with full precision; NaN as an empty cell.

@@ -20,12 +20,12 @@ struct Gaussian {
 // innovation, S and NIS are there for metrics.
 template <int N, int M>
 struct Update {
-  Gaussian<N> post;      // x_{k|k}, P_{k|k}; equals the prediction when !ok
-  Vec<M> innovation;     // y = z - H x_{k|k-1}
-  Covariance<M> S;       // S = H P_{k|k-1} H^T + R
-  Gain<N, M> K;          // K = P_{k|k-1} H^T S^{-1}
+  Gaussian<N> post;   // x_{k|k}, P_{k|k}; equals the prediction when !ok
+  Vec<M> innovation;  // y = z - H x_{k|k-1}
+  Covariance<M> S;    // S = H P_{k|k-1} H^T + R
+  Gain<N, M> K;       // K = P_{k|k-1} H^T S^{-1}
   double nis = std::numeric_limits<double>::quiet_NaN();  // y^T S^{-1} y
-  bool ok = false;       // false when S is not positive definite: the update was skipped
+  bool ok = false;  // false when S is not positive definite: the update was skipped
 };
 
 // x_{k|k-1} = F x_{k-1|k-1} + B u,  P_{k|k-1} = F P F^T + Q.
@@ -95,7 +95,8 @@ Update<N, 1> update_scalar(const Gaussian<N>& prior, double z, const Mat<1, N>& 
   u.K = PHt / S;
   u.nis = y * y / S;
   u.post.x = prior.x + u.K * y;
-  // Joseph form for a scalar measurement: (I-KH)P(I-KH)^T + K R K^T = P - K PHt^T - PHt K^T + K S K^T.
+  // Joseph form for a scalar measurement: (I-KH)P(I-KH)^T + K R K^T = P - K PHt^T - PHt K^T + K S
+  // K^T.
   u.post.P = prior.P;
   u.post.P.noalias() -= u.K * PHt.transpose();
   u.post.P.noalias() -= PHt * u.K.transpose();

@@ -16,7 +16,8 @@ const ParamSpec* ParamTable::find(std::string_view key) const {
 
 ParamValues ParamTable::defaults() const {
   ParamValues v;
-  for (const auto& s : specs_) v[s.key] = s.def;
+  for (const auto& s : specs_)
+    v[s.key] = s.def;
   return v;
 }
 
@@ -38,8 +39,8 @@ Status ParamTable::check(std::string_view key, double value) const {
                  number(s->min) + ", " + number(s->max) + "]" +
                  (s->unit.empty() ? "" : " " + s->unit)};
   }
-  const bool whole = s->scale == Scale::kInteger || s->scale == Scale::kChoice ||
-                     s->scale == Scale::kToggle;
+  const bool whole =
+      s->scale == Scale::kInteger || s->scale == Scale::kChoice || s->scale == Scale::kToggle;
   if (whole && value != std::round(value)) {
     return Error{"parameter '" + s->key + "' = " + number(value) + " must be a whole number"};
   }
@@ -57,8 +58,10 @@ Status ParamTable::check(const ParamValues& values) const {
 }
 
 bool parse_double(std::string_view text, double& out) {
-  while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
-  while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
+  while (!text.empty() && text.front() == ' ')
+    text.remove_prefix(1);
+  while (!text.empty() && text.back() == ' ')
+    text.remove_suffix(1);
   if (text.empty()) return false;
   if (text.front() == '+') text.remove_prefix(1);
   const char* end = text.data() + text.size();
@@ -89,7 +92,8 @@ Status ParamTable::apply_assignment(std::string_view assignment, ParamValues& va
     std::string msg = "parameter '" + s->key + "': '" + std::string(text) + "' is not a number";
     if (s->scale == Scale::kChoice) {
       msg += " or one of";
-      for (const auto& c : s->choices) msg += " " + c;
+      for (const auto& c : s->choices)
+        msg += " " + c;
     }
     return Error{msg};
   }

@@ -35,11 +35,16 @@ std::string line_col(const std::string& text, std::size_t byte) {
 
 const char* scale_name(Scale s) {
   switch (s) {
-    case Scale::kLinear: return "linear";
-    case Scale::kLog: return "log";
-    case Scale::kInteger: return "integer";
-    case Scale::kChoice: return "choice";
-    case Scale::kToggle: return "toggle";
+    case Scale::kLinear:
+      return "linear";
+    case Scale::kLog:
+      return "log";
+    case Scale::kInteger:
+      return "integer";
+    case Scale::kChoice:
+      return "choice";
+    case Scale::kToggle:
+      return "toggle";
   }
   return "linear";
 }
@@ -53,7 +58,8 @@ Expected<Preset> parse_preset(const std::string& text, const std::string& path) 
   } catch (const json::parse_error& e) {
     std::string what = e.what();
     if (auto p = what.find("syntax error"); p != std::string::npos) what = what.substr(p);
-    return Error{path + ":" + line_col(text, e.byte == 0 ? 0 : e.byte - 1) + ": invalid JSON: " + what};
+    return Error{path + ":" + line_col(text, e.byte == 0 ? 0 : e.byte - 1) +
+                 ": invalid JSON: " + what};
   }
   if (!j.is_object()) return Error{path + ": a preset must be a JSON object"};
   auto str = [&](const char* key, std::string& out, bool required) -> Status {

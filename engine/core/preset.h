@@ -1,5 +1,6 @@
 // Presets: one JSON file per scenario with every parameter's value, range and unit.
-//   {"format": "kfw-preset", "version": 1, "scenario": "helicopter", "title": ..., "description": ...,
+//   {"format": "kfw-preset", "version": 1, "scenario": "helicopter", "title": ..., "description":
+//   ...,
 //    "data": "optional/path.csv (relative to this file)", "parameters": {"Q": {"value": 67.2,
 //    "min": 1e-6, "max": 1e6, "unit": "(deg/s)²", "scale": "log"}, ...}}
 #pragma once

@@ -9,7 +9,7 @@ Expected<Metrics> Scenario::gain(const ParamValues&, const Dataset*) const {
 }
 
 Expected<std::string> Scenario::command(const std::string& cmd, const Dataset&,
-                                       const ParamValues&) const {
+                                        const ParamValues&) const {
   return Error{"scenario '" + name() + "' has no command '" + cmd + "'"};
 }
 
@@ -19,7 +19,8 @@ void ScenarioRegistry::add(std::string name, Factory factory) {
 
 std::vector<std::string> ScenarioRegistry::names() const {
   std::vector<std::string> out;
-  for (const auto& [name, f] : factories_) out.push_back(name);
+  for (const auto& [name, f] : factories_)
+    out.push_back(name);
   return out;
 }
 
@@ -41,7 +42,8 @@ Expected<std::unique_ptr<Scenario>> make_scenario(const std::string& name) {
   auto s = scenarios().make(name);
   if (!s) {
     std::string msg = "unknown scenario '" + name + "'; known:";
-    for (const auto& n : scenarios().names()) msg += " " + n;
+    for (const auto& n : scenarios().names())
+      msg += " " + n;
     return Error{msg};
   }
   return s;

@@ -51,8 +51,8 @@ class Scenario {
   // Filters a dataset. Bad parameters or a dataset missing columns come back as an Error.
   virtual Expected<std::shared_ptr<const RunResult>> run(const Dataset& d, const ParamValues& p,
                                                          const RunControl& control = {}) const = 0;
-  // Steady-state gains for the current parameters (closed form and DARE), when the scenario has any.
-  // With a dataset, its sample period is used; without, the simulator's.
+  // Steady-state gains for the current parameters (closed form and DARE), when the scenario has
+  // any. With a dataset, its sample period is used; without, the simulator's.
   virtual Expected<Metrics> gain(const ParamValues& p, const Dataset* data = nullptr) const;
 
   // Scenario-specific analyses offered on the command line as
@@ -80,6 +80,8 @@ const ScenarioRegistry& scenarios();
 Expected<std::unique_ptr<Scenario>> make_scenario(const std::string& name);
 
 // True when a key belongs to the simulator (changing it needs a new simulated dataset).
-inline bool is_sim_key(const std::string& key) { return key.rfind("sim.", 0) == 0; }
+inline bool is_sim_key(const std::string& key) {
+  return key.rfind("sim.", 0) == 0;
+}
 
 }  // namespace kfw

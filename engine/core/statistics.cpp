@@ -80,12 +80,15 @@ double gamma_p(double a, double x) {
   return 1.0 - std::exp(-x + a * std::log(x) - gln) * h;
 }
 
-double chi2_cdf(double x, double k) { return x <= 0.0 ? 0.0 : gamma_p(0.5 * k, 0.5 * x); }
+double chi2_cdf(double x, double k) {
+  return x <= 0.0 ? 0.0 : gamma_p(0.5 * k, 0.5 * x);
+}
 
 double chi2_quantile(double p, double k) {
   if (!(p > 0.0 && p < 1.0) || !(k > 0.0)) return kNaN;
   double lo = 0.0, hi = std::max(1.0, k);
-  while (chi2_cdf(hi, k) < p) hi *= 2.0;
+  while (chi2_cdf(hi, k) < p)
+    hi *= 2.0;
   for (int i = 0; i < 200 && hi - lo > 1e-14 * std::max(1.0, hi); ++i) {
     const double mid = 0.5 * (lo + hi);
     (chi2_cdf(mid, k) < p ? lo : hi) = mid;

@@ -9,7 +9,8 @@ namespace kfw {
 // Mean of the finite entries; NaN when there are none.
 double mean_finite(const std::vector<double>& v, std::size_t from = 0);
 // sqrt(mean((a - b)^2)) over indices >= from where both are finite; NaN when none.
-double rmse_finite(const std::vector<double>& a, const std::vector<double>& b, std::size_t from = 0);
+double rmse_finite(const std::vector<double>& a, const std::vector<double>& b,
+                   std::size_t from = 0);
 // Last finite entry; NaN when there is none.
 double last_finite(const std::vector<double>& v);
 // Number of finite entries.

@@ -2,7 +2,8 @@
 
 namespace kfw {
 
-Expected<Workspace> open_workspace(const std::string& preset, const std::optional<std::string>& data,
+Expected<Workspace> open_workspace(const std::string& preset,
+                                   const std::optional<std::string>& data,
                                    const std::vector<std::string>& assignments) {
   auto p = load_preset(resolve_preset_path(preset));
   if (!p) return Error{p.error()};
@@ -13,7 +14,8 @@ Expected<Workspace> open_workspace(const std::string& preset, const std::optiona
   ws.scenario = std::shared_ptr<const Scenario>(std::move(*s));
   ws.values = ws.preset.values;
   for (const auto& a : assignments) {
-    if (auto st = ws.scenario->params().apply_assignment(a, ws.values); !st) return Error{st.error()};
+    if (auto st = ws.scenario->params().apply_assignment(a, ws.values); !st)
+      return Error{st.error()};
   }
   ws.data_path = data ? data : ws.preset.data_path;
   return ws;

@@ -21,7 +21,8 @@ struct Workspace {
 };
 
 // `preset` may be a path, or a name in presets/ ("helicopter"). Errors name the file or key.
-Expected<Workspace> open_workspace(const std::string& preset, const std::optional<std::string>& data,
+Expected<Workspace> open_workspace(const std::string& preset,
+                                   const std::optional<std::string>& data,
                                    const std::vector<std::string>& assignments);
 // The file's dataset (checked against the scenario's columns), or a simulated one.
 Expected<Dataset> load_dataset(const Workspace& ws);

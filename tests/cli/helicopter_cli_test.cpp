@@ -24,7 +24,8 @@ Out cli(const std::string& args) {
   if (!p) return o;
   std::array<char, 4096> buf{};
   std::size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) o.text.append(buf.data(), n);
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0)
+    o.text.append(buf.data(), n);
   const int status = pclose(p);
   o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return o;
@@ -36,7 +37,8 @@ TEST(HelicopterCli, GainPrintsClosedFormAndDare) {
   auto o = cli("gain " + kPreset + " --set m=25");
   ASSERT_EQ(o.code, 0) << o.text;
   auto j = nlohmann::json::parse(o.text);
-  for (const char* k : {"k1", "p11_over_R", "k1_dare", "beta"}) EXPECT_TRUE(j.contains(k)) << k;
+  for (const char* k : {"k1", "p11_over_R", "k1_dare", "beta"})
+    EXPECT_TRUE(j.contains(k)) << k;
   EXPECT_NEAR(j["k1"].get<double>(), j["k1_dare"].get<double>(), 1e-8);
   EXPECT_NEAR(j["beta"].get<double>(), 25 * 0.02 * 0.02 * 67.24 / 1.96, 1e-9);
 }
@@ -44,8 +46,8 @@ TEST(HelicopterCli, GainPrintsClosedFormAndDare) {
 TEST(HelicopterCli, RunWritesMetricsAndEstimates) {
   const std::string dir = ::testing::TempDir();
   const std::string est = dir + "/kfw_est.csv", met = dir + "/kfw_met.json";
-  auto o = cli("run " + kPreset + " --data " + KFW_SOURCE_DIR + "/data/helicopter.csv --out " + est +
-               " --metrics " + met);
+  auto o = cli("run " + kPreset + " --data " + KFW_SOURCE_DIR + "/data/helicopter.csv --out " +
+               est + " --metrics " + met);
   ASSERT_EQ(o.code, 0) << o.text;
   auto j = nlohmann::json::parse(o.text);
   for (const char* k : {"rmse", "rmse_sensor", "k1_final", "k1_steady", "nis_mean"}) {
@@ -60,7 +62,8 @@ TEST(HelicopterCli, RunWritesMetricsAndEstimates) {
 }
 
 TEST(HelicopterCli, SimulateIsReproducible) {
-  const std::string a = ::testing::TempDir() + "/kfw_a.csv", b = ::testing::TempDir() + "/kfw_b.csv";
+  const std::string a = ::testing::TempDir() + "/kfw_a.csv",
+                    b = ::testing::TempDir() + "/kfw_b.csv";
   ASSERT_EQ(cli("simulate helicopter --seed 5 --set sim.duration=10 --out " + a).code, 0);
   ASSERT_EQ(cli("simulate helicopter --seed 5 --set sim.duration=10 --out " + b).code, 0);
   auto da = kfw::read_csv(a), db = kfw::read_csv(b);
@@ -79,14 +82,14 @@ TEST(HelicopterCli, BadInputExitsNonZeroWithOneLine) {
     fputs("t,gyro,angle\n0,1,2\n0.01,2,3\n0.005,1,1\n", f);
     fclose(f);
   }
-  for (const Case& c : {Case{"run " + kPreset + " --set bogus=1", "unknown parameter 'bogus'"},
-                        Case{"run " + kPreset + " --set R=-3", "'R' = -3 is out of range"},
-                        Case{"run " + kPreset + " --set m=2.5", "must be a whole number"},
-                        Case{"run " + kPreset + " --data /no/such.csv", "/no/such.csv: cannot open"},
-                        Case{"run " + kPreset + " --data " + bad_csv, ":4: time is not increasing"},
-                        Case{"run /no/preset.json", "cannot open preset"},
-                        Case{"frobnicate", "unknown command"},
-                        Case{"simulate helicopter", "needs --out"}}) {
+  for (const Case& c :
+       {Case{"run " + kPreset + " --set bogus=1", "unknown parameter 'bogus'"},
+        Case{"run " + kPreset + " --set R=-3", "'R' = -3 is out of range"},
+        Case{"run " + kPreset + " --set m=2.5", "must be a whole number"},
+        Case{"run " + kPreset + " --data /no/such.csv", "/no/such.csv: cannot open"},
+        Case{"run " + kPreset + " --data " + bad_csv, ":4: time is not increasing"},
+        Case{"run /no/preset.json", "cannot open preset"}, Case{"frobnicate", "unknown command"},
+        Case{"simulate helicopter", "needs --out"}}) {
     auto o = cli(c.args);
     EXPECT_NE(o.code, 0) << c.args;
     EXPECT_NE(o.text.find(c.fragment), std::string::npos) << c.args << " → " << o.text;

@@ -10,8 +10,8 @@
 namespace kfw::testing {
 
 template <typename A, typename B>
-::testing::AssertionResult MatricesNear(const Eigen::MatrixBase<A>& a, const Eigen::MatrixBase<B>& b,
-                                        double tol) {
+::testing::AssertionResult MatricesNear(const Eigen::MatrixBase<A>& a,
+                                        const Eigen::MatrixBase<B>& b, double tol) {
   if (a.rows() != b.rows() || a.cols() != b.cols()) {
     return ::testing::AssertionFailure() << "sizes differ: " << a.rows() << "x" << a.cols()
                                          << " vs " << b.rows() << "x" << b.cols();
@@ -33,7 +33,8 @@ template <typename M>
   if (asym > tol) return ::testing::AssertionFailure() << "not symmetric by " << asym << "\n" << m;
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(m.eval().template cast<double>());
   if (es.eigenvalues().minCoeff() < -tol) {
-    return ::testing::AssertionFailure() << "eigenvalue " << es.eigenvalues().minCoeff() << "\n" << m;
+    return ::testing::AssertionFailure() << "eigenvalue " << es.eigenvalues().minCoeff() << "\n"
+                                         << m;
   }
   return ::testing::AssertionSuccess();
 }

@@ -55,7 +55,8 @@ TEST(HelicopterModel, SlowlyVaryingBiasMatrices) {
   EXPECT_TRUE(testing::MatricesNear(md.B, Vec<2>(0.02, 0.006), 0));
   // The bias low-passes the measured rate: a constant ω_m = c drives b to c.
   Vec<2> x(0, 0);
-  for (int k = 0; k < 20000; ++k) x = md.F * x + md.B * 3.0;
+  for (int k = 0; k < 20000; ++k)
+    x = md.F * x + md.B * 3.0;
   EXPECT_NEAR(x(1), 3.0, 1e-9);
 }
 
@@ -75,6 +76,59 @@ TEST(HelicopterModel, GainCurveIsMonotoneAndLogSpaced) {
   for (std::size_t i = 1; i < c.beta.size(); ++i) {
     EXPECT_GT(c.k1[i], c.k1[i - 1]);
     EXPECT_GT(c.p11_over_R[i], c.p11_over_R[i - 1]);
+  }
+}
+
+}  // namespace
+}  // namespace kfw::helicopter
+
+#include "core/kalman_filter.h"
+#include "scenarios/helicopter/helicopter_sim.h"
+#include "scenarios/helicopter/indirect_kf.h"
+
+namespace kfw::helicopter {
+namespace {
+
+// The scalar runner is the textbook recursion: the same numbers as predict()/update() on the
+// model matrices, for both bias models and a multi-rate schedule.
+TEST(IndirectKf, EqualsGenericKalmanFilterOnTheModel) {
+  SimParams sp;
+  sp.duration_s = 20;
+  sp.angle_dropout = 0.2;
+  const auto d = simulate(sp);
+  for (double gamma : {0.0, 0.006}) {
+    FilterParams fp;
+    fp.N_omega = 50;
+    fp.N_theta = 2;
+    fp.m = 3;
+    fp.gamma = gamma;
+    const auto r = run_indirect_kf(d.col("t"), d.col("gyro"), d.col("angle"), fp);
+    const double a0 = d.col("angle")[0];
+    Gaussian<2> g{Vec<2>(std::isfinite(a0) ? a0 : 0.0, 0.0),
+                  (Covariance<2>() << 100, 0, 0, 4).finished()};
+    const auto& t = d.col("t");
+    for (std::size_t k = 0; k < d.rows(); ++k) {
+      if (k > 0) {
+        const Model md = model(t[k] - t[k - 1], gamma);
+        g = predict(g, md.F, (md.B * d.col("gyro")[k - 1]).eval(),
+                    (md.G * fp.N_omega * md.G.transpose()).eval());
+      }
+      const double z = d.col("angle")[k];
+      if (k % 3 == 0 && std::isfinite(z)) {
+        const Model md = model(0.02, gamma);
+        const auto u =
+            update(g, Vec<1>(z), md.H, Covariance<1>(Covariance<1>::Constant(fp.N_theta)));
+        ASSERT_TRUE(u.ok);
+        EXPECT_NEAR(r.k1[k], u.K(0, 0), 1e-12);
+        EXPECT_NEAR(r.k2[k], u.K(1, 0), 1e-12);
+        EXPECT_NEAR(r.nis[k], u.nis, 1e-9);
+        g = u.post;
+      }
+      ASSERT_NEAR(r.theta[k], g.x(0), 1e-9) << "k = " << k;
+      ASSERT_NEAR(r.bias[k], g.x(1), 1e-9) << "k = " << k;
+      ASSERT_NEAR(r.P11[k], g.P(0, 0), 1e-9) << "k = " << k;
+      ASSERT_NEAR(r.P22[k], g.P(1, 1), 1e-9) << "k = " << k;
+    }
   }
 }
 

@@ -37,7 +37,8 @@ TEST(HelicopterSim, NoiseLevelsAreWhatWasAsked) {
   double se = 0;
   const auto& angle = d.col("angle");
   const auto& truth = d.col("truth");
-  for (std::size_t i = 0; i < d.rows(); ++i) se += (angle[i] - truth[i]) * (angle[i] - truth[i]);
+  for (std::size_t i = 0; i < d.rows(); ++i)
+    se += (angle[i] - truth[i]) * (angle[i] - truth[i]);
   EXPECT_NEAR(std::sqrt(se / d.rows()), p.sigma_angle, 0.03 * p.sigma_angle);
 }
 
@@ -116,7 +117,8 @@ TEST(HelicopterScenario, MissingAngleSamplesSkipTheUpdate) {
   ASSERT_TRUE(r.ok());
   const auto& h = dynamic_cast<const helicopter::HelicopterResult&>(**r);
   std::size_t present = 0;
-  for (double a : d->col("angle")) present += std::isfinite(a);
+  for (double a : d->col("angle"))
+    present += std::isfinite(a);
   EXPECT_EQ(h.updates, present);
   EXPECT_LT(present, d->rows());
 }

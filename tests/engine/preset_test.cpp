@@ -19,7 +19,8 @@ const char* kHead = R"({"format": "kfw-preset", "version": 1, "scenario": "helic
 
 TEST(Preset, EveryShippedPresetLoads) {
   int n = 0;
-  for (const auto& e : std::filesystem::directory_iterator(std::string(KFW_SOURCE_DIR) + "/presets")) {
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::string(KFW_SOURCE_DIR) + "/presets")) {
     if (e.path().extension() != ".json") continue;
     auto p = load_preset(e.path().string());
     ASSERT_TRUE(p.ok()) << p.error();
@@ -38,8 +39,10 @@ TEST(Preset, ErrorsNameLineKeyAndUnit) {
                "key 'version' is 9");
   expect_error(R"({"format": "kfw-preset", "version": 1, "scenario": "nope"})",
                "unknown scenario 'nope'");
-  expect_error(std::string(kHead) + R"("parameters": {"Zz": 1}})", "parameters.Zz: unknown parameter");
-  expect_error(std::string(kHead) + R"("parameters": {"R": {"value": -1}}})", "'R' = -1 is out of range");
+  expect_error(std::string(kHead) + R"("parameters": {"Zz": 1}})",
+               "parameters.Zz: unknown parameter");
+  expect_error(std::string(kHead) + R"("parameters": {"R": {"value": -1}}})",
+               "'R' = -1 is out of range");
   expect_error(std::string(kHead) + R"("parameters": {"R": {"value": 1, "unit": "rad²"}}})",
                "parameters.R.unit: 'rad²' does not match the parameter's unit 'deg²'");
   expect_error(std::string(kHead) + R"("parameters": {"R": {"value": 1, "min": 5, "max": 2}}})",
@@ -48,9 +51,9 @@ TEST(Preset, ErrorsNameLineKeyAndUnit) {
 }
 
 TEST(Preset, RoundTripKeepsValuesAndRanges) {
-  auto p = parse_preset(std::string(kHead) +
-                            R"("parameters": {"Q": {"value": 256, "min": 1, "max": 1000}, "m": 5}})",
-                        "");
+  auto p = parse_preset(
+      std::string(kHead) + R"("parameters": {"Q": {"value": 256, "min": 1, "max": 1000}, "m": 5}})",
+      "");
   ASSERT_TRUE(p.ok()) << p.error();
   EXPECT_EQ(p->values.at("Q"), 256);
   EXPECT_EQ(p->values.at("m"), 5);

@@ -23,7 +23,8 @@ TEST(Fonts, LabelGlyphsExistInTheApplicationFont) {
   for (const QChar c : glyphs) {
     if (c.category() == QChar::Mark_NonSpacing) continue;  // combining hat
     EXPECT_TRUE(raw.supportsCharacter(c))
-        << "missing glyph U+" << std::hex << static_cast<int>(c.unicode()) << " in " << raw.familyName().toStdString();
+        << "missing glyph U+" << std::hex << static_cast<int>(c.unicode()) << " in "
+        << raw.familyName().toStdString();
   }
 }
 
@@ -37,7 +38,8 @@ TEST(Fonts, TextRendersInk) {
   }
   int dark = 0;
   for (int y = 0; y < img.height(); ++y) {
-    for (int x = 0; x < img.width(); ++x) dark += qGray(img.pixel(x, y)) < 128;
+    for (int x = 0; x < img.width(); ++x)
+      dark += qGray(img.pixel(x, y)) < 128;
   }
   EXPECT_GT(dark, 50);
 }

@@ -36,7 +36,8 @@ QCPGraph* graphNamed(QCustomPlot* p, const QString& name) {
 
 std::vector<double> values(QCPGraph* g) {
   std::vector<double> v;
-  for (auto it = g->data()->constBegin(); it != g->data()->constEnd(); ++it) v.push_back(it->value);
+  for (auto it = g->data()->constBegin(); it != g->data()->constEnd(); ++it)
+    v.push_back(it->value);
   return v;
 }
 
@@ -68,10 +69,12 @@ TEST_F(HelicopterWindow, MovingTheRSliderChangesEstimateAndOperatingPoint) {
   QCPGraph* est = graphNamed(angle, "estimate θ̂");
   QCPGraph* op = graphNamed(curve, "operating point");
   ASSERT_TRUE(est && op);
+  // Replay cursor at step 1999: below the decimation threshold, the plot holds every step.
+  w.transport()->seek(1999);
   const auto before = values(est);
   ASSERT_EQ(op->data()->size(), 1);
   const double beta0 = op->data()->constBegin()->key, k0 = op->data()->constBegin()->value;
-  EXPECT_EQ(before.size(), w.result()->steps());
+  ASSERT_EQ(before.size(), 2000u);
 
   auto* slider = w.findChild<QSlider*>("slider.R");
   ASSERT_NE(slider, nullptr);
@@ -81,7 +84,8 @@ TEST_F(HelicopterWindow, MovingTheRSliderChangesEstimateAndOperatingPoint) {
   const auto after = values(est);
   ASSERT_EQ(after.size(), before.size());
   double diff = 0;
-  for (std::size_t i = 0; i < after.size(); ++i) diff = std::max(diff, std::abs(after[i] - before[i]));
+  for (std::size_t i = 0; i < after.size(); ++i)
+    diff = std::max(diff, std::abs(after[i] - before[i]));
   EXPECT_GT(diff, 0.1);
   const double beta1 = op->data()->constBegin()->key, k1 = op->data()->constBegin()->value;
   EXPECT_NEAR(beta1, beta0 * 1.96 / w.values().at("R"), 1e-6 * beta0);  // β ∝ 1/N_θ
@@ -102,8 +106,12 @@ TEST_F(HelicopterWindow, ReplayRevealsUpToTheCursor) {
   const std::size_t all = w.result()->steps();
   w.transport()->seek(99);
   EXPECT_EQ(est->data()->size(), 100);
+  EXPECT_DOUBLE_EQ((est->data()->constEnd() - 1)->key, w.result()->t[99]);
   w.transport()->setShowAll(true);
-  EXPECT_EQ(static_cast<std::size_t>(est->data()->size()), all);
+  // Everything is shown, reduced to what the raster can show (first/min/max/last per column).
+  EXPECT_DOUBLE_EQ((est->data()->constEnd() - 1)->key, w.result()->t.back());
+  EXPECT_GT(static_cast<std::size_t>(est->data()->size()), 1000u);
+  EXPECT_LE(static_cast<std::size_t>(est->data()->size()), all);
 }
 
 TEST_F(HelicopterWindow, ExportWritesNonBlankFiles) {
@@ -182,8 +190,9 @@ TEST(HelicopterWindowLoad, BadPresetChangesNothing) {
   QTemporaryDir dir;
   QFile f(dir.filePath("p.json"));
   ASSERT_TRUE(f.open(QIODevice::WriteOnly));
-  f.write("{\"format\": \"kfw-preset\", \"version\": 1, \"scenario\": \"helicopter\", "
-          "\"parameters\": {\"R\": {\"value\": 0}}}");
+  f.write(
+      "{\"format\": \"kfw-preset\", \"version\": 1, \"scenario\": \"helicopter\", "
+      "\"parameters\": {\"R\": {\"value\": 0}}}");
   f.close();
   auto st = w.loadPreset(f.fileName());
   ASSERT_FALSE(st.ok());

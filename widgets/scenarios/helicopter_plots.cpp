@@ -20,11 +20,12 @@ class HelicopterView final : public ScenarioView {
  public:
   QList<PlotPanel> createPlots(QWidget* parent) override {
     using namespace plot;
-    angle_ = makePlot(parent, "Angle: truth, sensor and estimate ± 2σ", "time (s)", "angle θ (deg)");
+    angle_ =
+        makePlot(parent, "Angle: truth, sensor and estimate ± 2σ", "time (s)", "angle θ (deg)");
     angle_band_ = addBand(angle_, "estimate ± 2σ", color::kEstimate);
     angle_sensor_ = addGraph(angle_, "angle sensor", color::kSensor, Style::kDots);
-    angle_truth_ = addGraph(angle_, "truth", color::kTruth, Style::kLine, 1.2);
-    angle_est_ = addGraph(angle_, "estimate θ̂", color::kEstimate, Style::kLine, 1.6);
+    angle_truth_ = addGraph(angle_, "truth", color::kTruth, Style::kLine);
+    angle_est_ = addGraph(angle_, "estimate θ̂", color::kEstimate, Style::kLine);
     angle_cursor_ = addCursor(angle_);
 
     innov_ = makePlot(parent, "Innovation with ± 2√S", "time (s)", "innovation (deg)");
@@ -45,11 +46,11 @@ class HelicopterView final : public ScenarioView {
     gain_ss_ = addGraph(gain_, "k1 steady state (DARE)", color::kSecond, Style::kDashed);
     gain_cursor_ = addCursor(gain_);
 
-    curve_ = makePlot(parent, "Steady-state gain vs β = m·Ts²·N_ω/N_θ (seed 000, Fig. 3)",
-                      "β (–)", "gain k1 (–)");
+    curve_ = makePlot(parent, "Steady-state gain vs β = m·Ts²·N_ω/N_θ (seed 000, Fig. 3)", "β (–)",
+                      "gain k1 (–)");
     setLog(curve_->xAxis);
     setLog(curve_->yAxis);
-    curve_k1_ = addGraph(curve_, "k1(β)", color::kEstimate, Style::kLine, 1.8);
+    curve_k1_ = addGraph(curve_, "k1(β)", color::kEstimate, Style::kLine);
     curve_p11_ = addGraphRight(curve_, "p11⁻/N_θ (β)", color::kThird, "p11⁻/N_θ (–)");
     setLog(curve_->yAxis2);
     curve_op_ = addGraph(curve_, "operating point", color::kSecond);
@@ -58,8 +59,8 @@ class HelicopterView final : public ScenarioView {
                                                QBrush(color::kSecond), 9));
     curve_op_p11_ = curve_->addGraph(curve_->xAxis, curve_->yAxis2);
     curve_op_p11_->setLineStyle(QCPGraph::lsNone);
-    curve_op_p11_->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssDiamond,
-                                                   QPen(color::kThird, 2), QBrush(color::kThird), 9));
+    curve_op_p11_->setScatterStyle(QCPScatterStyle(
+        QCPScatterStyle::ssDiamond, QPen(color::kThird, 2), QBrush(color::kThird), 9));
     curve_op_p11_->removeFromLegend();
     curve_label_ = new QCPItemText(curve_);
     curve_label_->setPositionAlignment(Qt::AlignLeft | Qt::AlignTop);
@@ -73,13 +74,16 @@ class HelicopterView final : public ScenarioView {
 
     bias_ = makePlot(parent, "Gyro bias estimate ± 2σ", "time (s)", "bias b (deg/s)");
     bias_band_ = addBand(bias_, "estimate ± 2σ", color::kEstimate);
-    bias_truth_ = addGraph(bias_, "true bias (simulated)", color::kTruth, Style::kLine, 1.2);
-    bias_est_ = addGraph(bias_, "estimate b̂", color::kEstimate, Style::kLine, 1.6);
+    bias_truth_ = addGraph(bias_, "true bias (simulated)", color::kTruth, Style::kLine);
+    bias_est_ = addGraph(bias_, "estimate b̂", color::kEstimate, Style::kLine);
     bias_cursor_ = addCursor(bias_);
 
-    return {{"angle", "Angle", angle_},         {"innovation", "Innovation", innov_},
-            {"nis", "NIS", nis_},               {"gain", "Gain over time", gain_},
-            {"gain_curve", "Gain curve", curve_}, {"bias", "Bias", bias_}};
+    return {{"angle", "Angle", angle_},
+            {"innovation", "Innovation", innov_},
+            {"nis", "NIS", nis_},
+            {"gain", "Gain over time", gain_},
+            {"gain_curve", "Gain curve", curve_},
+            {"bias", "Bias", bias_}};
   }
 
   void setResult(std::shared_ptr<const RunResult> result, const ParamValues& values) override {
@@ -108,22 +112,21 @@ class HelicopterView final : public ScenarioView {
       curve_op_->addData(b, r->k1_closed);
       curve_op_p11_->addData(b, r->p11_over_R_steady);
     }
-    curve_label_->setText(QString("β = %1   k1 = %2   p11⁻/N_θ = %3\nDARE k1 = %4  (m = %5, γ = %6)")
-                              .arg(b, 0, 'g', 3)
-                              .arg(r->k1_closed, 0, 'f', 4)
-                              .arg(r->p11_over_R_steady, 0, 'g', 4)
-                              .arg(r->k1_steady, 0, 'f', 4)
-                              .arg(values.count("m") ? values.at("m") : 1.0)
-                              .arg(values.count("gamma") ? values.at("gamma") : 0.0));
+    curve_label_->setText(
+        QString("β = %1   k1 = %2   p11⁻/N_θ = %3\nDARE k1 = %4  (m = %5, γ = %6)")
+            .arg(b, 0, 'g', 3)
+            .arg(r->k1_closed, 0, 'f', 4)
+            .arg(r->p11_over_R_steady, 0, 'g', 4)
+            .arg(r->k1_steady, 0, 'f', 4)
+            .arg(values.count("m") ? values.at("m") : 1.0)
+            .arg(values.count("gamma") ? values.at("gamma") : 0.0));
     curve_->xAxis->setRange(lo, hi);
     curve_->yAxis->setRange(curve.k1.front() / 1.5, 1.5);
     curve_->yAxis2->setRange(curve.p11_over_R.front() / 1.5, curve.p11_over_R.back() * 1.5);
     plot::replot(curve_);
 
-    const double q_lo = chi2_quantile(0.025, 1.0), q_hi = chi2_quantile(0.975, 1.0);
-    bound_lo_.assign(n, q_lo);
-    bound_hi_.assign(n, q_hi);
-    steady_.assign(n, r->k1_steady);
+    nis_lo_value_ = chi2_quantile(0.025, 1.0);
+    nis_hi_value_ = chi2_quantile(0.975, 1.0);
     drawUpTo(cursor_);
   }
 
@@ -148,10 +151,12 @@ class HelicopterView final : public ScenarioView {
     plot::setBand(innov_band_, r.t, zero_, two_sqrt_S_, n);
     setSeries(innov_y_, r.t, r.innovation, n);
     setSeries(nis_y_, r.t, r.nis, n);
-    setSeries(nis_lo_, r.t, bound_lo_, n);
-    setSeries(nis_hi_, r.t, bound_hi_, n);
+    // Constant lines as two points: a dashed pen over thousands of vertices is slow to stroke.
+    const std::vector<double> span{t0, tc};
+    setSeries(nis_lo_, span, {nis_lo_value_, nis_lo_value_}, 2);
+    setSeries(nis_hi_, span, {nis_hi_value_, nis_hi_value_}, 2);
     setSeries(gain_k1_, r.t, r.k1, n);
-    setSeries(gain_ss_, r.t, steady_, n);
+    setSeries(gain_ss_, span, {r.k1_steady, r.k1_steady}, 2);
     plot::setBand(bias_band_, r.t, r.bias, two_sigma_bias_, n);
     setSeries(bias_est_, r.t, r.bias, n);
     setSeries(bias_truth_, r.t, r.bias_truth, n);
@@ -161,19 +166,22 @@ class HelicopterView final : public ScenarioView {
     } else {
       bias_truth_->addToLegend();
     }
-    for (QCustomPlot* p : {angle_, innov_, nis_, gain_, bias_}) plot::rescale(p, t0, t1);
+    for (QCustomPlot* p : {angle_, innov_, nis_, gain_, bias_})
+      plot::rescale(p, t0, t1);
     // Keep the gain axis readable: the start-up transient (k1 ≈ 1) would flatten the steady part.
-    gain_->yAxis->setRange(0.0, std::max(0.05, std::min(1.05, 2.5 * std::max(r.k1_steady, 1e-3))));
+    const double k_ss = std::isfinite(r.k1_steady) ? r.k1_steady : 0.5;
+    gain_->yAxis->setRange(0.0, std::clamp(2.5 * k_ss, 1e-6, 1.05));
     for (auto* c : {angle_cursor_, innov_cursor_, nis_cursor_, gain_cursor_, bias_cursor_}) {
       plot::setCursorAt(c, tc, !all);
     }
-    for (QCustomPlot* p : {angle_, innov_, nis_, gain_, bias_}) plot::replot(p);
+    for (QCustomPlot* p : {angle_, innov_, nis_, gain_, bias_})
+      plot::replot(p);
   }
 
   std::shared_ptr<const HelicopterResult> result_;
   std::size_t cursor_ = plot::kAll;
-  std::vector<double> two_sigma_theta_, two_sigma_bias_, two_sqrt_S_, zero_, bound_lo_, bound_hi_,
-      steady_;
+  std::vector<double> two_sigma_theta_, two_sigma_bias_, two_sqrt_S_, zero_;
+  double nis_lo_value_ = 0.0, nis_hi_value_ = 0.0;
 
   QCustomPlot *angle_ = nullptr, *innov_ = nullptr, *nis_ = nullptr, *gain_ = nullptr,
               *curve_ = nullptr, *bias_ = nullptr;

@@ -10,7 +10,8 @@ Dataset simulate(const SimParams& p) {
   const auto n = static_cast<std::size_t>(std::floor(p.duration_s / p.Ts_s)) + 1;
   Dataset d;
   d.source = "simulated helicopter, seed " + std::to_string(p.seed);
-  for (const char* name : {"t", "gyro", "angle", "truth", "bias_truth"}) d.add(name, n);
+  for (const char* name : {"t", "gyro", "angle", "truth", "bias_truth"})
+    d.add(name, n);
   auto& t = d.columns[0];
   auto& gyro = d.columns[1];
   auto& angle = d.columns[2];
@@ -24,7 +25,8 @@ Dataset simulate(const SimParams& p) {
   const double f[3] = {0.05, 0.17, 0.61};
   const double a[3] = {0.6, 0.3, 0.1};
   double phase[3];
-  for (double& ph : phase) ph = kTwoPi * uni(rng);
+  for (double& ph : phase)
+    ph = kTwoPi * uni(rng);
   double b = p.bias0;
   const double walk = p.bias_walk * std::sqrt(p.Ts_s);
   for (std::size_t k = 0; k < n; ++k) {

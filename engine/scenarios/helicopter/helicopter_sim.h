@@ -10,13 +10,13 @@ namespace kfw::helicopter {
 
 struct SimParams {
   double duration_s = 120.0;
-  double Ts_s = 0.020;             // gyro period (seed 000: 20 ms)
-  double amplitude_deg = 10.0;     // attitude excursion
-  double sigma_gyro = 8.2;         // deg/s, engine running (seed 000: 7.72–8.71)
-  double sigma_angle = 1.4;        // deg, engine running (seed 000: 1.37–1.45)
-  double bias0 = 1.5;              // deg/s
-  double bias_walk = 0.05;         // (deg/s)/√s
-  double angle_dropout = 0.0;      // probability an angle sample is missing
+  double Ts_s = 0.020;          // gyro period (seed 000: 20 ms)
+  double amplitude_deg = 10.0;  // attitude excursion
+  double sigma_gyro = 8.2;      // deg/s, engine running (seed 000: 7.72–8.71)
+  double sigma_angle = 1.4;     // deg, engine running (seed 000: 1.37–1.45)
+  double bias0 = 1.5;           // deg/s
+  double bias_walk = 0.05;      // (deg/s)/√s
+  double angle_dropout = 0.0;   // probability an angle sample is missing
   std::uint64_t seed = 1;
 };
 

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/dataset.h"
+#include "core/tuning.h"
 #include "core/workspace.h"
 
 namespace kfw {
@@ -21,6 +22,10 @@ constexpr const char* kUsage =
     "  simulate SCENARIO|PRESET [--seed N] [--set key=value]... --out FILE.csv\n"
     "  run PRESET [--data FILE] [--set key=value]... [--out estimates.csv] [--metrics m.json]\n"
     "  gain PRESET [--data FILE] [--set key=value]...\n"
+    "  tune PRESET [--data FILE] --params Q,R[,gamma...] --objective rmse|nll|nis [--out "
+    "tuned.json]\n"
+    "  sweep PRESET [--data FILE] --param key=lo:hi:n [--param ...] --metric NAME [--out "
+    "sweep.csv]\n"
     "  params SCENARIO|PRESET      the parameter table (key, unit, range, default)\n"
     "  preset SCENARIO|PRESET [--set key=value]... --out FILE.json   write a full preset\n"
     "  list                        the scenarios and presets\n"
@@ -30,7 +35,8 @@ constexpr const char* kUsage =
 struct Args {
   std::vector<std::string> positional;
   std::vector<std::string> sets;
-  std::optional<std::string> data, out, metrics, seed;
+  std::optional<std::string> data, out, metrics, seed, params, objective, metric;
+  std::vector<std::string> axes;  // sweep --param key=lo:hi:n
 };
 
 Expected<Args> parse(const std::vector<std::string>& a, std::size_t from) {
@@ -57,6 +63,16 @@ Expected<Args> parse(const std::vector<std::string>& a, std::size_t from) {
       st = value(r.metrics);
     } else if (s == "--seed") {
       st = value(r.seed);
+    } else if (s == "--params") {
+      st = value(r.params);
+    } else if (s == "--objective") {
+      st = value(r.objective);
+    } else if (s == "--metric") {
+      st = value(r.metric);
+    } else if (s == "--param") {
+      std::optional<std::string> v;
+      st = value(v);
+      if (st) r.axes.push_back(*v);
     } else if (s.rfind("--", 0) == 0) {
       return Error{"unknown option " + s};
     } else {
@@ -161,6 +177,116 @@ int cmd_gain(const Args& a, std::ostream& out, std::ostream& err) {
   return 0;
 }
 
+// Warns when a truth-free tuning rests on innovations that are not white (coloured sensor
+// errors make NLL/NIS pick a tuning that trusts that sensor far too much).
+void warn_if_not_white(const Metrics& m, const std::string& objective, std::ostream& err) {
+  auto it = m.find("whiteness_p");
+  if (objective == "rmse" || it == m.end() || !std::isfinite(it->second)) return;
+  if (it->second < 0.01) {
+    err << "kfw-cli: warning: innovations are not white (Ljung-Box p = " << it->second
+        << " < 0.01): a tuning by '" << objective << "' without truth is not trustworthy here\n";
+  }
+}
+
+int cmd_tune(const Args& a, std::ostream& out, std::ostream& err) {
+  if (a.positional.size() != 1) return fail(err, "tune takes one preset");
+  if (!a.params) return fail(err, "tune needs --params key[,key...]");
+  const std::string obj_name = a.objective.value_or("rmse");
+  auto objective = objective_by_name(obj_name);
+  if (!objective) return fail(err, objective.error());
+  auto ws = open_any(a.positional[0], a);
+  if (!ws) return fail(err, ws.error());
+  auto d = load_dataset(*ws);
+  if (!d) return fail(err, d.error());
+  std::vector<SearchParam> params;
+  std::stringstream keys(*a.params);
+  for (std::string key; std::getline(keys, key, ',');) {
+    const ParamSpec* spec = ws->scenario->params().find(key);
+    if (!spec) return fail(err, "--params: unknown parameter '" + key + "'");
+    SearchParam p{key, spec->min, spec->max, spec->scale == Scale::kLog};
+    if (auto r = ws->preset.ranges.find(key); r != ws->preset.ranges.end()) {
+      p.lo = r->second.first;
+      p.hi = r->second.second;
+    }
+    params.push_back(p);
+  }
+  // The objective must exist for this dataset (rmse needs truth).
+  auto probe = ws->scenario->run(*d, ws->values);
+  if (!probe) return fail(err, probe.error());
+  if (!std::isfinite((*objective)((*probe)->metrics))) {
+    return fail(err, "objective '" + obj_name + "' is not available on this dataset" +
+                         (obj_name == "rmse" ? " (no truth column?)" : ""));
+  }
+  auto r = tune(*ws->scenario, *d, ws->values, params, *objective);
+  if (!r) return fail(err, r.error());
+  nlohmann::json j;
+  j["objective"] = obj_name;
+  j["value"] = r->objective;
+  j["evaluations"] = r->evaluations;
+  j["start_value"] = (*objective)((*probe)->metrics);
+  for (const auto& p : params)
+    j["params"][p.key] = r->best.at(p.key);
+  j["metrics"] = to_json(r->metrics);
+  warn_if_not_white(r->metrics, obj_name, err);
+  if (a.out) {
+    Preset p = ws->preset;
+    p.values = r->best;
+    if (ws->data_path) p.data_path = std::filesystem::absolute(*ws->data_path).string();
+    if (auto st = save_preset(*a.out, p); !st) return fail(err, st.error());
+  }
+  out << j.dump(2) << "\n";
+  return 0;
+}
+
+int cmd_sweep(const Args& a, std::ostream& out, std::ostream& err) {
+  if (a.positional.size() != 1) return fail(err, "sweep takes one preset");
+  if (a.axes.empty()) return fail(err, "sweep needs --param key=lo:hi:n");
+  if (!a.metric) return fail(err, "sweep needs --metric NAME");
+  auto ws = open_any(a.positional[0], a);
+  if (!ws) return fail(err, ws.error());
+  std::vector<SweepAxis> axes;
+  for (const auto& t : a.axes) {
+    auto ax = parse_sweep_axis(ws->scenario->params(), t);
+    if (!ax) return fail(err, ax.error());
+    axes.push_back(*ax);
+  }
+  auto d = load_dataset(*ws);
+  if (!d) return fail(err, d.error());
+  auto r = sweep(*ws->scenario, *d, ws->values, axes, 2);
+  if (!r) return fail(err, r.error());
+  std::size_t best = r->points.size();
+  for (std::size_t i = 0; i < r->points.size(); ++i) {
+    auto it = r->metrics[i].find(*a.metric);
+    if (it == r->metrics[i].end() || !std::isfinite(it->second)) continue;
+    if (best == r->points.size() || it->second < r->metrics[best].at(*a.metric)) best = i;
+  }
+  if (best == r->points.size()) return fail(err, "metric '" + *a.metric + "' is not available");
+  if (a.out) {
+    Dataset table;
+    table.source = *a.out;
+    for (std::size_t k = 0; k < axes.size(); ++k)
+      table.add(axes[k].key, r->points.size());
+    table.add(*a.metric, r->points.size());
+    for (std::size_t i = 0; i < r->points.size(); ++i) {
+      for (std::size_t k = 0; k < axes.size(); ++k)
+        table.columns[k][i] = r->points[i][k];
+      auto it = r->metrics[i].find(*a.metric);
+      if (it != r->metrics[i].end()) table.columns[axes.size()][i] = it->second;
+    }
+    std::ostringstream os;
+    write_csv(os, table);
+    if (auto st = write_text_file_atomic(*a.out, os.str()); !st) return fail(err, st.error());
+  }
+  nlohmann::json j;
+  j["metric"] = *a.metric;
+  j["points"] = r->points.size();
+  j["best"] = r->metrics[best].at(*a.metric);
+  for (std::size_t k = 0; k < axes.size(); ++k)
+    j["best_at"][axes[k].key] = r->points[best][k];
+  out << j.dump(2) << "\n";
+  return 0;
+}
+
 int cmd_preset(const Args& a, std::ostream& out, std::ostream& err) {
   if (a.positional.size() != 1) return fail(err, "preset takes one scenario or preset");
   if (!a.out) return fail(err, "preset needs --out FILE.json");
@@ -237,6 +363,8 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   if (cmd == "gain") return cmd_gain(*a, out, err);
   if (cmd == "params") return cmd_params(*a, out, err);
   if (cmd == "preset") return cmd_preset(*a, out, err);
+  if (cmd == "tune") return cmd_tune(*a, out, err);
+  if (cmd == "sweep") return cmd_sweep(*a, out, err);
   if (cmd == "list") return cmd_list(out);
   return cmd_scenario(cmd, *a, out, err);
 }

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <memory>
 
+#include "core/consistency.h"
 #include "core/scenario.h"
 #include "core/statistics.h"
 #include "scenarios/helicopter/helicopter_model.h"
@@ -110,10 +111,45 @@ class HelicopterScenario final : public Scenario {
     m["beta"] = r->beta;
     m["nis_mean"] = mean_finite(r->nis);
     m["nis_in_bounds"] = fraction_inside(r->nis, 1.0);
+    m["nis_dof"] = 1.0;
+    // Innovation consistency: mean negative log-likelihood (needs no truth) and whiteness of the
+    // normalised innovations y/√S at the angle sensor's own rate.
+    {
+      std::vector<double> e(r->steps(), kNoSample);
+      double nll = 0.0;
+      std::size_t n = 0;
+      for (std::size_t k = 0; k < r->steps(); ++k) {
+        if (!std::isfinite(r->nis[k])) continue;
+        e[k] = r->innovation[k] / std::sqrt(r->S[k]);
+        nll += 0.5 * (std::log(2.0 * 3.141592653589793 * r->S[k]) + r->nis[k]);
+        ++n;
+      }
+      m["nll"] = n ? nll / static_cast<double>(n) : kNoSample;
+      m["whiteness_p"] = ljung_box(e, 20).p_value;
+    }
     m["bias_final"] = r->bias.empty() ? kNoSample : r->bias.back();
     m["updates"] = static_cast<double>(r->updates);
     m["steps"] = static_cast<double>(r->steps());
     m["Ts"] = r->Ts_s;
+    // NEES of the angle (truth holds θ only; with the simulator's bias truth, of [θ, b]).
+    {
+      std::vector<double> nees(r->steps(), kNoSample);
+      const bool has_b = d.has("bias_truth");
+      const std::vector<double>* bt = has_b ? &d.col("bias_truth") : nullptr;
+      for (std::size_t k = 0; k < r->steps(); ++k) {
+        const double e = r->theta[k] - r->truth[k];
+        if (!std::isfinite(e)) continue;
+        nees[k] = e * e / r->P11[k];
+        if (bt && std::isfinite((*bt)[k])) {
+          // e^T P^{-1} e with the 2×2 inverse written out.
+          const double eb = r->bias[k] - (*bt)[k];
+          const double a = r->P11[k], b = r->P12[k], c = r->P22[k], det = a * c - b * b;
+          nees[k] = det > 0 ? (c * e * e - 2.0 * b * e * eb + a * eb * eb) / det : kNoSample;
+        }
+      }
+      m["nees_mean"] = mean_finite(nees);
+      m["nees_dof"] = has_b ? 2.0 : 1.0;
+    }
     if (d.has("bias_truth")) {
       r->bias_truth = d.col("bias_truth");
       m["bias_rmse"] = rmse_finite(r->bias, r->bias_truth);

@@ -9,9 +9,9 @@ namespace kfw::helicopter {
 Dataset HelicopterResult::table() const {
   Dataset d;
   d.source = "helicopter run";
-  d.names = {"t",    "theta",      "bias", "P11", "P22", "angle", "truth",
-             "gyro", "innovation", "S",    "k1",  "k2",  "nis"};
-  d.columns = {t, theta, bias, P11, P22, angle, truth, gyro, innovation, S, k1, k2, nis};
+  d.names = {"t",     "theta", "bias",       "P11", "P12", "P22", "angle",
+             "truth", "gyro",  "innovation", "S",   "k1",  "k2",  "nis"};
+  d.columns = {t, theta, bias, P11, P12, P22, angle, truth, gyro, innovation, S, k1, k2, nis};
   return d;
 }
 
@@ -26,6 +26,7 @@ HelicopterResult run_indirect_kf(const std::vector<double>& t, const std::vector
   r.theta.resize(n);
   r.bias.resize(n);
   r.P11.resize(n);
+  r.P12.resize(n);
   r.P22.resize(n);
   r.innovation.assign(n, kNoSample);
   r.S.assign(n, kNoSample);
@@ -46,6 +47,7 @@ HelicopterResult run_indirect_kf(const std::vector<double>& t, const std::vector
   double* out_th = r.theta.data();
   double* out_b = r.bias.data();
   double* out_p11 = r.P11.data();
+  double* out_p12 = r.P12.data();
   double* out_p22 = r.P22.data();
 
   for (std::size_t k = 0; k < n; ++k) {
@@ -95,6 +97,7 @@ HelicopterResult run_indirect_kf(const std::vector<double>& t, const std::vector
     out_th[k] = th;
     out_b[k] = b;
     out_p11[k] = p11;
+    out_p12[k] = p12;
     out_p22[k] = p22;
     if ((k & 0xFFFF) == 0xFFFF && control.cancelled()) break;
   }

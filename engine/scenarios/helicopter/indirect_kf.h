@@ -23,7 +23,7 @@ struct HelicopterResult final : RunResult {
   std::vector<double> gyro, angle, truth;  // angle: NaN where no sample
   std::vector<double> bias_truth;          // from a simulated dataset; empty otherwise
   // Filter output, per step (post-update when updated, else the prediction).
-  std::vector<double> theta, bias, P11, P22;
+  std::vector<double> theta, bias, P11, P12, P22;
   // Per step; NaN where no update happened.
   std::vector<double> innovation, S, k1, k2, nis;
   std::size_t updates = 0;

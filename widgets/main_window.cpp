@@ -389,7 +389,10 @@ bool MainWindow::waitForRun(int timeout_ms) {
 Expected<QStringList> MainWindow::exportAll(const QString& dir, const QStringList& formats) {
   if (!waitForRun()) return Error{"export: the run did not finish"};
   if (!result_) return Error{"export: no result to plot (" + last_error_.toStdString() + ")"};
-  return exportPanels(plots_, dir, formats, q(scenario_->name()) + "_");
+  // Files are named after the preset (two presets of one scenario do not overwrite each other).
+  const QString stem =
+      preset_.path.empty() ? q(scenario_->name()) : QFileInfo(q(preset_.path)).completeBaseName();
+  return exportPanels(plots_, dir, formats, stem + "_");
 }
 
 }  // namespace kfw

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "core/consistency.h"
 #include "core/statistics.h"
 #include "plot_kit.h"
 #include "scenario_view.h"
@@ -39,7 +40,29 @@ class HelicopterView final : public ScenarioView {
     nis_lo_ = addGraph(nis_, "χ²(1) 2.5 % / 97.5 %", color::kBound, Style::kDashed);
     nis_hi_ = addGraph(nis_, "", color::kBound, Style::kDashed);
     nis_hi_->removeFromLegend();
+    nis_avg_ = addGraph(nis_, "moving average (50 updates)", color::kSecond);
+    nis_avg_lo_ = addGraph(nis_, "95 % bounds of the average", color::kSecond, Style::kDashed);
+    nis_avg_hi_ = addGraph(nis_, "", color::kSecond, Style::kDashed);
+    nis_avg_hi_->removeFromLegend();
     nis_cursor_ = addCursor(nis_);
+
+    white_ = makePlot(parent, "Innovation whiteness: autocorrelation of y/√S",
+                      "lag (angle updates)", "autocorrelation (–)");
+    white_bars_ = new QCPBars(white_->xAxis, white_->yAxis);
+    white_bars_->setName("autocorrelation");
+    white_bars_->setPen(QPen(color::kEstimate));
+    white_bars_->setBrush(QBrush(color::kEstimate));
+    white_bars_->setWidth(0.5);
+    white_lo_ = addGraph(white_, "± 1.96/√N", color::kSecond, Style::kDashed);
+    white_hi_ = addGraph(white_, "", color::kSecond, Style::kDashed);
+    white_hi_->removeFromLegend();
+    white_label_ = new QCPItemText(white_);
+    white_label_->setPositionAlignment(Qt::AlignLeft | Qt::AlignTop);
+    white_label_->position->setType(QCPItemPosition::ptAxisRectRatio);
+    white_label_->position->setCoords(0.02, 0.03);
+    white_label_->setTextAlignment(Qt::AlignLeft);
+    white_label_->setPadding(QMargins(4, 2, 4, 2));
+    white_label_->setBrush(QBrush(QColor(255, 255, 255, 220)));
 
     gain_ = makePlot(parent, "Gain k1 over time", "time (s)", "gain k1 (–)");
     gain_k1_ = addGraph(gain_, "k1 (at angle updates)", color::kEstimate, Style::kStep);
@@ -83,7 +106,8 @@ class HelicopterView final : public ScenarioView {
             {"nis", "NIS", nis_},
             {"gain", "Gain over time", gain_},
             {"gain_curve", "Gain curve", curve_},
-            {"bias", "Bias", bias_}};
+            {"bias", "Bias", bias_},
+            {"whiteness", "Whiteness", white_}};
   }
 
   void setResult(std::shared_ptr<const RunResult> result, const ParamValues& values) override {
@@ -127,6 +151,10 @@ class HelicopterView final : public ScenarioView {
 
     nis_lo_value_ = chi2_quantile(0.025, 1.0);
     nis_hi_value_ = chi2_quantile(0.975, 1.0);
+    const auto avg_bounds = nis_bounds(1.0, r->nis_window);
+    nis_avg_lo_value_ = avg_bounds.lo;
+    nis_avg_hi_value_ = avg_bounds.hi;
+    drawWhiteness(*r);
     drawUpTo(cursor_);
   }
 
@@ -136,6 +164,36 @@ class HelicopterView final : public ScenarioView {
   }
 
  private:
+  // The whole run's autocorrelation (whiteness is a property of the run, not of the cursor).
+  void drawWhiteness(const HelicopterResult& r) {
+    const auto& w = r.whiteness;
+    QVector<double> lag, acf;
+    for (std::size_t k = 1; k < w.acf.size(); ++k) {
+      if (!std::isfinite(w.acf[k])) continue;
+      lag << static_cast<double>(k);
+      acf << w.acf[k];
+    }
+    white_bars_->setData(lag, acf, true);
+    const double L = static_cast<double>(w.acf.size());
+    plot::setSeries(white_lo_, {0.5, L}, {-w.band, -w.band}, 2);
+    plot::setSeries(white_hi_, {0.5, L}, {w.band, w.band}, 2);
+    const bool white = !(w.p_value < 0.01);
+    white_label_->setText(
+        QString("Ljung–Box (20 lags): p = %1, N = %2%3")
+            .arg(w.p_value, 0, 'g', 3)
+            .arg(w.n)
+            .arg(white ? QString()
+                       : QString("\n⚠ innovations not white: a tuning without truth "
+                                 "(NLL / NIS) is not trustworthy")));
+    white_label_->setColor(white ? Qt::black : QColor(170, 20, 20));
+    white_->xAxis->setRange(0, L);
+    double top = w.band;
+    for (double a : acf)
+      top = std::max(top, std::abs(a));
+    white_->yAxis->setRange(-1.2 * top, 1.6 * top);
+    plot::replot(white_);
+  }
+
   void drawUpTo(std::size_t index) {
     const HelicopterResult& r = *result_;
     const std::size_t steps = r.steps();
@@ -155,6 +213,9 @@ class HelicopterView final : public ScenarioView {
     const std::vector<double> span{t0, tc};
     setSeries(nis_lo_, span, {nis_lo_value_, nis_lo_value_}, 2);
     setSeries(nis_hi_, span, {nis_hi_value_, nis_hi_value_}, 2);
+    setSeries(nis_avg_, r.t, r.nis_avg, n);
+    setSeries(nis_avg_lo_, span, {nis_avg_lo_value_, nis_avg_lo_value_}, 2);
+    setSeries(nis_avg_hi_, span, {nis_avg_hi_value_, nis_avg_hi_value_}, 2);
     setSeries(gain_k1_, r.t, r.k1, n);
     setSeries(gain_ss_, span, {r.k1_steady, r.k1_steady}, 2);
     plot::setBand(bias_band_, r.t, r.bias, two_sigma_bias_, n);
@@ -181,10 +242,14 @@ class HelicopterView final : public ScenarioView {
   std::shared_ptr<const HelicopterResult> result_;
   std::size_t cursor_ = plot::kAll;
   std::vector<double> two_sigma_theta_, two_sigma_bias_, two_sqrt_S_, zero_;
-  double nis_lo_value_ = 0.0, nis_hi_value_ = 0.0;
+  double nis_lo_value_ = 0.0, nis_hi_value_ = 0.0, nis_avg_lo_value_ = 0.0, nis_avg_hi_value_ = 0.0;
 
   QCustomPlot *angle_ = nullptr, *innov_ = nullptr, *nis_ = nullptr, *gain_ = nullptr,
-              *curve_ = nullptr, *bias_ = nullptr;
+              *curve_ = nullptr, *bias_ = nullptr, *white_ = nullptr;
+  QCPBars* white_bars_ = nullptr;
+  QCPGraph *white_lo_ = nullptr, *white_hi_ = nullptr;
+  QCPItemText* white_label_ = nullptr;
+  QCPGraph *nis_avg_ = nullptr, *nis_avg_lo_ = nullptr, *nis_avg_hi_ = nullptr;
   plot::Band angle_band_, innov_band_, bias_band_;
   QCPGraph *angle_sensor_ = nullptr, *angle_truth_ = nullptr, *angle_est_ = nullptr;
   QCPGraph *innov_y_ = nullptr, *nis_y_ = nullptr, *nis_lo_ = nullptr, *nis_hi_ = nullptr;

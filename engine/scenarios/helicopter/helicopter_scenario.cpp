@@ -125,12 +125,10 @@ class HelicopterScenario final : public Scenario {
         ++n;
       }
       m["nll"] = n ? nll / static_cast<double>(n) : kNoSample;
-      m["whiteness_p"] = ljung_box(e, 20).p_value;
+      r->whiteness = ljung_box(e, 20);
+      m["whiteness_p"] = r->whiteness.p_value;
+      r->nis_avg = moving_average_finite(r->nis, r->nis_window);
     }
-    m["bias_final"] = r->bias.empty() ? kNoSample : r->bias.back();
-    m["updates"] = static_cast<double>(r->updates);
-    m["steps"] = static_cast<double>(r->steps());
-    m["Ts"] = r->Ts_s;
     // NEES of the angle (truth holds θ only; with the simulator's bias truth, of [θ, b]).
     {
       std::vector<double> nees(r->steps(), kNoSample);

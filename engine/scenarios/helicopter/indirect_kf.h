@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "core/consistency.h"
 #include "core/scenario.h"
 
 namespace kfw::helicopter {
@@ -30,6 +31,11 @@ struct HelicopterResult final : RunResult {
   // Operating point of the current tuning, from the dataset's Ts.
   double Ts_s = 0.0, beta = 0.0, k1_steady = 0.0, p11_over_R_steady = 0.0;
   double k1_closed = 0.0;
+  // Consistency of the angle channel: moving-average NIS (window nis_window) and the whiteness of
+  // the normalised innovations y/√S.
+  std::size_t nis_window = 50;
+  std::vector<double> nis_avg;
+  Whiteness whiteness;
 
   Dataset table() const override;
 };

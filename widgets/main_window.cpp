@@ -25,7 +25,9 @@
 #include "param_panel.h"
 #include "plot_export.h"
 #include "run_controller.h"
+#include "sweep_dialog.h"
 #include "transport_bar.h"
+#include "tune_dialog.h"
 
 namespace kfw {
 
@@ -81,6 +83,18 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     if (auto st = openDataset(f); !st) QMessageBox::warning(this, "Open CSV", q(st.error()));
   });
   connect(sim_button_, &QPushButton::clicked, this, &MainWindow::useSimulatedData);
+  auto* tool_row = new QHBoxLayout;
+  auto* tune = new QPushButton("Tune…");
+  tune->setObjectName("tuneButton");
+  tune->setToolTip("Search Q, R, … for the best RMSE / likelihood / NIS consistency");
+  auto* sweep = new QPushButton("Sweep…");
+  sweep->setObjectName("sweepButton");
+  sweep->setToolTip("Plot any metric over one or two parameters");
+  tool_row->addWidget(tune);
+  tool_row->addWidget(sweep);
+  left_->addLayout(tool_row);
+  connect(tune, &QPushButton::clicked, this, [this] { openTuneDialog(); });
+  connect(sweep, &QPushButton::clicked, this, [this] { openSweepDialog(); });
   // The panel and scenario controls are inserted here by rebuildScenarioUi().
   left_->addStretch(0);
   metrics_ = new QTableWidget(0, 2);
@@ -168,6 +182,9 @@ void MainWindow::buildMenus() {
   });
   file->addSeparator();
   file->addAction("&Quit", QKeySequence::Quit, this, &QWidget::close);
+  QMenu* tools = menuBar()->addMenu("&Tools");
+  tools->addAction("Auto-&tune…", this, [this] { openTuneDialog(); });
+  tools->addAction("&Sweep a metric…", this, [this] { openSweepDialog(); });
   QMenu* replay = menuBar()->addMenu("&Replay");
   replay->addAction("&Play / pause", QKeySequence(Qt::Key_Space), this,
                     [this] { transport_->playing() ? transport_->pause() : transport_->play(); });
@@ -310,6 +327,29 @@ Status MainWindow::savePreset(const QString& path) const {
     p.data_path.reset();
   }
   return save_preset(path.toStdString(), p);
+}
+
+void MainWindow::applyValues(const ParamValues& values) {
+  if (!panel_) return;
+  panel_->setValues(values);
+  requestRun();
+}
+
+TuneDialog* MainWindow::openTuneDialog() {
+  if (!scenario_ || !waitForRun() || !runner_->dataset()) return nullptr;
+  auto* d = new TuneDialog(scenario_, runner_->dataset(), values(), this);
+  d->setAttribute(Qt::WA_DeleteOnClose);
+  connect(d, &TuneDialog::tuned, this, &MainWindow::applyValues);
+  d->show();
+  return d;
+}
+
+SweepDialog* MainWindow::openSweepDialog() {
+  if (!scenario_ || !waitForRun() || !runner_->dataset() || !result_) return nullptr;
+  auto* d = new SweepDialog(scenario_, runner_->dataset(), values(), result_->metrics, this);
+  d->setAttribute(Qt::WA_DeleteOnClose);
+  d->show();
+  return d;
 }
 
 const ParamValues& MainWindow::values() const {

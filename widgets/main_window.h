@@ -47,6 +47,11 @@ class MainWindow : public QMainWindow {
   // Sets a parameter as a user would (through its control); the run follows.
   void setParam(const std::string& key, double value);
   Status savePreset(const QString& path) const;
+  // Sets many values at once (a tuning result) and runs once.
+  void applyValues(const ParamValues& values);
+  // Opens the auto-tune / sweep dialogs on the current dataset and values (non-modal).
+  class TuneDialog* openTuneDialog();
+  class SweepDialog* openSweepDialog();
 
   // Waits (processing events) until the latest request has run and its plots are drawn.
   bool waitForRun(int timeout_ms = 20000);

@@ -4,23 +4,27 @@
 
 #include <QApplication>
 #include <QCoreApplication>
+#include <QCryptographicHash>
 #include <QDeadlineTimer>
 #include <QDir>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QGridLayout>
 #include <QHeaderView>
+#include <QInputDialog>
 #include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QPushButton>
 #include <QScrollArea>
+#include <QSettings>
 #include <QSplitter>
 #include <QStatusBar>
 #include <QTableWidget>
 #include <QVBoxLayout>
 #include <cmath>
 
+#include "column_map_dialog.h"
 #include "core/workspace.h"
 #include "param_panel.h"
 #include "plot_export.h"
@@ -90,8 +94,14 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   auto* sweep = new QPushButton("Sweep…");
   sweep->setObjectName("sweepButton");
   sweep->setToolTip("Plot any metric over one or two parameters");
+  auto* pin = new QPushButton("Pin");
+  pin->setObjectName("pinButton");
+  pin->setToolTip("Keep the current tuning as a faded ghost and a metrics column to compare");
   tool_row->addWidget(tune);
   tool_row->addWidget(sweep);
+  tool_row->addWidget(pin);
+  connect(pin, &QPushButton::clicked, this,
+          [this] { pinSnapshot(QString("snapshot %1").arg(snapshots_.size() + 1)); });
   left_->addLayout(tool_row);
   connect(tune, &QPushButton::clicked, this, [this] { openTuneDialog(); });
   connect(sweep, &QPushButton::clicked, this, [this] { openSweepDialog(); });
@@ -170,6 +180,18 @@ void MainWindow::buildMenus() {
     if (f.isEmpty()) return;
     if (auto st = savePreset(f); !st) QMessageBox::warning(this, "Save preset", q(st.error()));
   });
+  file->addAction("Open s&ession…", this, [this] {
+    const QString f =
+        QFileDialog::getOpenFileName(this, "Open session", QString(), "Sessions (*.json)");
+    if (f.isEmpty()) return;
+    if (auto st = loadSession(f); !st) QMessageBox::warning(this, "Open session", q(st.error()));
+  });
+  file->addAction("Save session &as…", this, [this] {
+    const QString f =
+        QFileDialog::getSaveFileName(this, "Save session", "session.json", "Sessions (*.json)");
+    if (f.isEmpty()) return;
+    if (auto st = saveSession(f); !st) QMessageBox::warning(this, "Save session", q(st.error()));
+  });
   file->addAction("&Export plots…", this, [this] {
     const QString dir = QFileDialog::getExistingDirectory(this, "Export plots to");
     if (dir.isEmpty()) return;
@@ -185,6 +207,14 @@ void MainWindow::buildMenus() {
   QMenu* tools = menuBar()->addMenu("&Tools");
   tools->addAction("Auto-&tune…", this, [this] { openTuneDialog(); });
   tools->addAction("&Sweep a metric…", this, [this] { openSweepDialog(); });
+  tools->addAction("&Pin snapshot…", this, [this] {
+    bool ok = false;
+    const QString name =
+        QInputDialog::getText(this, "Pin snapshot", "Name:", QLineEdit::Normal,
+                              QString("snapshot %1").arg(snapshots_.size() + 1), &ok);
+    if (ok && !name.isEmpty()) pinSnapshot(name);
+  });
+  tools->addAction("&Clear snapshots", this, &MainWindow::clearSnapshots);
   QMenu* replay = menuBar()->addMenu("&Replay");
   replay->addAction("&Play / pause", QKeySequence(Qt::Key_Space), this,
                     [this] { transport_->playing() ? transport_->pause() : transport_->play(); });
@@ -232,6 +262,8 @@ Status MainWindow::loadPreset(const QString& preset, const std::optional<QString
   file_data_ = file;
   view_ = std::move(view);
   result_.reset();
+  snapshots_.clear();
+  column_map_.clear();
   runner_->setScenario(scenario_);
   runner_->setFileDataset(file_data_);
   rebuildScenarioUi();
@@ -290,9 +322,51 @@ void MainWindow::updateDataLabel() {
   }
 }
 
+namespace {
+QString mapKey(const Dataset& d) {
+  return "columnMaps/" +
+         QCryptographicHash::hash(QByteArray::fromStdString(header_key(d)), QCryptographicHash::Md5)
+             .toHex();
+}
+}  // namespace
+
+Expected<Dataset> MainWindow::readMapped(const QString& path, const ColumnMap* map) {
+  auto raw = read_csv(path.toStdString());
+  if (!raw) return raw;
+  ColumnMap m;
+  if (map) {
+    m = *map;
+  } else if (!require_columns(*raw, scenario_->columns())) {
+    // Remembered for this header (QSettings), else ask (GUI only).
+    QSettings settings("kfw", "kfw");
+    const QString stored = settings.value(mapKey(*raw)).toString();
+    for (const QString& pair : stored.split(';', Qt::SkipEmptyParts)) {
+      const auto kv = pair.split('=');
+      if (kv.size() == 2) m[kv[0].toStdString()] = kv[1].toStdString();
+    }
+    if (m.empty() && interactive_) {
+      ColumnMapDialog dialog(scenario_->columns(), *raw, column_map_, this);
+      if (dialog.exec() != QDialog::Accepted)
+        return Error{path.toStdString() + ": column mapping cancelled"};
+      m = dialog.mapping();
+    }
+  }
+  auto mapped = apply_column_map(std::move(*raw), m);
+  if (!mapped) return mapped;
+  if (auto st = require_columns(*mapped, scenario_->columns()); !st) return Error{st.error()};
+  if (!m.empty()) {
+    QStringList pairs;
+    for (const auto& [role, col] : m)
+      pairs << QString::fromStdString(role + "=" + col);
+    QSettings("kfw", "kfw").setValue(mapKey(*read_csv(path.toStdString())), pairs.join(';'));
+  }
+  column_map_ = m;
+  return mapped;
+}
+
 Status MainWindow::openDataset(const QString& path) {
   if (!scenario_) return Error{"load a preset first"};
-  auto ds = load_dataset_file(*scenario_, path.toStdString());
+  auto ds = readMapped(path, nullptr);
   if (!ds) {
     showError(q(ds.error()));
     return Error{ds.error()};
@@ -302,6 +376,128 @@ Status MainWindow::openDataset(const QString& path) {
   clearError();
   updateDataLabel();
   requestRun();
+  return Ok{};
+}
+
+Status MainWindow::openDatasetMapped(const QString& path, const ColumnMap& map) {
+  if (!scenario_) return Error{"load a preset first"};
+  auto ds = readMapped(path, &map);
+  if (!ds) {
+    showError(q(ds.error()));
+    return Error{ds.error()};
+  }
+  file_data_ = std::make_shared<const Dataset>(std::move(*ds));
+  runner_->setFileDataset(file_data_);
+  clearError();
+  updateDataLabel();
+  requestRun();
+  return Ok{};
+}
+
+void MainWindow::pinSnapshot(const QString& name) {
+  if (!result_ || !scenario_) return;
+  snapshots_.push_back({{name.toStdString(), values()}, result_, runner_->dataset()});
+  refreshSnapshots();
+}
+
+void MainWindow::clearSnapshots() {
+  snapshots_.clear();
+  refreshSnapshots();
+}
+
+// Re-runs stale snapshots on the current dataset (synchronously: a few ms each), then redraws
+// the ghosts and the metrics columns.
+void MainWindow::refreshSnapshots() {
+  const auto current = runner_->dataset();
+  for (auto& p : snapshots_) {
+    if (current && p.data != current) {
+      auto r = scenario_->run(*current, p.snap.values);
+      p.result = r ? *r : nullptr;
+      p.data = current;
+    }
+  }
+  ScenarioView::Snapshots ghosts;
+  for (const auto& p : snapshots_) {
+    if (p.result) ghosts.append({q(p.snap.name), p.result});
+  }
+  if (view_) view_->setSnapshots(ghosts);
+  fillMetrics();
+}
+
+void MainWindow::fillMetrics() {
+  const int cols = 2 + static_cast<int>(snapshots_.size());
+  metrics_->setColumnCount(cols);
+  QStringList headers{"metric", "live"};
+  for (const auto& p : snapshots_)
+    headers << q(p.snap.name);
+  metrics_->setHorizontalHeaderLabels(headers);
+  if (!result_) {
+    metrics_->setRowCount(0);
+    return;
+  }
+  metrics_->setRowCount(static_cast<int>(result_->metrics.size()));
+  auto cell = [](double x) {
+    return new QTableWidgetItem(std::isfinite(x) ? QString::number(x, 'g', 6) : "–");
+  };
+  int row = 0;
+  for (const auto& [k, x] : result_->metrics) {
+    metrics_->setItem(row, 0, new QTableWidgetItem(q(k)));
+    metrics_->setItem(row, 1, cell(x));
+    for (std::size_t j = 0; j < snapshots_.size(); ++j) {
+      const auto& r = snapshots_[j].result;
+      const double v = r && r->metrics.count(k) ? r->metrics.at(k) : std::nan("");
+      metrics_->setItem(row, 2 + static_cast<int>(j), cell(v));
+    }
+    ++row;
+  }
+}
+
+Status MainWindow::saveSession(const QString& path) const {
+  if (!scenario_) return Error{"nothing to save"};
+  Session s;
+  s.preset_path = preset_.path;
+  s.scenario = scenario_->name();
+  s.values = values();
+  if (file_data_) {
+    s.data_path = file_data_->source;
+    auto h = file_hash(file_data_->source);
+    if (h) s.data_hash = *h;
+  }
+  s.columns = column_map_;
+  for (const auto& p : snapshots_)
+    s.snapshots.push_back(p.snap);
+  s.window_state = saveGeometry().toBase64().toStdString();
+  return save_session(path.toStdString(), s);
+}
+
+Status MainWindow::loadSession(const QString& path) {
+  auto s = load_session(path.toStdString());
+  if (!s) return Error{s.error()};
+  auto scenario = make_scenario(s->scenario);
+  if (!scenario) return Error{path.toStdString() + ": " + scenario.error()};
+  for (const auto& [k, v] : s->values) {
+    if (auto st = (*scenario)->params().check(k, v); !st)
+      return Error{path.toStdString() + ": values: " + st.error()};
+  }
+  if (auto st = loadPreset(q(s->preset_path)); !st) return st;
+  QString warning;
+  if (s->data_path) {
+    auto h = file_hash(*s->data_path);
+    if (h && !s->data_hash.empty() && *h != s->data_hash) {
+      warning = q(*s->data_path) + " changed since the session was saved (hash differs)";
+    }
+    auto st = openDatasetMapped(q(*s->data_path), s->columns);
+    if (!st) return st;
+  }
+  applyValues(s->values);
+  waitForRun();
+  snapshots_.clear();
+  for (const auto& snap : s->snapshots)
+    snapshots_.push_back({snap, nullptr, nullptr});
+  refreshSnapshots();
+  if (!s->window_state.empty())
+    restoreGeometry(QByteArray::fromBase64(QByteArray::fromStdString(s->window_state)));
+  if (!warning.isEmpty()) showError(warning);
   return Ok{};
 }
 
@@ -381,13 +577,10 @@ void MainWindow::applyResult(std::shared_ptr<const RunResult> r, const ParamValu
     for (const auto& p : plots_)
       qInfo("  %s replot %.1f ms", qPrintable(p.name), p.plot->replotTime());
   }
-  metrics_->setRowCount(static_cast<int>(r->metrics.size()));
-  int row = 0;
-  for (const auto& [k, x] : r->metrics) {
-    metrics_->setItem(row, 0, new QTableWidgetItem(q(k)));
-    metrics_->setItem(row, 1,
-                      new QTableWidgetItem(std::isfinite(x) ? QString::number(x, 'g', 6) : "–"));
-    ++row;
+  if (!snapshots_.empty() && snapshots_.front().data != runner_->dataset()) {
+    refreshSnapshots();
+  } else {
+    fillMetrics();
   }
   applied_latest_ = !runner_->busy();
   if (applied_latest_) last_latency_ms_ = static_cast<double>(since_request_.nsecsElapsed()) / 1e6;

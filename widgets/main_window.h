@@ -14,6 +14,7 @@
 #include "core/expected.h"
 #include "core/preset.h"
 #include "core/scenario.h"
+#include "core/session.h"
 #include "scenario_view.h"
 
 class QComboBox;
@@ -47,6 +48,17 @@ class MainWindow : public QMainWindow {
   // Sets a parameter as a user would (through its control); the run follows.
   void setParam(const std::string& key, double value);
   Status savePreset(const QString& path) const;
+  // Loads a CSV whose columns are named otherwise, with role -> column; remembered per header.
+  Status openDatasetMapped(const QString& path, const ColumnMap& map);
+  // Pins the live tuning as a named snapshot: ghost curves and a metrics column.
+  void pinSnapshot(const QString& name);
+  void clearSnapshots();
+  int snapshotCount() const { return static_cast<int>(snapshots_.size()); }
+  // Sessions: everything set up here, in one JSON file (atomic write).
+  Status saveSession(const QString& path) const;
+  Status loadSession(const QString& path);
+  // When true, missing columns open the mapping dialog (the GUI); tests and exports stay silent.
+  void setInteractive(bool on) { interactive_ = on; }
   // Sets many values at once (a tuning result) and runs once.
   void applyValues(const ParamValues& values);
   // Opens the auto-tune / sweep dialogs on the current dataset and values (non-modal).
@@ -83,7 +95,19 @@ class MainWindow : public QMainWindow {
   void refreshPresetList();
   void updateDataLabel();
 
+  struct Pinned {
+    Snapshot snap;
+    std::shared_ptr<const RunResult> result;
+    std::shared_ptr<const Dataset> data;
+  };
+  void refreshSnapshots();
+  void fillMetrics();
+  Expected<Dataset> readMapped(const QString& path, const ColumnMap* map);
+
   std::shared_ptr<const Scenario> scenario_;
+  std::vector<Pinned> snapshots_;
+  ColumnMap column_map_;
+  bool interactive_ = false;
   std::unique_ptr<ScenarioView> view_;
   Preset preset_;
   std::shared_ptr<const Dataset> file_data_;

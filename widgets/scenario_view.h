@@ -4,6 +4,7 @@
 
 #include <QList>
 #include <QObject>
+#include <QPair>
 #include <QString>
 #include <functional>
 #include <map>
@@ -41,6 +42,9 @@ class ScenarioView : public QObject {
   virtual void setResult(std::shared_ptr<const RunResult> result, const ParamValues& values) = 0;
   // Replay: show steps [0, index]; index >= steps() shows everything. Replot.
   virtual void setCursor(std::size_t index) = 0;
+  // Pinned tunings to draw as faded ghosts beside the live run (optional; empty clears).
+  using Snapshots = QList<QPair<QString, std::shared_ptr<const RunResult>>>;
+  virtual void setSnapshots(const Snapshots& snapshots) { Q_UNUSED(snapshots); }
 
  signals:
   // A control of createControls() changed a parameter (key, new value).

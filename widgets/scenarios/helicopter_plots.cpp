@@ -158,6 +158,27 @@ class HelicopterView final : public ScenarioView {
     drawUpTo(cursor_);
   }
 
+  // Ghosts: each snapshot's estimate, gain and bias as faded lines.
+  void setSnapshots(const Snapshots& snapshots) override {
+    for (auto& g : ghosts_) {
+      for (QCPGraph* graph : {g.angle, g.gain, g.bias})
+        graph->parentPlot()->removeGraph(graph);
+    }
+    ghosts_.clear();
+    int i = 1;
+    for (const auto& [name, result] : snapshots) {
+      auto r = std::dynamic_pointer_cast<const HelicopterResult>(result);
+      if (!r) continue;
+      QColor c = plot::color::cycle(i++ + 2);
+      c.setAlpha(120);
+      Ghost g{r, plot::addGraph(angle_, "θ̂ " + name, c),
+              plot::addGraph(gain_, "k1 " + name, c, plot::Style::kStep),
+              plot::addGraph(bias_, "b̂ " + name, c)};
+      ghosts_.push_back(g);
+    }
+    if (result_) drawUpTo(cursor_);
+  }
+
   void setCursor(std::size_t index) override {
     cursor_ = index;
     if (result_) drawUpTo(index);
@@ -227,6 +248,12 @@ class HelicopterView final : public ScenarioView {
     } else {
       bias_truth_->addToLegend();
     }
+    for (const auto& g : ghosts_) {
+      const std::size_t gn = std::min(n, g.result->steps());
+      setSeries(g.angle, g.result->t, g.result->theta, gn);
+      setSeries(g.gain, g.result->t, g.result->k1, gn);
+      setSeries(g.bias, g.result->t, g.result->bias, gn);
+    }
     for (QCustomPlot* p : {angle_, innov_, nis_, gain_, bias_})
       plot::rescale(p, t0, t1);
     // Keep the gain axis readable: the start-up transient (k1 ≈ 1) would flatten the steady part.
@@ -239,6 +266,11 @@ class HelicopterView final : public ScenarioView {
       plot::replot(p);
   }
 
+  struct Ghost {
+    std::shared_ptr<const HelicopterResult> result;
+    QCPGraph *angle, *gain, *bias;
+  };
+  std::vector<Ghost> ghosts_;
   std::shared_ptr<const HelicopterResult> result_;
   std::size_t cursor_ = plot::kAll;
   std::vector<double> two_sigma_theta_, two_sigma_bias_, two_sqrt_S_, zero_;

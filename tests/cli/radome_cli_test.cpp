@@ -1,0 +1,65 @@
+// kfw-cli on the radome preset: the three seed 001 reproduction runs and one-line errors.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+struct Out {
+  int code = -1;
+  std::string text;  // stdout + stderr
+};
+
+Out cli(const std::string& args) {
+  const std::string cmd = std::string(KFW_CLI) + " " + args + " 2>&1";
+  Out o;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return o;
+  std::array<char, 4096> buf{};
+  std::size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0)
+    o.text.append(buf.data(), n);
+  const int status = pclose(p);
+  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return o;
+}
+
+const std::string kPreset = std::string(KFW_SOURCE_DIR) + "/presets/radome.json";
+
+nlohmann::json run(const std::string& sets) {
+  auto o = cli("run " + kPreset + " " + sets);
+  EXPECT_EQ(o.code, 0) << o.text;
+  return nlohmann::json::parse(o.text);
+}
+
+TEST(RadomeCli, ReproducesSeed001) {
+  const auto a = run("--set sim.amplitude=0.05 --set Kp=0");
+  const auto b = run("--set sim.amplitude=0.08 --set Kp=0");
+  const auto c = run("--set sim.amplitude=0.08 --set Kp=0.45");
+  for (const char* k : {"slope_rmse_psi", "slope_rmse_theta", "refraction_err_max_deg",
+                        "grid_center_psi_final", "grid_center_theta_final"}) {
+    ASSERT_TRUE(a.contains(k) && a[k].is_number()) << k;
+  }
+  EXPECT_LT(a["refraction_err_max_deg"].get<double>(), 0.5);                              // Fig. 4
+  EXPECT_GT(b["slope_rmse_psi"].get<double>(), 2 * a["slope_rmse_psi"].get<double>());    // Fig. 5
+  EXPECT_LT(c["slope_rmse_psi"].get<double>(), 0.5 * b["slope_rmse_psi"].get<double>());  // Fig. 7
+  EXPECT_LT(c["slope_rmse_theta"].get<double>(), 0.5 * b["slope_rmse_theta"].get<double>());
+  EXPECT_GT(c["grid_center_psi_max_abs"].get<double>(), 0.05);  // Fig. 9: the grid moves out
+}
+
+TEST(RadomeCli, BadGridIsAOneLineError) {
+  auto o = cli("run " + kPreset + " --set grid.min=0.1 --set grid.max=-0.1");
+  EXPECT_NE(o.code, 0);
+  EXPECT_NE(o.text.find("grid.min"), std::string::npos) << o.text;
+  o = cli("run " + kPreset + " --set grid.n_psi=0");
+  EXPECT_NE(o.code, 0);
+  EXPECT_NE(o.text.find("grid.n_psi"), std::string::npos) << o.text;
+  o = cli("run " + kPreset + " --set markov.stay=0");
+  EXPECT_NE(o.code, 0);
+  EXPECT_NE(o.text.find("markov.stay"), std::string::npos) << o.text;
+}
+
+}  // namespace

@@ -2,6 +2,7 @@
 // steady-state gain curve k1(β) with the operating point, and the gyro bias.
 #include <qcustomplot.h>
 
+#include <array>
 #include <cmath>
 
 #include "core/consistency.h"
@@ -45,6 +46,18 @@ class HelicopterView final : public ScenarioView {
     nis_avg_hi_ = addGraph(nis_, "", color::kSecond, Style::kDashed);
     nis_avg_hi_->removeFromLegend();
     nis_cursor_ = addCursor(nis_);
+
+    nees_ = makePlot(parent, "NEES against truth with 95 % χ² bounds", "time (s)", "NEES (–)");
+    setLog(nees_->yAxis);
+    nees_y_ = addGraph(nees_, "NEES = eᵀP⁻¹e", color::kEstimate, Style::kDots);
+    nees_lo_ = addGraph(nees_, "χ² 2.5 % / 97.5 %", color::kBound, Style::kDashed);
+    nees_hi_ = addGraph(nees_, "", color::kBound, Style::kDashed);
+    nees_hi_->removeFromLegend();
+    nees_avg_ = addGraph(nees_, "moving average", color::kSecond);
+    nees_avg_lo_ = addGraph(nees_, "95 % bounds of the average", color::kSecond, Style::kDashed);
+    nees_avg_hi_ = addGraph(nees_, "", color::kSecond, Style::kDashed);
+    nees_avg_hi_->removeFromLegend();
+    nees_cursor_ = addCursor(nees_);
 
     white_ = makePlot(parent, "Innovation whiteness: autocorrelation of y/√S",
                       "lag (angle updates)", "autocorrelation (–)");
@@ -107,6 +120,7 @@ class HelicopterView final : public ScenarioView {
             {"gain", "Gain over time", gain_},
             {"gain_curve", "Gain curve", curve_},
             {"bias", "Bias", bias_},
+            {"nees", "NEES", nees_},
             {"whiteness", "Whiteness", white_}};
   }
 
@@ -154,6 +168,10 @@ class HelicopterView final : public ScenarioView {
     const auto avg_bounds = nis_bounds(1.0, r->nis_window);
     nis_avg_lo_value_ = avg_bounds.lo;
     nis_avg_hi_value_ = avg_bounds.hi;
+    const auto nees1 = nis_bounds(r->nees_dof, 1), neesw = nis_bounds(r->nees_dof, r->nis_window);
+    nees_bounds_ = {nees1.lo, nees1.hi, neesw.lo, neesw.hi};
+    nis_avg_->setName(QString("moving average (%1 updates)").arg(r->nis_window));
+    nees_avg_->setName(QString("moving average (%1 updates)").arg(r->nis_window));
     drawWhiteness(*r);
     drawUpTo(cursor_);
   }
@@ -237,6 +255,12 @@ class HelicopterView final : public ScenarioView {
     setSeries(nis_avg_, r.t, r.nis_avg, n);
     setSeries(nis_avg_lo_, span, {nis_avg_lo_value_, nis_avg_lo_value_}, 2);
     setSeries(nis_avg_hi_, span, {nis_avg_hi_value_, nis_avg_hi_value_}, 2);
+    setSeries(nees_y_, r.t, r.nees, n);
+    setSeries(nees_avg_, r.t, r.nees_avg, n);
+    setSeries(nees_lo_, span, {nees_bounds_[0], nees_bounds_[0]}, 2);
+    setSeries(nees_hi_, span, {nees_bounds_[1], nees_bounds_[1]}, 2);
+    setSeries(nees_avg_lo_, span, {nees_bounds_[2], nees_bounds_[2]}, 2);
+    setSeries(nees_avg_hi_, span, {nees_bounds_[3], nees_bounds_[3]}, 2);
     setSeries(gain_k1_, r.t, r.k1, n);
     setSeries(gain_ss_, span, {r.k1_steady, r.k1_steady}, 2);
     plot::setBand(bias_band_, r.t, r.bias, two_sigma_bias_, n);
@@ -254,15 +278,16 @@ class HelicopterView final : public ScenarioView {
       setSeries(g.gain, g.result->t, g.result->k1, gn);
       setSeries(g.bias, g.result->t, g.result->bias, gn);
     }
-    for (QCustomPlot* p : {angle_, innov_, nis_, gain_, bias_})
+    for (QCustomPlot* p : {angle_, innov_, nis_, gain_, bias_, nees_})
       plot::rescale(p, t0, t1);
     // Keep the gain axis readable: the start-up transient (k1 ≈ 1) would flatten the steady part.
     const double k_ss = std::isfinite(r.k1_steady) ? r.k1_steady : 0.5;
     gain_->yAxis->setRange(0.0, std::clamp(2.5 * k_ss, 1e-6, 1.05));
-    for (auto* c : {angle_cursor_, innov_cursor_, nis_cursor_, gain_cursor_, bias_cursor_}) {
+    for (auto* c :
+         {angle_cursor_, innov_cursor_, nis_cursor_, gain_cursor_, bias_cursor_, nees_cursor_}) {
       plot::setCursorAt(c, tc, !all);
     }
-    for (QCustomPlot* p : {angle_, innov_, nis_, gain_, bias_})
+    for (QCustomPlot* p : {angle_, innov_, nis_, gain_, bias_, nees_})
       plot::replot(p);
   }
 
@@ -282,6 +307,11 @@ class HelicopterView final : public ScenarioView {
   QCPGraph *white_lo_ = nullptr, *white_hi_ = nullptr;
   QCPItemText* white_label_ = nullptr;
   QCPGraph *nis_avg_ = nullptr, *nis_avg_lo_ = nullptr, *nis_avg_hi_ = nullptr;
+  QCustomPlot* nees_ = nullptr;
+  QCPGraph *nees_y_ = nullptr, *nees_lo_ = nullptr, *nees_hi_ = nullptr, *nees_avg_ = nullptr,
+           *nees_avg_lo_ = nullptr, *nees_avg_hi_ = nullptr;
+  QCPItemStraightLine* nees_cursor_ = nullptr;
+  std::array<double, 4> nees_bounds_{};
   plot::Band angle_band_, innov_band_, bias_band_;
   QCPGraph *angle_sensor_ = nullptr, *angle_truth_ = nullptr, *angle_est_ = nullptr;
   QCPGraph *innov_y_ = nullptr, *nis_y_ = nullptr, *nis_lo_ = nullptr, *nis_hi_ = nullptr;

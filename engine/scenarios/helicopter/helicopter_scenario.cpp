@@ -28,6 +28,8 @@ ParamTable make_table() {
        "Initial P11 (seed 000: 100 deg²)."},
       {"P0_bias", "P0 bias variance", "(deg/s)²", 1e-6, 1e6, 4.0, Scale::kLog, F,
        "Initial P22 (seed 000: 4 (deg/s)²)."},
+      {"window", "consistency window", "updates", 1, 1000, 50, Scale::kInteger, "Consistency",
+       "Moving-average window of NIS and NEES, in angle updates (the χ² bounds follow it)."},
       {"sim.seed", "seed", "", 0, 1e6, 1, Scale::kInteger, S, "Random seed of the simulator."},
       {"sim.duration", "duration", "s", 1, 3600, 120, Scale::kLinear, S, "Length of the run.", 0},
       {"sim.Ts", "gyro period Ts", "s", 0.001, 0.1, 0.02, Scale::kLinear, S,
@@ -127,6 +129,7 @@ class HelicopterScenario final : public Scenario {
       m["nll"] = n ? nll / static_cast<double>(n) : kNoSample;
       r->whiteness = ljung_box(e, 20);
       m["whiteness_p"] = r->whiteness.p_value;
+      r->nis_window = static_cast<std::size_t>(param(v, "window"));
       r->nis_avg = moving_average_finite(r->nis, r->nis_window);
     }
     // NEES of the angle (truth holds θ only; with the simulator's bias truth, of [θ, b]).
@@ -147,6 +150,10 @@ class HelicopterScenario final : public Scenario {
       }
       m["nees_mean"] = mean_finite(nees);
       m["nees_dof"] = has_b ? 2.0 : 1.0;
+      m["nees_in_bounds"] = fraction_inside(nees, m["nees_dof"]);
+      r->nees_dof = m["nees_dof"];
+      r->nees_avg = moving_average_finite(nees, r->nis_window);
+      r->nees = std::move(nees);
     }
     if (d.has("bias_truth")) {
       r->bias_truth = d.col("bias_truth");

@@ -35,6 +35,9 @@ struct HelicopterResult final : RunResult {
   // the normalised innovations y/√S.
   std::size_t nis_window = 50;
   std::vector<double> nis_avg;
+  // NEES of [θ] (or [θ, b] when the bias truth is known) per step, its moving average, its dof.
+  std::vector<double> nees, nees_avg;
+  double nees_dof = 1.0;
   Whiteness whiteness;
 
   Dataset table() const override;

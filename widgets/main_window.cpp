@@ -6,6 +6,8 @@
 #include <QCoreApplication>
 #include <QCryptographicHash>
 #include <QDeadlineTimer>
+#include <QEventLoop>
+#include <QTimer>
 #include <QDir>
 #include <QFileDialog>
 #include <QFileInfo>
@@ -611,10 +613,16 @@ void MainWindow::clearError() {
 }
 
 bool MainWindow::waitForRun(int timeout_ms) {
+  // A nested event loop that sleeps until the run lands (no busy polling: the worker keeps a core).
   QDeadlineTimer deadline(timeout_ms);
   while (!applied_latest_ || runner_->busy()) {
     if (deadline.hasExpired()) return false;
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 5);
+    QEventLoop loop;
+    connect(this, &MainWindow::resultApplied, &loop, &QEventLoop::quit);
+    connect(runner_, &RunController::failed, &loop, &QEventLoop::quit);
+    QTimer::singleShot(std::max<qint64>(1, std::min<qint64>(deadline.remainingTime(), 50)), &loop,
+                       &QEventLoop::quit);
+    loop.exec();
   }
   return true;
 }

@@ -105,10 +105,16 @@ void setLog(QCPAxis* axis) {
 
 namespace {
 
-// Drawing resolution for decimation: at least the export width, so exports stay exact.
+// Drawing resolution for decimation: the plot's width in pixels (at least 600, so an export at
+// twice the on-screen size still gets one column per two pixels).
 int columnsFor(const QCPGraph* g) {
   const int w = g->keyAxis() && g->keyAxis()->axisRect() ? g->keyAxis()->axisRect()->width() : 0;
-  return std::max(w, 1200);
+  return std::max(w, 600);
+}
+
+int rowsFor(const QCPGraph* g) {
+  const int h = g->valueAxis() && g->valueAxis()->axisRect() ? g->valueAxis()->axisRect()->height() : 0;
+  return std::max(h, 300);
 }
 
 struct Point {
@@ -139,9 +145,10 @@ void decimateLine(const std::vector<Point>& in, int cols, QVector<QCPGraphData>&
   }
 }
 
-// Keeps one dot per occupied cell of a cols × rows raster: the same picture with fewer dots.
-void decimateDots(const std::vector<Point>& in, int cols, bool logY, QVector<QCPGraphData>& out) {
-  const int rows = 800;
+// Keeps one dot per occupied cell of a cols × rows raster: the same picture with fewer dots
+// (a dot is 2 px wide, so cells of 2 × 2 px lose nothing visible).
+void decimateDots(const std::vector<Point>& in, int cols, int rows, bool logY,
+                  QVector<QCPGraphData>& out) {
   double y0 = in.front().y, y1 = y0;
   for (const auto& p : in) {
     y0 = std::min(y0, p.y);
@@ -181,7 +188,7 @@ void setSeries(QCPGraph* g, const std::vector<double>& x, const std::vector<doub
     if (pts.size() > static_cast<std::size_t>(4 * cols)) {
       data.reserve(static_cast<qsizetype>(4 * cols));
       if (dots) {
-        decimateDots(pts, cols, logY, data);
+        decimateDots(pts, std::max(cols / 2, 300), std::max(rowsFor(g) / 2, 150), logY, data);
       } else {
         decimateLine(pts, cols, data);
       }

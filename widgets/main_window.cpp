@@ -366,24 +366,15 @@ Expected<Dataset> MainWindow::readMapped(const QString& path, const ColumnMap* m
   return mapped;
 }
 
-Status MainWindow::openDataset(const QString& path) {
-  if (!scenario_) return Error{"load a preset first"};
-  auto ds = readMapped(path, nullptr);
-  if (!ds) {
-    showError(q(ds.error()));
-    return Error{ds.error()};
-  }
-  file_data_ = std::make_shared<const Dataset>(std::move(*ds));
-  runner_->setFileDataset(file_data_);
-  clearError();
-  updateDataLabel();
-  requestRun();
-  return Ok{};
-}
+Status MainWindow::openDataset(const QString& path) { return openFile(path, nullptr); }
 
 Status MainWindow::openDatasetMapped(const QString& path, const ColumnMap& map) {
+  return openFile(path, &map);
+}
+
+Status MainWindow::openFile(const QString& path, const ColumnMap* map) {
   if (!scenario_) return Error{"load a preset first"};
-  auto ds = readMapped(path, &map);
+  auto ds = readMapped(path, map);
   if (!ds) {
     showError(q(ds.error()));
     return Error{ds.error()};

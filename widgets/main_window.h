@@ -103,6 +103,7 @@ class MainWindow : public QMainWindow {
   void refreshSnapshots();
   void fillMetrics();
   Expected<Dataset> readMapped(const QString& path, const ColumnMap* map);
+  Status openFile(const QString& path, const ColumnMap* map);
 
   std::shared_ptr<const Scenario> scenario_;
   std::vector<Pinned> snapshots_;

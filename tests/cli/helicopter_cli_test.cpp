@@ -8,28 +8,12 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "common/cli_runner.h"
 #include "core/dataset.h"
 
 namespace {
 
-struct Out {
-  int code = -1;
-  std::string text;  // stdout + stderr
-};
-
-Out cli(const std::string& args) {
-  const std::string cmd = std::string(KFW_CLI) + " " + args + " 2>&1";
-  Out o;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return o;
-  std::array<char, 4096> buf{};
-  std::size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0)
-    o.text.append(buf.data(), n);
-  const int status = pclose(p);
-  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return o;
-}
+using kfw::testing::cli;
 
 const std::string kPreset = std::string(KFW_SOURCE_DIR) + "/presets/helicopter.json";
 

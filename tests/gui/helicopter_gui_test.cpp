@@ -13,6 +13,7 @@
 #include <QTemporaryDir>
 #include <QTextStream>
 
+#include "common/plot_probe.h"
 #include "main_window.h"
 #include "param_panel.h"
 #include "transport_bar.h"
@@ -20,26 +21,9 @@
 namespace kfw {
 namespace {
 
-QCustomPlot* plotNamed(const MainWindow& w, const QString& name) {
-  for (const auto& p : w.plots()) {
-    if (p.name == name) return p.plot;
-  }
-  return nullptr;
-}
-
-QCPGraph* graphNamed(QCustomPlot* p, const QString& name) {
-  for (int i = 0; i < p->graphCount(); ++i) {
-    if (p->graph(i)->name() == name) return p->graph(i);
-  }
-  return nullptr;
-}
-
-std::vector<double> values(QCPGraph* g) {
-  std::vector<double> v;
-  for (auto it = g->data()->constBegin(); it != g->data()->constEnd(); ++it)
-    v.push_back(it->value);
-  return v;
-}
+using testing::graphNamed;
+using testing::graphValues;
+using testing::plotNamed;
 
 class HelicopterWindow : public ::testing::Test {
  protected:
@@ -71,7 +55,7 @@ TEST_F(HelicopterWindow, MovingTheRSliderChangesEstimateAndOperatingPoint) {
   ASSERT_TRUE(est && op);
   // Replay cursor at step 1999: below the decimation threshold, the plot holds every step.
   w.transport()->seek(1999);
-  const auto before = values(est);
+  const auto before = graphValues(est);
   ASSERT_EQ(op->data()->size(), 1);
   const double beta0 = op->data()->constBegin()->key, k0 = op->data()->constBegin()->value;
   ASSERT_EQ(before.size(), 2000u);
@@ -81,7 +65,7 @@ TEST_F(HelicopterWindow, MovingTheRSliderChangesEstimateAndOperatingPoint) {
   slider->setValue(slider->value() + 150);  // R up by 1.5 decades
   ASSERT_TRUE(w.waitForRun());
   EXPECT_GT(w.values().at("R"), 1.96 * 20);
-  const auto after = values(est);
+  const auto after = graphValues(est);
   ASSERT_EQ(after.size(), before.size());
   double diff = 0;
   for (std::size_t i = 0; i < after.size(); ++i)
@@ -95,10 +79,10 @@ TEST_F(HelicopterWindow, MovingTheRSliderChangesEstimateAndOperatingPoint) {
 TEST_F(HelicopterWindow, SimulatorSliderResimulates) {
   QCustomPlot* angle = plotNamed(w, "angle");
   QCPGraph* sensor = graphNamed(angle, "angle sensor");
-  const auto before = values(sensor);
+  const auto before = graphValues(sensor);
   w.setParam("sim.seed", 7);
   ASSERT_TRUE(w.waitForRun());
-  EXPECT_NE(values(sensor), before);
+  EXPECT_NE(graphValues(sensor), before);
 }
 
 TEST_F(HelicopterWindow, ReplayRevealsUpToTheCursor) {

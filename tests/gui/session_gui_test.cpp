@@ -9,25 +9,16 @@
 #include <QTemporaryDir>
 #include <QTextStream>
 
+#include "common/plot_probe.h"
 #include "core/dataset.h"
 #include "main_window.h"
 
 namespace kfw {
 namespace {
 
-QCPGraph* graphNamed(QCustomPlot* p, const QString& name) {
-  for (int i = 0; i < p->graphCount(); ++i) {
-    if (p->graph(i)->name() == name) return p->graph(i);
-  }
-  return nullptr;
-}
-
-QCustomPlot* plotNamed(const MainWindow& w, const QString& name) {
-  for (const auto& p : w.plots()) {
-    if (p.name == name) return p.plot;
-  }
-  return nullptr;
-}
+using testing::graphNamed;
+using testing::graphValues;
+using testing::plotNamed;
 
 TEST(Snapshots, GhostAndMetricsColumnFollowThePinnedTuning) {
   MainWindow w;

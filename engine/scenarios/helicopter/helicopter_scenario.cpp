@@ -2,8 +2,10 @@
 #include <cmath>
 #include <memory>
 
+#include <nlohmann/json.hpp>
 #include "core/consistency.h"
 #include "core/scenario.h"
+#include "core/spectrum.h"
 #include "core/statistics.h"
 #include "scenarios/helicopter/helicopter_model.h"
 #include "scenarios/helicopter/helicopter_sim.h"
@@ -167,6 +169,26 @@ class HelicopterScenario final : public Scenario {
     const int m = static_cast<int>(param(v, "m"));
     const double Ts = data && data->rows() >= 2 ? data->median_dt() : param(v, "sim.Ts");
     return gain_at(v, m, Ts);
+  }
+
+  // `kfw-cli noise helicopter --data F`: N_ω and N_θ read from the high-frequency part of each
+  // sensor's PSD (seed 000, eq. 3), as suggestions for Q and R.
+  std::vector<std::string> commands() const override { return {"noise"}; }
+  Expected<std::string> command(const std::string& name, const Dataset& d,
+                                const ParamValues& v) const override {
+    if (name != "noise") return Scenario::command(name, d, v);
+    if (auto st = require_columns(d, columns()); !st) return Error{st.error()};
+    const double fs = 1.0 / d.median_dt();
+    nlohmann::ordered_json j;
+    j["fs_hz"] = fs;
+    j["band"] = "above half of Nyquist";
+    for (const auto& [col, key] : {std::pair{"gyro", "Q"}, std::pair{"angle", "R"}}) {
+      auto var = white_noise_variance(d.col(col), fs, 0.5);
+      if (!var) return Error{d.source + ": column '" + col + "': " + var.error()};
+      j[std::string(key) + "_suggested"] = *var;
+      j[std::string("sigma_") + col] = std::sqrt(*var);
+    }
+    return j.dump(2);
   }
 
   static Expected<Metrics> gain_at(const ParamValues& v, int m, double Ts) {

@@ -6,9 +6,8 @@
 #include <QCoreApplication>
 #include <QCryptographicHash>
 #include <QDeadlineTimer>
-#include <QEventLoop>
-#include <QTimer>
 #include <QDir>
+#include <QEventLoop>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QGridLayout>
@@ -22,11 +21,15 @@
 #include <QSettings>
 #include <QSplitter>
 #include <QStatusBar>
+#include <QTabWidget>
 #include <QTableWidget>
+#include <QTimer>
 #include <QVBoxLayout>
 #include <cmath>
 
 #include "column_map_dialog.h"
+#include "consistency_panel.h"
+#include "core/statistics.h"
 #include "core/workspace.h"
 #include "param_panel.h"
 #include "plot_export.h"
@@ -139,7 +142,13 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   error_->setTextInteractionFlags(Qt::TextSelectableByMouse);
   error_->hide();
   cl->addWidget(error_);
-  cl->addWidget(plot_area_, 1);
+  auto* tabs = new QTabWidget;
+  tabs->setObjectName("tabs");
+  tabs->addTab(plot_area_, "Plots");
+  consistency_ = new ConsistencyPanel;
+  consistency_->setObjectName("consistency");
+  tabs->addTab(consistency_, "Consistency");
+  cl->addWidget(tabs, 1);
   transport_ = new TransportBar;
   transport_->setObjectName("transport");
   cl->addWidget(transport_);
@@ -366,7 +375,9 @@ Expected<Dataset> MainWindow::readMapped(const QString& path, const ColumnMap* m
   return mapped;
 }
 
-Status MainWindow::openDataset(const QString& path) { return openFile(path, nullptr); }
+Status MainWindow::openDataset(const QString& path) {
+  return openFile(path, nullptr);
+}
 
 Status MainWindow::openDatasetMapped(const QString& path, const ColumnMap& map) {
   return openFile(path, &map);
@@ -562,7 +573,8 @@ void MainWindow::applyResult(std::shared_ptr<const RunResult> r, const ParamValu
   apply.start();
   const std::size_t cursor_before = transport_->cursor();
   transport_->setTimes(r->t);
-  view_->setResult(r, v);  // draws up to the view's cursor
+  view_->setResult(r, v);      // draws up to the view's cursor
+  consistency_->setResult(r);  // drawn when its tab is shown
   if (transport_->cursor() != cursor_before) view_->setCursor(transport_->cursor());
   if (qEnvironmentVariableIsSet("KFW_TIMING")) {
     qInfo("run %.1f ms, plots %.1f ms, since request %.1f ms", ms, apply.nsecsElapsed() / 1e6,
@@ -618,13 +630,25 @@ bool MainWindow::waitForRun(int timeout_ms) {
   return true;
 }
 
+QList<PlotPanel> MainWindow::exportedPlots() const {
+  QList<PlotPanel> all = plots_;
+  if (result_ && !result_->channels().empty()) {
+    const bool nees = count_finite(result_->nees_series().nees) > 0;
+    for (const auto& p : consistency_->plots()) {
+      if (p.name != "consistency_nees" || nees) all << p;
+    }
+  }
+  return all;
+}
+
 Expected<QStringList> MainWindow::exportAll(const QString& dir, const QStringList& formats) {
   if (!waitForRun()) return Error{"export: the run did not finish"};
   if (!result_) return Error{"export: no result to plot (" + last_error_.toStdString() + ")"};
   // Files are named after the preset (two presets of one scenario do not overwrite each other).
   const QString stem =
       preset_.path.empty() ? q(scenario_->name()) : QFileInfo(q(preset_.path)).completeBaseName();
-  return exportPanels(plots_, dir, formats, stem + "_");
+  consistency_->refresh();
+  return exportPanels(exportedPlots(), dir, formats, stem + "_");
 }
 
 }  // namespace kfw

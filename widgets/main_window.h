@@ -27,6 +27,7 @@ class QPushButton;
 
 namespace kfw {
 
+class ConsistencyPanel;
 class ParamPanel;
 class RunController;
 class TransportBar;
@@ -72,7 +73,10 @@ class MainWindow : public QMainWindow {
   ParamPanel* paramPanel() const { return panel_; }
   ScenarioView* view() const { return view_.get(); }
   const QList<PlotPanel>& plots() const { return plots_; }
+  // What --export writes: the scenario's plots, then the consistency panel's (when it has data).
+  QList<PlotPanel> exportedPlots() const;
   TransportBar* transport() const { return transport_; }
+  ConsistencyPanel* consistency() const { return consistency_; }
   std::shared_ptr<const RunResult> result() const { return result_; }
   std::shared_ptr<const Dataset> dataset() const;
   const ParamValues& values() const;
@@ -123,6 +127,7 @@ class MainWindow : public QMainWindow {
   QPushButton* sim_button_ = nullptr;
   QVBoxLayout* left_ = nullptr;
   QScrollArea* plot_area_ = nullptr;
+  ConsistencyPanel* consistency_ = nullptr;
   QWidget* plot_host_ = nullptr;
   QTableWidget* metrics_ = nullptr;
   QLabel* error_ = nullptr;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/scenario.h"
 #include "core/statistics.h"
 
 namespace kfw {
@@ -82,6 +83,39 @@ Whiteness ljung_box(const std::vector<double>& v, std::size_t max_lag) {
   w.q = n * (n + 2.0) * q;
   w.p_value = 1.0 - chi2_cdf(w.q, static_cast<double>(max_lag));
   return w;
+}
+
+void add_consistency_metrics(const std::vector<InnovationChannel>& channels, const NeesSeries& nees,
+                             std::map<std::string, double>& metrics) {
+  double nis_sum = 0.0, inside = 0.0, worst_p = std::numeric_limits<double>::quiet_NaN();
+  std::size_t n = 0, counted = 0;
+  for (const auto& c : channels) {
+    const std::size_t cn = count_finite(c.nis);
+    if (cn == 0) continue;
+    // NIS normalised by its dof so that channels of different size average together.
+    for (double v : c.nis) {
+      if (std::isfinite(v)) nis_sum += v / c.dof;
+    }
+    n += cn;
+    inside += fraction_inside(c.nis, c.dof) * static_cast<double>(cn);
+    counted += cn;
+    if (!c.normalized.empty()) {
+      const double p = ljung_box(c.normalized, 20).p_value;
+      if (std::isfinite(p) && !(p >= worst_p)) worst_p = p;
+    }
+  }
+  auto put = [&](const char* key, double v) { metrics.emplace(key, v); };
+  if (n) {
+    put("nis_mean",
+        nis_sum / static_cast<double>(n) * (channels.size() == 1 ? channels[0].dof : 1.0));
+    put("nis_in_bounds", inside / static_cast<double>(counted));
+  }
+  if (std::isfinite(worst_p)) put("whiteness_p", worst_p);
+  if (!nees.nees.empty() && count_finite(nees.nees)) {
+    put("nees_mean", mean_finite(nees.nees));
+    put("nees_dof", nees.dof);
+    put("nees_in_bounds", fraction_inside(nees.nees, nees.dof));
+  }
 }
 
 }  // namespace kfw

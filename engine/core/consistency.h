@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
+#include <string>
 #include <vector>
 
 namespace kfw {
@@ -30,5 +32,13 @@ struct Whiteness {
 };
 // Ljung–Box test on the finite entries (use normalised innovations y/√S).
 Whiteness ljung_box(const std::vector<double>& v, std::size_t max_lag = 20);
+
+struct InnovationChannel;
+struct NeesSeries;
+
+// nis_mean, nis_in_bounds (two-sided 95 %), whiteness_p (Ljung–Box on y/√S, the worst channel),
+// nees_mean and nees_in_bounds: the same keys for every scenario. Keys already present are kept.
+void add_consistency_metrics(const std::vector<InnovationChannel>& channels, const NeesSeries& nees,
+                             std::map<std::string, double>& metrics);
 
 }  // namespace kfw

@@ -19,6 +19,20 @@ namespace kfw {
 // Summary numbers of a run: a flat, ordered map (the CLI writes it as a JSON object of numbers).
 using Metrics = std::map<std::string, double>;
 
+// One measurement channel's innovations, for consistency checks that work for every scenario.
+struct InnovationChannel {
+  std::string name;                // "angle", "range 1", "position", ...
+  double dof = 1.0;                // measurement dimension
+  std::vector<double> nis;         // per step; NaN where the channel did not update
+  std::vector<double> normalized;  // y/√S per step (scalar channels; empty otherwise)
+};
+
+// NEES against truth, when the dataset has truth.
+struct NeesSeries {
+  double dof = 1.0;
+  std::vector<double> nees;  // per step; NaN where unknown
+};
+
 // The per-step arrays of one run plus its metrics. Each scenario derives its own result with the
 // arrays its plots need; plots read from it and nothing reaches back into a filter object.
 struct RunResult {
@@ -29,6 +43,9 @@ struct RunResult {
   std::size_t steps() const { return t.size(); }
   // Per-step output as a CSV table (estimates, covariance diagonal, innovations, ...).
   virtual Dataset table() const = 0;
+  // The innovation channels and the NEES, for the consistency panel (empty: none offered).
+  virtual std::vector<InnovationChannel> channels() const { return {}; }
+  virtual NeesSeries nees_series() const { return {}; }
 };
 
 // Lets a long run be cancelled and report progress; both may be empty.

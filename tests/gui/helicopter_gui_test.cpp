@@ -102,7 +102,7 @@ TEST_F(HelicopterWindow, ExportWritesNonBlankFiles) {
   QTemporaryDir dir;
   auto files = w.exportAll(dir.path(), {"png", "pdf", "svg"});
   ASSERT_TRUE(files.ok()) << files.error();
-  EXPECT_EQ(files->size(), 3 * w.plots().size());
+  EXPECT_EQ(files->size(), 3 * w.exportedPlots().size());
   for (const QString& f : *files) {
     EXPECT_GT(QFile(f).size(), 2000) << f.toStdString();
     if (!f.endsWith(".png")) continue;

@@ -120,7 +120,7 @@ TEST_F(RadomeWindow, ExportWritesEveryPlot) {
   QTemporaryDir dir;
   auto files = w.exportAll(dir.path(), {"png"});
   ASSERT_TRUE(files.ok()) << files.error();
-  EXPECT_EQ(files->size(), w.plots().size());
+  EXPECT_EQ(files->size(), w.exportedPlots().size());
   for (const QString& f : *files) {
     QImage img(f);
     ASSERT_FALSE(img.isNull()) << f.toStdString();

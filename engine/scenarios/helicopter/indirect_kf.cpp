@@ -15,6 +15,21 @@ Dataset HelicopterResult::table() const {
   return d;
 }
 
+std::vector<InnovationChannel> HelicopterResult::channels() const {
+  InnovationChannel c;
+  c.name = "angle";
+  c.nis = nis;
+  c.normalized.assign(nis.size(), kNoSample);
+  for (std::size_t k = 0; k < nis.size(); ++k) {
+    if (std::isfinite(nis[k])) c.normalized[k] = innovation[k] / std::sqrt(S[k]);
+  }
+  return {c};
+}
+
+NeesSeries HelicopterResult::nees_series() const {
+  return {nees_dof, nees};
+}
+
 HelicopterResult run_indirect_kf(const std::vector<double>& t, const std::vector<double>& gyro,
                                  const std::vector<double>& angle, const FilterParams& p,
                                  const RunControl& control) {

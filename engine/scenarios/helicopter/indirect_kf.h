@@ -41,6 +41,8 @@ struct HelicopterResult final : RunResult {
   Whiteness whiteness;
 
   Dataset table() const override;
+  std::vector<InnovationChannel> channels() const override;
+  NeesSeries nees_series() const override;
 };
 
 // Runs the filter; columns must hold t, gyro, angle (NaN = no sample) and optionally truth.

@@ -359,6 +359,27 @@ std::vector<int> RadomeResult::top_modes(int count) const {
   return idx;
 }
 
+std::vector<InnovationChannel> RadomeResult::channels() const {
+  std::vector<InnovationChannel> out;
+  out.push_back({"position (3-D)", 3.0, nis, {}});
+  const char* names[3] = {"x", "y", "z"};
+  for (int a = 0; a < 3; ++a) {
+    InnovationChannel c;
+    c.name = names[a];
+    c.nis.assign(t.size(), kNoSample);
+    c.normalized.assign(t.size(), kNoSample);
+    for (std::size_t k = 0; k < t.size() && k < innovation[a].size(); ++k) {
+      const double y = innovation[a][k], S_k = S[a][k];
+      if (std::isfinite(y) && S_k > 0) {
+        c.nis[k] = y * y / S_k;
+        c.normalized[k] = y / std::sqrt(S_k);
+      }
+    }
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
 Dataset RadomeResult::table() const {
   Dataset d;
   d.source = "radome run";

@@ -132,6 +132,8 @@ struct RadomeResult final : RunResult {
   // Modes with the largest mean probability over the run, most probable first.
   std::vector<int> top_modes(int count) const;
   Dataset table() const override;
+  // The 3-D pseudo-measurement NIS (most probable mode) and each axis' y/√S.
+  std::vector<InnovationChannel> channels() const override;
 };
 
 // Input columns of a dataset (angles in rad). `U` may be null (zero aircraft acceleration).

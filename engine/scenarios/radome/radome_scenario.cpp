@@ -4,6 +4,7 @@
 #include <memory>
 #include <numbers>
 
+#include "core/consistency.h"
 #include "core/scenario.h"
 #include "core/statistics.h"
 #include "scenarios/radome/radome_imm.h"
@@ -294,6 +295,7 @@ class RadomeScenario final : public Scenario {
         std::vector<double>(
             r.nis.begin() + static_cast<std::ptrdiff_t>(std::min(from, r.nis.size())), r.nis.end()),
         3.0);
+    add_consistency_metrics(r.channels(), r.nees_series(), m);  // whiteness_p (worst axis)
     m["modes"] = r.modes();
     m["updates"] = static_cast<double>(r.updates);
     m["steps"] = static_cast<double>(r.steps());

@@ -125,6 +125,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   left_scroll->setWidgetResizable(true);
   left_scroll->setMinimumWidth(340);
   auto* left_split = new QSplitter(Qt::Vertical);
+  left_split->setObjectName("leftSplit");
   left_split->addWidget(left_scroll);
   left_split->addWidget(metrics_);
   left_split->setStretchFactor(0, 4);
@@ -157,6 +158,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   });
 
   auto* split = new QSplitter(Qt::Horizontal);
+  split->setObjectName("mainSplit");
   split->addWidget(left_split);
   split->addWidget(center);
   split->setStretchFactor(1, 1);
@@ -470,7 +472,12 @@ Status MainWindow::saveSession(const QString& path) const {
   s.columns = column_map_;
   for (const auto& p : snapshots_)
     s.snapshots.push_back(p.snap);
-  s.window_state = saveGeometry().toBase64().toStdString();
+  // Window layout: geometry, then each splitter's state, base64, ':'-separated.
+  QByteArrayList parts{saveGeometry().toBase64()};
+  for (const char* name : {"mainSplit", "leftSplit"}) {
+    if (auto* sp = findChild<QSplitter*>(name)) parts << sp->saveState().toBase64();
+  }
+  s.window_state = parts.join(':').toStdString();
   return save_session(path.toStdString(), s);
 }
 
@@ -499,8 +506,14 @@ Status MainWindow::loadSession(const QString& path) {
   for (const auto& snap : s->snapshots)
     snapshots_.push_back({snap, nullptr, nullptr});
   refreshSnapshots();
-  if (!s->window_state.empty())
-    restoreGeometry(QByteArray::fromBase64(QByteArray::fromStdString(s->window_state)));
+  const QByteArrayList parts = QByteArray::fromStdString(s->window_state).split(':');
+  if (!parts.isEmpty() && !parts[0].isEmpty()) restoreGeometry(QByteArray::fromBase64(parts[0]));
+  const char* splits[] = {"mainSplit", "leftSplit"};
+  for (int i = 1; i < parts.size() && i <= 2; ++i) {
+    if (auto* sp = findChild<QSplitter*>(splits[i - 1])) {
+      sp->restoreState(QByteArray::fromBase64(parts[i]));
+    }
+  }
   if (!warning.isEmpty()) showError(warning);
   return Ok{};
 }

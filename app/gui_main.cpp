@@ -75,6 +75,13 @@ int main(int argc, char** argv) {
                 s.p95_ms, s.max_ms, opt->bench_changes, w.result() ? w.result()->steps() : 0);
     return 0;
   }
+  w.setInteractive(true);  // a CSV with other column names opens the mapping dialog
+  if (opt->session) {
+    if (auto st = w.loadSession(*opt->session); !st) {
+      std::fprintf(stderr, "kfw: %s\n", st.error().c_str());
+      return 2;
+    }
+  }
   w.show();
   return app.exec();
 }

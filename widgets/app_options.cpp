@@ -28,6 +28,9 @@ Expected<AppOptions> parseAppOptions(const QStringList& args) {
     } else if (a == "--format") {
       if (!next(v)) return Error{"--format needs a list such as png,pdf,svg"};
       o.formats = v;
+    } else if (a == "--session") {
+      if (!next(v)) return Error{"--session needs a file"};
+      o.session = v;
     } else if (a == "--screenshot") {
       if (!next(v)) return Error{"--screenshot needs a file name"};
       o.screenshot = v;

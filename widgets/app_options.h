@@ -15,14 +15,15 @@ struct AppOptions {
   QStringList sets;
   std::optional<QString> export_dir;
   QString formats = "png";
-  std::optional<QString> screenshot;  // grab the whole window to this PNG and exit
+  std::optional<QString> screenshot;
+  std::optional<QString> session;  // restore a saved session after the preset  // grab the whole window to this PNG and exit
   bool bench_latency = false;
   int bench_changes = 200;
   bool help = false;
 };
 
 inline constexpr const char* kAppUsage =
-    "usage: kfw [PRESET] [--data FILE] [--set key=value]...\n"
+    "usage: kfw [PRESET] [--data FILE] [--set key=value]... [--session FILE.json]\n"
     "       kfw --export DIR [PRESET] [--data FILE] [--set key=value]... [--format png,pdf,svg]\n"
     "       kfw --screenshot FILE.png [PRESET] [--data FILE] [--set key=value]...\n"
     "       kfw --bench-latency [PRESET] [--data FILE] [--changes N]\n"

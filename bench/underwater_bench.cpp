@@ -1,0 +1,66 @@
+// Speed of the seed 004 workbench loop: a 3-minute simulation, the EKF over it per scheme, and the
+// two together through the scenario, as the GUI re-runs them on every simulator slider move.
+#include <benchmark/benchmark.h>
+
+#include "core/scenario.h"
+#include "scenarios/underwater/underwater_ekf.h"
+#include "scenarios/underwater/underwater_sim.h"
+#include "scenarios/underwater/underwater_stats.h"
+
+namespace {
+
+kfw::underwater::SimParams default_run() {
+  kfw::underwater::SimParams p;  // Table 3 clocks, Table 9/10 noise
+  p.sigma_t_s = 0.001;
+  p.sigma_corr_m = 0.2;
+  p.outliers = 276;
+  return p;
+}
+
+// The 3-minute asynchronous simulation (~35 000 rows, 26 columns).
+void BM_Simulate3Min(benchmark::State& state) {
+  const auto p = default_run();
+  for (auto _ : state) {
+    auto d = kfw::underwater::simulate(p);
+    benchmark::DoNotOptimize(d.columns.data());
+  }
+}
+BENCHMARK(BM_Simulate3Min)->Unit(benchmark::kMillisecond);
+
+// The EKF over that log; arg = scheme (0 AS, 1 SC, 2 SI).
+void BM_Ekf3Min(benchmark::State& state) {
+  using namespace kfw::underwater;
+  const auto d = simulate(default_run());
+  FilterParams f;
+  f.scheme = static_cast<Scheme>(state.range(0));
+  for (auto _ : state) {
+    auto r = run_ekf(d, f);
+    benchmark::DoNotOptimize(r);
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(d.rows()));
+}
+BENCHMARK(BM_Ekf3Min)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+// The covariance statistics of the simulated errors.
+void BM_Stats3Min(benchmark::State& state) {
+  const auto d = kfw::underwater::simulate(default_run());
+  for (auto _ : state) {
+    auto s = kfw::underwater::error_stats(d);
+    benchmark::DoNotOptimize(s);
+  }
+}
+BENCHMARK(BM_Stats3Min)->Unit(benchmark::kMillisecond);
+
+// What a simulator slider costs in the GUI: simulate + run (filter, metrics, statistics).
+void BM_SimulateAndRun3Min(benchmark::State& state) {
+  auto sc = kfw::make_scenario("underwater");
+  const auto v = (*sc)->params().defaults();
+  for (auto _ : state) {
+    auto d = (*sc)->simulate(v);
+    auto r = (*sc)->run(*d, v);
+    benchmark::DoNotOptimize(r);
+  }
+}
+BENCHMARK(BM_SimulateAndRun3Min)->Unit(benchmark::kMillisecond);
+
+}  // namespace

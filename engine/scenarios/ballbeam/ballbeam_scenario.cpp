@@ -1,0 +1,353 @@
+// The `ballbeam` scenario (SPEC §3, seed 003): parameter table, schema, simulator and runner.
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "core/scenario.h"
+#include "core/statistics.h"
+#include "scenarios/ballbeam/alpha_beta.h"
+#include "scenarios/ballbeam/ball_tracker.h"
+#include "scenarios/ballbeam/ballbeam_loop.h"
+#include "scenarios/ballbeam/ballbeam_result.h"
+
+namespace kfw {
+
+namespace {
+
+using namespace ballbeam;
+
+constexpr double kClosed = 0.0;  // `mode` choice indices
+constexpr double kReplay = 1.0;
+
+ParamTable make_table() {
+  const std::string F = "Filter", S = "Simulator";
+  ParamSpec filter{"filter",
+                   "filter",
+                   "",
+                   0,
+                   1,
+                   1,
+                   Scale::kChoice,
+                   F,
+                   "kf: time-varying Kalman filter (eq. 14–15); steady: α-β filter with the "
+                   "closed-form gain of eq. 16."};
+  filter.choices = {"kf", "steady"};
+  ParamSpec mode{"mode",
+                 "run mode",
+                 "",
+                 0,
+                 1,
+                 0,
+                 Scale::kChoice,
+                 F,
+                 "closed: re-simulate the closed loop from the sim.* parameters (noise-free, "
+                 "detection on and off); replay: filter the dataset's recorded x_meas/v_sensor."};
+  mode.choices = {"closed", "replay"};
+  return ParamTable({
+      {"Q", "Q, ball acceleration noise variance", "(m/s²)²", 1e-8, 1e6, 0.5013, Scale::kLog, F,
+       "w ~ N(0, Q) in x_{k+1} = F x_k + G^c u^c_k + G w_k (seed 003, eq. 12–13). 0.5013 with "
+       "R = 4e-6 m², Ts = 10 ms gives λ = 0.0354, Table 1's α = 0.234, β = 0.031.",
+       4},
+      {"R", "R, position noise variance", "m²", 1e-12, 1.0, 4e-6, Scale::kLog, F,
+       "v ~ N(0, R) on the ball position reading (seed 003, eq. 13)."},
+      {"Ts", "Ts, sample period", "s", 0.001, 0.1, 0.01, Scale::kLinear, F,
+       "Period of sensor, filter and controller (not stated in seed 003; 10 ms chosen). "
+       "Replay uses the dataset's period.",
+       3},
+      filter,
+      {"detection", "impulsive-noise detection circuit", "", 0, 1, 1, Scale::kToggle, F,
+       "On: samples where the circuit outputs 0 V are missing data (update skipped). Off: the "
+       "impulsive readings go into the filter (Fig. 9)."},
+      mode,
+      {"sim.seed", "seed", "", 0, 1e6, 3, Scale::kInteger, S, "Random seed of the simulator."},
+      {"sim.duration", "duration", "s", 2, 600, 15, Scale::kLinear, S, "Length of the run.", 1},
+      {"sim.setpoint", "set-point step x_c", "m", -0.15, 0.15, 0.1, Scale::kLinear, S,
+       "Ball set-point after the step (0 before).", 3},
+      {"sim.step_time", "step time", "s", 0, 100, 1, Scale::kLinear, S,
+       "Instant of the set-point step; must lie inside the run.", 2},
+      {"sim.x0", "initial ball position", "m", -0.15, 0.15, 0.0, Scale::kLinear, S,
+       "Ball at rest here at t = 0; the filter starts here too.", 3},
+      {"sim.sigma_pos", "σ position reading", "m", 0, 0.05, 0.002, Scale::kLinear, S,
+       "Gaussian reading noise while the ball touches the wire.", 4},
+      {"sim.contact_loss_rate", "contact-loss rate", "", 0, 1, 0.05, Scale::kLinear, S,
+       "Probability per sample that the ball starts losing contact with the wire.", 3},
+      {"sim.burst", "contact-loss burst length", "samples", 1, 100, 3, Scale::kInteger, S,
+       "Mean length of a contact loss (geometric); each lost sample reads an impulsive spike "
+       "anywhere along the beam."},
+      {"sim.V_max", "motor voltage limit", "V", 1, 1000, 12, Scale::kLog, S,
+       "Amplifier saturation |V| ≤ V_max (not in seed 003; 12 V chosen for a small DC motor)."},
+  });
+}
+
+bool is_simulated(const Dataset& d) {
+  return d.source.rfind("simulated ballbeam", 0) == 0;
+}
+
+class BallbeamScenario final : public Scenario {
+ public:
+  std::string name() const override { return "ballbeam"; }
+  std::string title() const override {
+    return "Ball and beam: steady-state KF / α-β with missing data, closed loop (seed 003)";
+  }
+  const ParamTable& params() const override {
+    static const ParamTable table = make_table();
+    return table;
+  }
+  std::vector<ColumnSpec> columns() const override {
+    return {{"t", "s", "time", true},
+            {"x_meas", "m",
+             "raw ball position reading (impulsive while contact is lost); empty = "
+             "no sample",
+             true},
+            {"v_sensor", "V", "discrimination-circuit output, exactly 0 V = contact lost", false},
+            {"v_raw", "V", "sensor voltage without the circuit", false},
+            {"theta", "rad", "beam angle (input u^c = a3 θ of the tracking filter)", false},
+            {"setpoint", "m", "ball set-point x_c", false},
+            {"truth", "m", "true ball position", false},
+            {"v_truth", "m/s", "true ball velocity", false}};
+  }
+
+  static Expected<LoopParams> loop_params(const ParamValues& v) {
+    LoopParams p;
+    p.Ts_s = param(v, "Ts");
+    p.duration_s = param(v, "sim.duration");
+    p.step_time_s = param(v, "sim.step_time");
+    p.setpoint_m = param(v, "sim.setpoint");
+    p.x0_m = param(v, "sim.x0");
+    p.sigma_pos_m = param(v, "sim.sigma_pos");
+    p.contact_loss_rate = param(v, "sim.contact_loss_rate");
+    p.burst = static_cast<int>(param(v, "sim.burst"));
+    p.seed = static_cast<std::uint64_t>(param(v, "sim.seed"));
+    p.V_max = param(v, "sim.V_max");
+    if (p.step_time_s >= p.duration_s)
+      return Error{"sim.step_time (" + std::to_string(p.step_time_s) +
+                   " s) must be before the end of the run, sim.duration (" +
+                   std::to_string(p.duration_s) + " s)"};
+    if (p.duration_s / p.Ts_s > 2e6)
+      return Error{"sim.duration / Ts exceeds 2 million samples; raise Ts or shorten the run"};
+    return p;
+  }
+
+  static Expected<BallTracker> tracker(const ParamValues& v, double Ts_s) {
+    TrackerParams tp;
+    tp.Ts_s = Ts_s;
+    tp.Q = param(v, "Q");
+    tp.R = param(v, "R");
+    tp.kind = param(v, "filter") == 0 ? FilterKind::kKalman : FilterKind::kSteady;
+    auto t = BallTracker::make(tp);
+    if (!t) return Error{"filter: " + t.error()};
+    return t;
+  }
+
+  Expected<Dataset> simulate(const ParamValues& v) const override {
+    if (auto st = params().check(v); !st) return Error{st.error()};
+    auto lp = loop_params(v);
+    if (!lp) return Error{lp.error()};
+    auto tr = tracker(v, lp->Ts_s);
+    if (!tr) return Error{tr.error()};
+    const Disturbances d = make_disturbances(loop_steps(*lp), *lp);
+    LoopOptions opt;
+    opt.detection = param(v, "detection") != 0;
+    const LoopTrace trace = run_closed_loop(*lp, *tr, d, opt);
+    if (trace.diverged)
+      return Error{"the closed loop diverged at t = " + std::to_string(trace.diverged_at_s) +
+                   " s (Ts too long for Table 1's gains?)"};
+    return to_dataset(trace, "simulated ballbeam, seed " + std::to_string(lp->seed));
+  }
+
+  Expected<std::shared_ptr<const RunResult>> run(const Dataset& d, const ParamValues& v,
+                                                 const RunControl& control) const override {
+    if (auto st = params().check(v); !st) return Error{st.error()};
+    auto r = std::make_shared<BallbeamResult>();
+    const bool detection = param(v, "detection") != 0;
+    if (param(v, "mode") == kClosed) {
+      auto lp = loop_params(v);
+      if (!lp) return Error{lp.error()};
+      auto tr = tracker(v, lp->Ts_s);
+      if (!tr) return Error{tr.error()};
+      if (d.rows() > 0 && !is_simulated(d))
+        r->warnings.push_back(
+            "mode=closed re-simulates the loop from the sim.* parameters; the "
+            "dataset '" +
+            d.source + "' is not filtered (use mode=replay)");
+      const Disturbances dist = make_disturbances(loop_steps(*lp), *lp);
+      LoopOptions on, off, clean;
+      off.detection = false;
+      clean.impulsive = false;
+      LoopTrace t_on = run_closed_loop(*lp, *tr, dist, on, control);
+      if (control.cancelled()) return Error{"cancelled"};
+      LoopTrace t_off = run_closed_loop(*lp, *tr, dist, off, control);
+      if (control.cancelled()) return Error{"cancelled"};
+      const LoopTrace t_clean = run_closed_loop(*lp, *tr, dist, clean, control);
+      if (control.cancelled()) return Error{"cancelled"};
+      r->closed_loop = true;
+      r->x_noise_free = t_clean.x_true;
+      r->x_detect_on = t_on.x_true;
+      r->x_detect_off = t_off.x_true;
+      r->x_hat_detect_on = t_on.x_hat;
+      r->x_hat_detect_off = t_off.x_hat;
+      r->step_time_s = lp->step_time_s;
+      Metrics& m = r->metrics;
+      auto variant = [&](const LoopTrace& t, const std::string& suffix) {
+        const std::size_t from = first_index_at(t.t, lp->step_time_s);
+        m["rmse_pos" + suffix] = rmse_finite(t.x_hat, t.x_true);
+        m["tracking_rmse" + suffix] = rmse_finite(t.x_true, t.setpoint, from);
+        m["max_abs_pos" + suffix] = max_abs(t.x_true);
+        m["max_abs_theta" + suffix] = max_abs(t.theta);
+        m["V_rms" + suffix] = std::sqrt(mean_square(t.V));
+        if (t.diverged)
+          r->warnings.push_back("closed loop" + suffix +
+                                " diverged at t = " + std::to_string(t.diverged_at_s) + " s");
+      };
+      variant(t_clean, "_noise_free");
+      variant(t_on, "_detect_on");
+      variant(t_off, "_detect_off");
+      m["step_gap_detect_on"] = rmse_finite(t_on.x_true, t_clean.x_true);
+      m["step_gap_detect_off"] = rmse_finite(t_off.x_true, t_clean.x_true);
+      r->trace = detection ? std::move(t_on) : std::move(t_off);
+      m["rmse_pos"] = m[detection ? "rmse_pos_detect_on" : "rmse_pos_detect_off"];
+      m["tracking_rmse"] = m[detection ? "tracking_rmse_detect_on" : "tracking_rmse_detect_off"];
+      m["diverged"] = r->trace.diverged ? 1.0 : 0.0;
+    } else {
+      if (auto st = require_columns(d, columns()); !st) return Error{st.error()};
+      if (d.rows() < 2) return Error{d.source + ": need at least two rows"};
+      const double Ts = d.median_dt();
+      if (!(Ts > 0.0) || !std::isfinite(Ts))
+        return Error{d.source + ": column 't' must increase; its median sample period is " +
+                     std::to_string(Ts) + " s"};
+      auto tr = tracker(v, Ts);
+      if (!tr) return Error{tr.error()};
+      if (std::abs(Ts - param(v, "Ts")) > 1e-9 * Ts)
+        r->warnings.push_back("replay uses the dataset's sample period " + std::to_string(Ts) +
+                              " s, not Ts = " + std::to_string(param(v, "Ts")) + " s");
+      const auto* vs = d.has("v_sensor") ? &d.col("v_sensor") : nullptr;
+      const auto* th = d.has("theta") ? &d.col("theta") : nullptr;
+      r->trace = replay(d.col("t"), d.col("x_meas"), vs, th, *tr, detection, Plant{}.a3, control);
+      if (control.cancelled()) return Error{"cancelled"};
+      r->closed_loop = false;
+      if (d.has("truth")) r->trace.x_true = d.col("truth");
+      if (d.has("v_truth")) r->trace.v_true = d.col("v_truth");
+      if (d.has("setpoint")) r->trace.setpoint = d.col("setpoint");
+      if (d.has("v_raw")) r->trace.v_raw = d.col("v_raw");
+      Metrics& m = r->metrics;
+      m["rmse_pos"] = rmse_finite(r->trace.x_hat, r->trace.x_true);
+      std::size_t from = 0;
+      const auto& sp = r->trace.setpoint;
+      while (from < sp.size() && sp[from] == sp.front())
+        ++from;
+      if (from == sp.size()) from = 0;
+      r->step_time_s = from < r->trace.t.size() ? r->trace.t[from] : 0.0;
+      m["tracking_rmse"] = rmse_finite(r->trace.x_true, sp, from);
+    }
+    r->t = r->trace.t;
+    const LoopTrace& tr = r->trace;
+    const auto track =
+        tracker(v, tr.t.size() >= 2 && !r->closed_loop ? d.median_dt() : param(v, "Ts"));
+    r->Ts_s = track->params().Ts_s;
+    r->lambda = track->lambda();
+    r->alpha = track->gains().alpha;
+    r->beta = track->gains().beta;
+    auto ss = steady_gain_dare(r->Ts_s, param(v, "Q"), param(v, "R"));
+    r->alpha_dare = ss ? ss->alpha : kNoSample;
+    r->beta_dare = ss ? ss->beta : kNoSample;
+    if (!ss) r->warnings.push_back("steady-state gain: " + ss.error());
+
+    Metrics& m = r->metrics;
+    const double n = static_cast<double>(tr.t.size());
+    m["alpha"] = r->alpha;
+    m["beta"] = r->beta;
+    m["lambda"] = r->lambda;
+    m["alpha_dare"] = r->alpha_dare;
+    m["beta_dare"] = r->beta_dare;
+    m["missing_fraction"] = n > 0 ? static_cast<double>(tr.lost_samples) / n : kNoSample;
+    m["skipped_fraction"] = n > 0 ? static_cast<double>(tr.skipped_updates) / n : kNoSample;
+    m["K1_final"] = last_finite(tr.K1);
+    m["K2_final_times_Ts"] = last_finite(tr.K2) * r->Ts_s;
+    m["nis_mean"] = mean_finite(tr.nis);
+    m["steps"] = n;
+    m["Ts"] = r->Ts_s;
+    return std::shared_ptr<const RunResult>(std::move(r));
+  }
+
+  Expected<Metrics> gain(const ParamValues& v, const Dataset* data) const override {
+    if (auto st = params().check(v); !st) return Error{st.error()};
+    const bool from_data = data && data->rows() >= 2 && param(v, "mode") == kReplay;
+    const double Ts = from_data ? data->median_dt() : param(v, "Ts");
+    const double Q = param(v, "Q"), R = param(v, "R");
+    auto ss = steady_gain_dare(Ts, Q, R);
+    if (!ss) return Error{ss.error()};
+    const double lambda = tracking_index(Ts, Q, R);
+    const AlphaBeta ab = alpha_beta(lambda);
+    Metrics g;
+    g["lambda"] = lambda;
+    g["alpha"] = ab.alpha;
+    g["beta"] = ab.beta;
+    g["alpha_dare"] = ss->alpha;
+    g["beta_dare"] = ss->beta;
+    g["K1"] = ab.alpha;
+    g["K2"] = ab.beta / Ts;
+    g["P11_pred_dare"] = ss->P_pred(0, 0);
+    g["Ts"] = Ts;
+    return g;
+  }
+
+ private:
+  static std::size_t first_index_at(const std::vector<double>& t, double time_s) {
+    std::size_t i = 0;
+    while (i < t.size() && !(t[i] >= time_s - 1e-9))
+      ++i;
+    return i;
+  }
+  static double mean_square(const std::vector<double>& v) {
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (double x : v)
+      if (std::isfinite(x)) sum += x * x, ++n;
+    return n ? sum / static_cast<double>(n) : kNoSample;
+  }
+  static double max_abs(const std::vector<double>& v) {
+    double m = 0.0;
+    for (double x : v)
+      if (std::isfinite(x)) m = std::max(m, std::abs(x));
+    return m;
+  }
+};
+
+}  // namespace
+
+namespace ballbeam {
+
+Dataset BallbeamResult::table() const {
+  Dataset d = to_dataset(trace, "ballbeam run");
+  const std::pair<const char*, const std::vector<double>*> cols[] = {
+      {"x_hat", &trace.x_hat},
+      {"v_hat", &trace.v_hat},
+      {"P11", &trace.P11},
+      {"P22", &trace.P22},
+      {"innovation", &trace.innovation},
+      {"S", &trace.S},
+      {"nis", &trace.nis},
+      {"K1", &trace.K1},
+      {"K2", &trace.K2},
+      {"flagged", &trace.flagged},
+      {"theta_c", &trace.theta_c},
+      {"V", &trace.V},
+      {"x_noise_free", &x_noise_free},
+      {"x_detect_on", &x_detect_on},
+      {"x_detect_off", &x_detect_off}};
+  const std::size_t n = t.size();
+  for (const auto& [name, v] : cols) {
+    if (v->size() != n) continue;
+    d.names.emplace_back(name);
+    d.columns.push_back(*v);
+  }
+  return d;
+}
+
+}  // namespace ballbeam
+
+void register_scenario_ballbeam(ScenarioRegistry& registry) {
+  registry.add("ballbeam", [] { return std::make_unique<BallbeamScenario>(); });
+}
+
+}  // namespace kfw

@@ -1,0 +1,67 @@
+// kfw-cli on the ballbeam preset: `gain` prints the closed-form and DARE α-β, `run` prints the
+// paper-reproduction metrics, bad --set values fail with the key in the message.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdio>
+#include <string>
+
+namespace {
+
+struct Output {
+  int status = -1;
+  std::string text;
+};
+
+Output cli(const std::string& args) {
+  const std::string cmd = std::string(KFW_CLI) + " " + args + " 2>&1";
+  Output out;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return out;
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), buf.size(), pipe))
+    out.text += buf.data();
+  out.status = pclose(pipe);
+  return out;
+}
+
+std::string preset() {
+  return std::string(KFW_SOURCE_DIR) + "/presets/ballbeam.json";
+}
+
+TEST(BallbeamCli, GainPrintsClosedFormAndDare) {
+  const Output o = cli("gain " + preset());
+  ASSERT_EQ(o.status, 0) << o.text;
+  const auto j = nlohmann::json::parse(o.text);
+  EXPECT_NEAR(j.at("lambda").get<double>(), 0.0354, 5e-5);
+  EXPECT_NEAR(j.at("alpha").get<double>(), 0.2335, 1e-4);  // SPEC §3; Table 1: 0.234
+  EXPECT_NEAR(j.at("beta").get<double>(), 0.0310, 1e-4);   // Table 1: 0.031
+  EXPECT_NEAR(j.at("alpha_dare").get<double>(), j.at("alpha").get<double>(), 1e-8);
+  EXPECT_NEAR(j.at("beta_dare").get<double>(), j.at("beta").get<double>(), 1e-8);
+}
+
+TEST(BallbeamCli, RunShowsDetectionOnNearNoiseFreeAndOffDegraded) {
+  const Output on = cli("run " + preset());
+  ASSERT_EQ(on.status, 0) << on.text;
+  const auto j = nlohmann::json::parse(on.text);
+  for (const char* k : {"rmse_pos", "tracking_rmse", "alpha", "beta", "missing_fraction"})
+    ASSERT_TRUE(j.contains(k)) << k;
+  EXPECT_LT(5 * j.at("step_gap_detect_on").get<double>(),
+            j.at("step_gap_detect_off").get<double>());
+  const Output off = cli("run " + preset() + " --set detection=0");
+  ASSERT_EQ(off.status, 0) << off.text;
+  const auto k = nlohmann::json::parse(off.text);
+  EXPECT_GT(k.at("rmse_pos").get<double>(), 5 * j.at("rmse_pos").get<double>());
+}
+
+TEST(BallbeamCli, BadValuesNameTheKey) {
+  for (const char* set : {"Ts=0", "R=-1", "sim.contact_loss_rate=2"}) {
+    const Output o = cli("run " + preset() + " --set " + set);
+    EXPECT_NE(o.status, 0) << set;
+    const std::string key = std::string(set).substr(0, std::string(set).find('='));
+    EXPECT_NE(o.text.find(key), std::string::npos) << o.text;
+  }
+}
+
+}  // namespace

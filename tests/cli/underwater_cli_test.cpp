@@ -1,0 +1,79 @@
+// The underwater scenario through kfw-cli: simulate → stats and run, as a user would.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+struct Output {
+  int status = -1;
+  std::string text;
+};
+
+Output cli(const std::string& args) {
+  Output o;
+  const std::string cmd = std::string(KFW_CLI) + " " + args + " 2>&1";
+  FILE* f = popen(cmd.c_str(), "r");
+  if (!f) return o;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), static_cast<int>(buf.size()), f))
+    o.text += buf.data();
+  o.status = pclose(f);
+  return o;
+}
+
+std::string temp_csv(const std::string& stem) {
+  return (std::filesystem::temp_directory_path() /
+          (stem + "_" + std::to_string(::getpid()) + ".csv"))
+      .string();
+}
+
+TEST(UnderwaterCli, SimulateThenStatsReproducesGaussianDesign) {
+  const std::string csv = temp_csv("uw_gauss");
+  // Gaussian only (seed 004, Sec. 4.1), synchronous clocks.
+  const std::string sets =
+      " --set sim.clock=synchronous --set sim.sigma_corr=0 --set sim.outliers=0 --set "
+      "sim.duration=600";
+  auto s = cli("simulate underwater --out " + csv + sets);
+  ASSERT_EQ(s.status, 0) << s.text;
+  auto st = cli("stats underwater --data " + csv + sets);
+  ASSERT_EQ(st.status, 0) << st.text;
+  const auto j = nlohmann::json::parse(st.text);
+  for (int i = 0; i < 4; ++i)
+    EXPECT_NEAR(j["covariance"][i][i].get<double>(), 0.01, 0.0015);
+  EXPECT_NEAR(j["covariance"][4][4].get<double>(), 0.04, 0.006);
+  EXPECT_NEAR(j["range_cov_mean"].get<double>(), 0.0, 0.001);
+  EXPECT_EQ(j["outliers_injected"].get<int>(), 0);
+  std::filesystem::remove(csv);
+}
+
+TEST(UnderwaterCli, RunPrintsTheTable13Metrics) {
+  auto r = cli("run underwater --set scheme=AS");
+  ASSERT_EQ(r.status, 0) << r.text;
+  const auto j = nlohmann::json::parse(r.text.substr(r.text.find('{')));
+  for (const char* k : {"pos_mean", "pos_std", "pos_max", "pos_rmse", "outliers_injected",
+                        "outliers_detected", "outliers_false_alarm"}) {
+    EXPECT_TRUE(j.contains(k)) << k;
+  }
+}
+
+TEST(UnderwaterCli, MissingBeaconColumnIsAClearError) {
+  const std::string csv = temp_csv("uw_missing");
+  ASSERT_EQ(cli("simulate underwater --set sim.duration=5 --out " + csv).status, 0);
+  // Drop the range3 column (the 13th) from header and rows.
+  const std::string cut = temp_csv("uw_cut");
+  const std::string drop = "cut -d, -f1-12,14- " + csv + " > " + cut;
+  ASSERT_EQ(std::system(drop.c_str()), 0);
+  auto r = cli("run underwater --data " + cut);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.text.find("range3"), std::string::npos) << r.text;
+  std::filesystem::remove(csv);
+  std::filesystem::remove(cut);
+}
+
+}  // namespace

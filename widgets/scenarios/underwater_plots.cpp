@@ -1,0 +1,383 @@
+// Plots of the `underwater` scenario (seed 004): top-view trajectory (command, truth, estimate,
+// beacons), distance error, range innovations with ±2√S and gated samples, a per-sensor timing
+// raster, and the 5 × 5 covariance of the simulated errors beside the design values.
+#include <qcustomplot.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "plot_kit.h"
+#include "scenario_view.h"
+#include "scenarios/underwater/underwater_ekf.h"
+#include "scenarios/underwater/underwater_sim.h"
+#include "scenarios/underwater/underwater_stats.h"
+
+namespace kfw {
+
+namespace {
+
+using underwater::UnderwaterResult;
+
+QCPCurve* addCurve(QCustomPlot* p, const QString& name, const QColor& c, plot::Style s,
+                   double width = 1.4) {
+  auto* curve = new QCPCurve(p->xAxis, p->yAxis);
+  curve->setName(name);
+  QPen pen(c);
+  pen.setWidthF(width);
+  if (s == plot::Style::kDashed) pen.setStyle(Qt::DashLine);
+  curve->setPen(pen);
+  return curve;
+}
+
+QCPGraph* addMarks(QCustomPlot* p, const QString& name, const QColor& c,
+                   QCPScatterStyle::ScatterShape shape, double size) {
+  QCPGraph* g = p->addGraph();
+  g->setName(name);
+  g->setLineStyle(QCPGraph::lsNone);
+  QPen pen(c);
+  pen.setWidthF(1.3);
+  g->setPen(pen);
+  g->setScatterStyle(QCPScatterStyle(shape, pen, Qt::NoBrush, size));
+  return g;
+}
+
+// The top view puts east to the right and north up: key = y, value = x.
+void setTrack(QCPCurve* c, const std::vector<double>& north, const std::vector<double>& east,
+              std::size_t n) {
+  n = std::min({n, north.size(), east.size()});
+  QVector<QCPCurveData> d;
+  d.reserve(static_cast<qsizetype>(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    if (std::isfinite(north[i]) && std::isfinite(east[i])) {
+      d.append(QCPCurveData(static_cast<double>(d.size()), east[i], north[i]));
+    }
+  }
+  c->data()->set(d, true);
+}
+
+class UnderwaterView final : public ScenarioView {
+ public:
+  QList<PlotPanel> createPlots(QWidget* parent) override {
+    using namespace plot;
+    track_ = makePlot(parent, "Top view: command, true and estimated track; beacons", "y east (m)",
+                      "x north (m)");
+    track_cmd_ = addCurve(track_, "command", color::kSensor, Style::kDashed, 1.2);
+    track_true_ = addCurve(track_, "true", color::kTruth, Style::kLine, 1.2);
+    track_est_ = addCurve(track_, "estimate", color::kEstimate, Style::kLine, 1.5);
+    beacons_ =
+        addCurve(track_, "beacons (at the edge when out of view)", color::kSecond, Style::kLine);
+    beacons_->setLineStyle(QCPCurve::lsNone);
+    beacons_->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssDiamond, QPen(color::kSecond, 2),
+                                              QBrush(color::kSecond), 10));
+    for (int b = 0; b < underwater::kBeacons; ++b) {
+      auto* label = new QCPItemText(track_);
+      label->setFont(QFont(track_->font().family(), 8));
+      label->setColor(color::kSecond);
+      label->setPositionAlignment(Qt::AlignHCenter | Qt::AlignBottom);
+      beacon_labels_.push_back(label);
+    }
+    here_ = addMarks(track_, "estimate at cursor", color::kEstimate, QCPScatterStyle::ssCircle, 9);
+
+    err_ = makePlot(parent, "Distance error |X̂ − X| (seed 004, Fig. 3b)", "time (s)",
+                    "distance error (m)");
+    err_y_ = addGraph(err_, "distance error", color::kEstimate, Style::kLine, 1.2);
+    err_cursor_ = addCursor(err_);
+
+    innov_ = makePlot(parent, "Range innovations with ± 2√S; gated samples marked", "time (s)",
+                      "innovation z − ẑ (m)");
+    innov_band_ = addBand(innov_, "± 2√S", color::kSecond);
+    innov_used_ = addGraph(innov_, "accepted", color::kEstimate, Style::kDots);
+    innov_rejected_ =
+        addMarks(innov_, "rejected by the χ² gate", color::kSecond, QCPScatterStyle::ssCross, 6);
+    innov_injected_ =
+        addMarks(innov_, "injected outlier", color::kTruth, QCPScatterStyle::ssCircle, 8);
+    innov_cursor_ = addCursor(innov_);
+
+    raster_ =
+        makePlot(parent, "Sensor timing: sampled, rejected, invalid, missing", "time (s)", "");
+    QSharedPointer<QCPAxisTickerText> ticks(new QCPAxisTickerText);
+    for (int s = 0; s < underwater::kSensorCount; ++s) {
+      ticks->addTick(s, QString::fromLatin1(underwater::sensor_name(s)));
+    }
+    raster_->yAxis->setTicker(ticks);
+    raster_->yAxis->setRangeReversed(true);
+    raster_used_ = addGraph(raster_, "sampled", color::kSensor, Style::kDots);
+    raster_rejected_ =
+        addMarks(raster_, "rejected (gate)", color::kSecond, QCPScatterStyle::ssCross, 6);
+    raster_invalid_ =
+        addMarks(raster_, "invalid (≤ 0, S ≤ 0)", color::kFifth, QCPScatterStyle::ssTriangle, 6);
+    raster_missing_ =
+        addMarks(raster_, "missing", color::kFourth, QCPScatterStyle::ssTriangleInverted, 6);
+    raster_cursor_ = addCursor(raster_);
+
+    cov_ = makePlot(parent, "Covariance of simulated errors (left) vs design (right), m²", "", "");
+    cov_->legend->setVisible(false);
+    cov_->setInteractions(QCP::Interactions());
+    cov_sim_ = new QCPColorMap(cov_->xAxis, cov_->yAxis);
+    cov_design_ = new QCPColorMap(cov_->xAxis, cov_->yAxis);
+    cov_sim_->setName("simulated");
+    cov_design_->setName("design");
+    for (QCPColorMap* m : {cov_sim_, cov_design_}) {
+      m->data()->setSize(underwater::kErrorDims, underwater::kErrorDims);
+      m->setInterpolate(false);
+    }
+    cov_sim_->data()->setRange(QCPRange(0, 4), QCPRange(0, 4));
+    cov_design_->data()->setRange(QCPRange(6, 10), QCPRange(0, 4));
+    auto* scale = new QCPColorScale(cov_);
+    cov_->plotLayout()->addElement(1, 1, scale);
+    scale->setLabel("covariance (m²)");
+    QCPColorGradient g;
+    g.setColorStopAt(0.0, QColor(33, 102, 172));
+    g.setColorStopAt(0.5, QColor(247, 247, 247));
+    g.setColorStopAt(1.0, QColor(178, 24, 43));
+    for (QCPColorMap* m : {cov_sim_, cov_design_}) {
+      m->setColorScale(scale);
+      m->setGradient(g);
+    }
+    QSharedPointer<QCPAxisTickerText> cx(new QCPAxisTickerText), cy(new QCPAxisTickerText);
+    const char* short_names[] = {"r1", "r2", "r3", "r4", "depth"};
+    for (int i = 0; i < underwater::kErrorDims; ++i) {
+      cx->addTick(i, short_names[i]);
+      cx->addTick(6 + i, short_names[i]);
+      cy->addTick(i, short_names[i]);
+    }
+    cov_->xAxis->setTicker(cx);
+    cov_->yAxis->setTicker(cy);
+    cov_->xAxis->setRange(-0.6, 10.6);
+    cov_->yAxis->setRange(-0.6, 4.6);
+    cov_->yAxis->setRangeReversed(true);
+    for (int k = 0; k < 2 * underwater::kErrorDims * underwater::kErrorDims; ++k) {
+      auto* t = new QCPItemText(cov_);
+      t->setFont(QFont(cov_->font().family(), 7));
+      t->position->setType(QCPItemPosition::ptPlotCoords);
+      cov_texts_.push_back(t);
+    }
+    cov_note_ = new QCPItemText(cov_);
+    cov_note_->position->setType(QCPItemPosition::ptAxisRectRatio);
+    cov_note_->position->setCoords(0.5, 0.5);
+    cov_note_->setFont(QFont(cov_->font().family(), 8));
+    cov_note_->setBrush(QBrush(QColor(255, 255, 255, 220)));
+
+    return {{"trajectory", "Trajectory", track_},
+            {"distance_error", "Distance error", err_},
+            {"innovation", "Range innovations", innov_},
+            {"timing", "Sensor timing", raster_},
+            {"covariance", "Error covariance", cov_}};
+  }
+
+  void setResult(std::shared_ptr<const RunResult> result, const ParamValues& values) override {
+    Q_UNUSED(values);
+    auto r = std::dynamic_pointer_cast<const UnderwaterResult>(result);
+    if (!r) return;
+    result_ = r;
+    const std::size_t n = r->steps();
+    // One ±2√S band over all four beacons: each range row contributes its own S.
+    two_sqrt_S_.assign(n, kNoSample);
+    zero_.assign(n, 0.0);
+    for (std::size_t k = 0; k < n; ++k) {
+      for (const auto& S : r->S) {
+        if (std::isfinite(S[k]) && S[k] > 0.0) {
+          two_sqrt_S_[k] = 2.0 * std::sqrt(S[k]);
+          break;
+        }
+      }
+    }
+    drawCovariance(*r);
+    drawUpTo(cursor_);
+  }
+
+  void setCursor(std::size_t index) override {
+    cursor_ = index;
+    if (result_) drawUpTo(index);
+  }
+
+ private:
+  void drawCovariance(const UnderwaterResult& r) {
+    using underwater::kErrorDims;
+    double vmax = 1e-6;
+    for (int i = 0; i < kErrorDims; ++i) {
+      for (int j = 0; j < kErrorDims; ++j) {
+        vmax = std::max({vmax, std::abs(r.design(i, j)),
+                         r.has_stats ? std::abs(r.stats.covariance(i, j)) : 0.0});
+      }
+    }
+    std::size_t k = 0;
+    for (int i = 0; i < kErrorDims; ++i) {
+      for (int j = 0; j < kErrorDims; ++j) {
+        const double sim = r.has_stats ? r.stats.covariance(i, j) : 0.0;
+        cov_sim_->data()->setCell(j, i, sim);
+        cov_design_->data()->setCell(j, i, r.design(i, j));
+        cov_texts_[k]->position->setCoords(j, i);
+        cov_texts_[k]->setText(r.has_stats ? QString::number(sim, 'f', 4) : QString());
+        cov_texts_[k + 1]->position->setCoords(6 + j, i);
+        cov_texts_[k + 1]->setText(QString::number(r.design(i, j), 'f', 4));
+        k += 2;
+      }
+    }
+    cov_sim_->setDataRange(QCPRange(-vmax, vmax));
+    cov_design_->setDataRange(QCPRange(-vmax, vmax));
+    cov_note_->setVisible(!r.has_stats);
+    cov_note_->setText(
+        "no truth columns: the simulated-error covariance needs x_true, y_true, z_true");
+    cov_->xAxis->setLabel(r.has_stats ? QString("%1 synchronous instants; %2 with an injected "
+                                                "outlier left out")
+                                            .arg(r.stats.instants)
+                                            .arg(r.stats.outlier_instants)
+                                      : QString());
+    plot::replot(cov_);
+  }
+
+  void drawUpTo(std::size_t index) {
+    const UnderwaterResult& r = *result_;
+    const std::size_t steps = r.steps();
+    const bool all = index >= steps;
+    const std::size_t n = all ? steps : index + 1;
+    const double t0 = steps ? r.t.front() : 0.0, t1 = steps ? r.t.back() : 1.0;
+    const double tc = steps ? r.t[std::min(n, steps) - 1] : 0.0;
+
+    // Trajectory.
+    setTrack(track_cmd_, r.x_cmd, r.y_cmd, n);
+    setTrack(track_true_, r.x_true, r.y_true, n);
+    setTrack(track_est_, r.x, r.y, n);
+    here_->data()->clear();
+    if (n > 0 && std::isfinite(r.x[n - 1])) here_->addData(r.y[n - 1], r.x[n - 1]);
+    drawBeacons(r);
+
+    // Distance error.
+    plot::setSeries(err_y_, r.t, r.pos_err, n);
+
+    // Innovations: accepted, rejected, injected (over every beacon).
+    QVector<QCPGraphData> used, rejected, injected;
+    const double kRange = static_cast<double>(underwater::kRange1);
+    for (std::size_t k = 0; k < n; ++k) {
+      for (int b = 0; b < underwater::kBeacons; ++b) {
+        const auto bi = static_cast<std::size_t>(b);
+        const double y = r.innovation[bi][k];
+        if (!std::isfinite(y)) continue;
+        const double st = r.status[static_cast<std::size_t>(kRange) + bi][k];
+        (st == underwater::kRejected ? rejected : used).append(QCPGraphData(r.t[k], y));
+        const double inj = r.injected[bi][k];
+        if (std::isfinite(inj) && inj != 0.0) injected.append(QCPGraphData(r.t[k], y));
+      }
+    }
+    innov_used_->data()->set(used, true);
+    innov_rejected_->data()->set(rejected, true);
+    innov_injected_->data()->set(injected, true);
+    plot::setBand(innov_band_, r.t, zero_, two_sqrt_S_, n);
+
+    // Timing raster.
+    QVector<QCPGraphData> sampled, rej, inval, miss;
+    for (int s = 0; s < underwater::kSensorCount; ++s) {
+      const auto& st = r.status[static_cast<std::size_t>(s)];
+      for (std::size_t k = 0; k < n; ++k) {
+        if (std::isnan(st[k])) continue;
+        if (st[k] == underwater::kRejected) {
+          rej.append(QCPGraphData(r.t[k], s));
+        } else if (st[k] == underwater::kInvalid) {
+          inval.append(QCPGraphData(r.t[k], s));
+        } else {
+          sampled.append(QCPGraphData(r.t[k], s));
+        }
+      }
+      for (double tm : r.missing_t[static_cast<std::size_t>(s)]) {
+        if (tm <= tc || all) miss.append(QCPGraphData(tm, s));
+      }
+    }
+    raster_used_->data()->set(sampled, false);
+    raster_rejected_->data()->set(rej, false);
+    raster_invalid_->data()->set(inval, false);
+    raster_missing_->data()->set(miss, false);
+
+    plot::rescale(err_, t0, t1);
+    plot::rescale(innov_, t0, t1);
+    rescaleInnovations(r);
+    raster_->xAxis->setRange(t0, t1);
+    raster_->yAxis->setRange(-0.7, static_cast<int>(underwater::kSensorCount) - 0.3);
+    for (auto* c : {err_cursor_, innov_cursor_, raster_cursor_})
+      plot::setCursorAt(c, tc, !all);
+    for (QCustomPlot* p : {track_, err_, innov_, raster_})
+      plot::replot(p);
+  }
+
+  // Symmetric range holding the band and every innovation, but no more than 3 m: one wild sample
+  // must not squash the plot.
+  void rescaleInnovations(const UnderwaterResult& r) {
+    double big = 0.0;
+    for (double s : two_sqrt_S_) {
+      if (std::isfinite(s)) big = std::max(big, s);
+    }
+    for (const auto& in : r.innovation) {
+      for (double y : in) {
+        if (std::isfinite(y)) big = std::max(big, std::min(std::abs(y), 3.0));
+      }
+    }
+    if (big > 0.0) innov_->yAxis->setRange(-1.1 * big, 1.1 * big);
+  }
+
+  // Beacons in view sit where they are; the others are drawn at the edge along their bearing.
+  void drawBeacons(const UnderwaterResult& r) {
+    double lo_e = 1e300, hi_e = -1e300, lo_n = 1e300, hi_n = -1e300;
+    auto grow = [&](const std::vector<double>& north, const std::vector<double>& east) {
+      for (std::size_t i = 0; i < std::min(north.size(), east.size()); ++i) {
+        if (!std::isfinite(north[i]) || !std::isfinite(east[i])) continue;
+        lo_n = std::min(lo_n, north[i]);
+        hi_n = std::max(hi_n, north[i]);
+        lo_e = std::min(lo_e, east[i]);
+        hi_e = std::max(hi_e, east[i]);
+      }
+    };
+    grow(r.x_true, r.y_true);
+    grow(r.x, r.y);
+    grow(r.x_cmd, r.y_cmd);
+    if (lo_n > hi_n) lo_n = hi_n = lo_e = hi_e = 0.0;
+    const double cn = 0.5 * (lo_n + hi_n), ce = 0.5 * (lo_e + hi_e);
+    const double half = 0.65 * std::max({hi_n - lo_n, hi_e - lo_e, 1.0});
+    QVector<QCPCurveData> d;
+    for (int b = 0; b < underwater::kBeacons; ++b) {
+      const auto& B = underwater::beacons()[static_cast<std::size_t>(b)];
+      double dn = B(0) - cn, de = B(1) - ce;
+      const double reach = std::max(std::abs(dn), std::abs(de));
+      const double edge = 0.92 * half;
+      if (reach > edge) {
+        dn *= edge / reach;
+        de *= edge / reach;
+      }
+      d.append(QCPCurveData(b, ce + de, cn + dn));
+      auto* label = beacon_labels_[static_cast<std::size_t>(b)];
+      label->position->setCoords(ce + de, cn + dn + 0.04 * half);
+      label->setText(QString("B%1 (%2, %3, %4)").arg(b + 1).arg(B(0)).arg(B(1)).arg(B(2)));
+    }
+    beacons_->data()->set(d, true);
+    track_->xAxis->setRange(ce - half, ce + half);
+    track_->yAxis->setRange(cn - half, cn + half);
+    track_->yAxis->setScaleRatio(track_->xAxis, 1.0);
+  }
+
+  std::shared_ptr<const UnderwaterResult> result_;
+  std::size_t cursor_ = plot::kAll;
+  std::vector<double> two_sqrt_S_, zero_;
+
+  QCustomPlot *track_ = nullptr, *err_ = nullptr, *innov_ = nullptr, *raster_ = nullptr,
+              *cov_ = nullptr;
+  QCPCurve *track_cmd_ = nullptr, *track_true_ = nullptr, *track_est_ = nullptr,
+           *beacons_ = nullptr;
+  std::vector<QCPItemText*> beacon_labels_;
+  QCPGraph* here_ = nullptr;
+  QCPGraph* err_y_ = nullptr;
+  plot::Band innov_band_;
+  QCPGraph *innov_used_ = nullptr, *innov_rejected_ = nullptr, *innov_injected_ = nullptr;
+  QCPGraph *raster_used_ = nullptr, *raster_rejected_ = nullptr, *raster_invalid_ = nullptr,
+           *raster_missing_ = nullptr;
+  QCPColorMap *cov_sim_ = nullptr, *cov_design_ = nullptr;
+  std::vector<QCPItemText*> cov_texts_;
+  QCPItemText* cov_note_ = nullptr;
+  QCPItemStraightLine *err_cursor_ = nullptr, *innov_cursor_ = nullptr, *raster_cursor_ = nullptr;
+};
+
+}  // namespace
+
+void register_view_underwater(ViewRegistry& registry) {
+  registry.add("underwater", [] { return std::make_unique<UnderwaterView>(); });
+}
+
+}  // namespace kfw

@@ -14,16 +14,19 @@ LatencyStats measureLatency(MainWindow& w, int changes) {
   LatencyStats s;
   w.waitForRun();
   if (!w.paramPanel()) return s;
-  // Q (a variance) is what users drag most; every scenario has it.
-  const auto& values = w.paramPanel()->values();
-  const std::string key = values.count("Q") ? "Q" : values.begin()->first;
-  const double base = values.at(key);
+  const std::string key = w.primaryParameter();
+  const ParamSpec* spec = w.scenario()->params().find(key);
+  const double base = w.paramPanel()->values().at(key);
   for (int i = 0; i < changes; ++i) {
     // Walk a decade up and down around the preset value: a drag.
-    const double f = std::pow(10.0, std::sin(6.283185307 * i / 40.0));
+    // Log parameters a decade up and down, linear ones ±20 % of their range, kept in range.
+    const double phase = std::sin(6.283185307 * i / 40.0) + 1e-6 * i;
+    double v = spec->scale == Scale::kLog ? base * std::pow(10.0, phase)
+                                          : base + 0.2 * phase * (spec->max - spec->min);
+    v = std::clamp(v, spec->min, spec->max);
     QElapsedTimer t;
     t.start();
-    w.setParam(key, base * f * (1.0 + 1e-6 * i));
+    w.setParam(key, v);
     w.waitForRun();
     QCoreApplication::processEvents();  // the repaint of every plot
     s.samples_ms.push_back(static_cast<double>(t.nsecsElapsed()) / 1e6);

@@ -643,6 +643,18 @@ bool MainWindow::waitForRun(int timeout_ms) {
   return true;
 }
 
+std::string MainWindow::primaryParameter() const {
+  if (!scenario_) return {};
+  const auto& specs = scenario_->params().specs();
+  for (const auto& s : specs) {
+    if (s.key == "Q") return s.key;
+  }
+  for (const auto& s : specs) {
+    if (!is_sim_key(s.key) && (s.scale == Scale::kLog || s.scale == Scale::kLinear)) return s.key;
+  }
+  return specs.empty() ? std::string() : specs.front().key;
+}
+
 QList<PlotPanel> MainWindow::exportedPlots() const {
   QList<PlotPanel> all = plots_;
   if (result_ && !result_->channels().empty()) {

@@ -82,6 +82,9 @@ class MainWindow : public QMainWindow {
   const ParamValues& values() const;
   QString lastError() const { return last_error_; }
   const Preset& preset() const { return preset_; }
+  std::shared_ptr<const Scenario> scenario() const { return scenario_; }
+  // The parameter a user drags most: Q when there is one, else the first continuous filter one.
+  std::string primaryParameter() const;
   // Request → plots replotted, for the last run, ms.
   double lastLatencyMs() const { return last_latency_ms_; }
 

@@ -22,6 +22,10 @@ struct BallbeamResult final : RunResult {
   double step_time_s = 0.0;
 
   Dataset table() const override;
+  // The position sensor: NIS and y/√S of the updates (flagged samples are not updates).
+  std::vector<InnovationChannel> channels() const override;
+  // NEES of [x, ẋ] against the simulated truth (closed loop).
+  NeesSeries nees_series() const override;
 };
 
 }  // namespace kfw::ballbeam

@@ -3,6 +3,7 @@
 #include <memory>
 #include <string>
 
+#include "core/consistency.h"
 #include "core/scenario.h"
 #include "core/statistics.h"
 #include "scenarios/ballbeam/alpha_beta.h"
@@ -264,6 +265,7 @@ class BallbeamScenario final : public Scenario {
     m["K1_final"] = last_finite(tr.K1);
     m["K2_final_times_Ts"] = last_finite(tr.K2) * r->Ts_s;
     m["nis_mean"] = mean_finite(tr.nis);
+    add_consistency_metrics(r->channels(), r->nees_series(), m);
     m["steps"] = n;
     m["Ts"] = r->Ts_s;
     return std::shared_ptr<const RunResult>(std::move(r));
@@ -316,6 +318,30 @@ class BallbeamScenario final : public Scenario {
 }  // namespace
 
 namespace ballbeam {
+
+std::vector<InnovationChannel> BallbeamResult::channels() const {
+  InnovationChannel c;
+  c.name = "position";
+  c.nis = trace.nis;
+  c.normalized.assign(trace.nis.size(), kNoSample);
+  for (std::size_t k = 0; k < trace.nis.size(); ++k) {
+    if (std::isfinite(trace.nis[k]) && trace.S[k] > 0) {
+      c.normalized[k] = trace.innovation[k] / std::sqrt(trace.S[k]);
+    }
+  }
+  return {c};
+}
+
+NeesSeries BallbeamResult::nees_series() const {
+  NeesSeries n;
+  n.dof = 1.0;  // position only: the trace keeps P11 and P22 but not P12
+  n.nees.assign(trace.t.size(), kNoSample);
+  for (std::size_t k = 0; k < trace.t.size() && k < trace.x_true.size(); ++k) {
+    const double e = trace.x_hat[k] - trace.x_true[k];
+    if (std::isfinite(e) && trace.P11[k] > 0) n.nees[k] = e * e / trace.P11[k];
+  }
+  return n;
+}
 
 Dataset BallbeamResult::table() const {
   Dataset d = to_dataset(trace, "ballbeam run");

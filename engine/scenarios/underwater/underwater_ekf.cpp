@@ -56,6 +56,31 @@ Jacobian<1, 3> range_jacobian(const Vec<3>& X, const Vec<3>& B) {
   return r > 0.0 ? Jacobian<1, 3>(d.transpose() / r) : Jacobian<1, 3>::Zero();
 }
 
+std::vector<InnovationChannel> UnderwaterResult::channels() const {
+  std::vector<InnovationChannel> out;
+  auto channel = [&](std::string name, const std::vector<double>& innov,
+                     const std::vector<double>& var, const std::vector<double>& used) {
+    InnovationChannel c;
+    c.name = std::move(name);
+    c.nis.assign(t.size(), kNoSample);
+    c.normalized.assign(t.size(), kNoSample);
+    for (std::size_t k = 0; k < t.size() && k < innov.size() && k < var.size(); ++k) {
+      if (k < used.size() && used[k] != kUsed) continue;  // gated or invalid: not an update
+      if (std::isfinite(innov[k]) && var[k] > 0) {
+        c.nis[k] = innov[k] * innov[k] / var[k];
+        c.normalized[k] = innov[k] / std::sqrt(var[k]);
+      }
+    }
+    out.push_back(std::move(c));
+  };
+  for (int b = 0; b < kBeacons; ++b) {
+    channel("range " + std::to_string(b + 1), innovation[static_cast<std::size_t>(b)],
+            S[static_cast<std::size_t>(b)], status[static_cast<std::size_t>(kRange1 + b)]);
+  }
+  channel("depth", depth_innovation, depth_S, status[kDepth]);
+  return out;
+}
+
 Dataset UnderwaterResult::table() const {
   Dataset d;
   d.source = "underwater run";

@@ -62,6 +62,8 @@ struct UnderwaterResult final : RunResult {
   std::size_t outliers_injected = 0, outliers_detected = 0, outliers_false_alarm = 0;
 
   Dataset table() const override;
+  // Each range and the depth: NIS and y/√S of the updates that passed the gate.
+  std::vector<InnovationChannel> channels() const override;
 };
 
 // Runs the EKF over a dataset with the columns of simulate() (truth optional). Errors name a

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
+#include "core/consistency.h"
 #include "core/scenario.h"
 #include "core/statistics.h"
 #include "scenarios/underwater/underwater_ekf.h"
@@ -282,6 +283,7 @@ class UnderwaterScenario final : public Scenario {
     m["ranges_invalid"] = static_cast<double>(r->ranges_invalid);
     m["depth_used"] = static_cast<double>(r->depth_used);
     m["steps"] = static_cast<double>(r->steps());
+    add_consistency_metrics(r->channels(), r->nees_series(), m);
     return std::shared_ptr<const RunResult>(std::move(r));
   }
 

@@ -133,7 +133,7 @@ TEST_F(BallbeamWindow, ReplayRevealsUpToTheCursorAndExportWritesEveryPlot) {
   QTemporaryDir dir;
   auto files = w.exportAll(dir.path(), {"png"});
   ASSERT_TRUE(files.ok()) << files.error();
-  EXPECT_EQ(files->size(), w.plots().size());
+  EXPECT_EQ(files->size(), w.exportedPlots().size());
   for (const QString& f : *files)
     EXPECT_GT(QFile(f).size(), 2000) << f.toStdString();
 }

@@ -337,7 +337,7 @@ class UnderwaterView final : public ScenarioView {
       const auto& B = underwater::beacons()[static_cast<std::size_t>(b)];
       double dn = B(0) - cn, de = B(1) - ce;
       const double reach = std::max(std::abs(dn), std::abs(de));
-      const double edge = 0.92 * half;
+      const double edge = 0.85 * half;
       if (reach > edge) {
         dn *= edge / reach;
         de *= edge / reach;
@@ -350,7 +350,6 @@ class UnderwaterView final : public ScenarioView {
     beacons_->data()->set(d, true);
     track_->xAxis->setRange(ce - half, ce + half);
     track_->yAxis->setRange(cn - half, cn + half);
-    track_->yAxis->setScaleRatio(track_->xAxis, 1.0);
   }
 
   std::shared_ptr<const UnderwaterResult> result_;

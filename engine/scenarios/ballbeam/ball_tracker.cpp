@@ -1,6 +1,7 @@
 #include "scenarios/ballbeam/ball_tracker.h"
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
 namespace kfw::ballbeam {
@@ -9,13 +10,17 @@ namespace {
 bool positive_finite(double v) {
   return v > 0.0 && std::isfinite(v);
 }
+std::string num(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
 }  // namespace
 
 Expected<BallTracker> BallTracker::make(const TrackerParams& p) {
-  if (!positive_finite(p.Ts_s))
-    return Error{"Ts must be positive (got " + std::to_string(p.Ts_s) + ")"};
-  if (!positive_finite(p.Q)) return Error{"Q must be positive (got " + std::to_string(p.Q) + ")"};
-  if (!positive_finite(p.R)) return Error{"R must be positive (got " + std::to_string(p.R) + ")"};
+  if (!positive_finite(p.Ts_s)) return Error{"Ts must be positive (got " + num(p.Ts_s) + ")"};
+  if (!positive_finite(p.Q)) return Error{"Q must be positive (got " + num(p.Q) + ")"};
+  if (!positive_finite(p.R)) return Error{"R must be positive (got " + num(p.R) + ")"};
   if (!positive_finite(p.P0_pos) || !positive_finite(p.P0_vel))
     return Error{"initial covariance P0 must be positive"};
   BallTracker t;

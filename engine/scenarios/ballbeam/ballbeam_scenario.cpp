@@ -1,6 +1,7 @@
 // The `ballbeam` scenario (SPEC §3, seed 003): parameter table, schema, simulator and runner.
 #include <cmath>
 #include <memory>
+#include <sstream>
 #include <string>
 
 #include "core/consistency.h"
@@ -80,6 +81,13 @@ ParamTable make_table() {
   });
 }
 
+// A number as a user would write it (no trailing zeros).
+std::string num(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
 bool is_simulated(const Dataset& d) {
   return d.source.rfind("simulated ballbeam", 0) == 0;
 }
@@ -121,9 +129,9 @@ class BallbeamScenario final : public Scenario {
     p.seed = static_cast<std::uint64_t>(param(v, "sim.seed"));
     p.V_max = param(v, "sim.V_max");
     if (p.step_time_s >= p.duration_s)
-      return Error{"sim.step_time (" + std::to_string(p.step_time_s) +
-                   " s) must be before the end of the run, sim.duration (" +
-                   std::to_string(p.duration_s) + " s)"};
+      return Error{"sim.step_time (" + num(p.step_time_s) +
+                   " s) must be before the end of the run, sim.duration (" + num(p.duration_s) +
+                   " s)"};
     if (p.duration_s / p.Ts_s > 2e6)
       return Error{"sim.duration / Ts exceeds 2 million samples; raise Ts or shorten the run"};
     return p;
@@ -151,7 +159,7 @@ class BallbeamScenario final : public Scenario {
     opt.detection = param(v, "detection") != 0;
     const LoopTrace trace = run_closed_loop(*lp, *tr, d, opt);
     if (trace.diverged)
-      return Error{"the closed loop diverged at t = " + std::to_string(trace.diverged_at_s) +
+      return Error{"the closed loop diverged at t = " + num(trace.diverged_at_s) +
                    " s (Ts too long for Table 1's gains?)"};
     return to_dataset(trace, "simulated ballbeam, seed " + std::to_string(lp->seed));
   }
@@ -198,7 +206,7 @@ class BallbeamScenario final : public Scenario {
         m["V_rms" + suffix] = std::sqrt(mean_square(t.V));
         if (t.diverged)
           r->warnings.push_back("closed loop" + suffix +
-                                " diverged at t = " + std::to_string(t.diverged_at_s) + " s");
+                                " diverged at t = " + num(t.diverged_at_s) + " s");
       };
       variant(t_clean, "_noise_free");
       variant(t_on, "_detect_on");
@@ -215,12 +223,12 @@ class BallbeamScenario final : public Scenario {
       const double Ts = d.median_dt();
       if (!(Ts > 0.0) || !std::isfinite(Ts))
         return Error{d.source + ": column 't' must increase; its median sample period is " +
-                     std::to_string(Ts) + " s"};
+                     num(Ts) + " s"};
       auto tr = tracker(v, Ts);
       if (!tr) return Error{tr.error()};
       if (std::abs(Ts - param(v, "Ts")) > 1e-9 * Ts)
-        r->warnings.push_back("replay uses the dataset's sample period " + std::to_string(Ts) +
-                              " s, not Ts = " + std::to_string(param(v, "Ts")) + " s");
+        r->warnings.push_back("replay uses the dataset's sample period " + num(Ts) +
+                              " s, not Ts = " + num(param(v, "Ts")) + " s");
       const auto* vs = d.has("v_sensor") ? &d.col("v_sensor") : nullptr;
       const auto* th = d.has("theta") ? &d.col("theta") : nullptr;
       r->trace = replay(d.col("t"), d.col("x_meas"), vs, th, *tr, detection, Plant{}.a3, control);

@@ -6,29 +6,30 @@
 #include <QFileInfo>
 #include <QSvgGenerator>
 
+#include "plot_kit.h"
+
 namespace kfw {
 
 namespace {
-// Exports are drawn antialiased; the on-screen setting comes back afterwards.
-class AntialiasForExport {
+// Exports are drawn antialiased with vector dots; the on-screen look comes back afterwards.
+class ExportLook {
  public:
-  explicit AntialiasForExport(QCustomPlot* p) : p_(p), saved_(p->notAntialiasedElements()) {
-    p_->setNotAntialiasedElements(QCP::aeNone);
-  }
-  ~AntialiasForExport() {
-    p_->setNotAntialiasedElements(saved_);
+  explicit ExportLook(QCustomPlot* p) : p_(p) { plot::setExportLook(p_, true); }
+  ~ExportLook() {
+    plot::setExportLook(p_, false);
     p_->replot(QCustomPlot::rpQueuedReplot);
   }
+  ExportLook(const ExportLook&) = delete;
+  ExportLook& operator=(const ExportLook&) = delete;
 
  private:
   QCustomPlot* p_;
-  QCP::AntialiasedElements saved_;
 };
 }  // namespace
 
 Status exportPlot(QCustomPlot* plot, const QString& path, int width, int height) {
   const QString ext = QFileInfo(path).suffix().toLower();
-  const AntialiasForExport aa(plot);
+  const ExportLook look(plot);
   bool ok = false;
   if (ext == "png") {
     ok = plot->savePng(path, width, height, 1.0, -1, 96);

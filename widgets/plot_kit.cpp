@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace kfw::plot {
 
@@ -27,7 +28,7 @@ QCustomPlot* makePlot(QWidget* parent, const QString& title, const QString& xLab
   p->setMinimumHeight(240);
   p->setNoAntialiasingOnDrag(true);
   // On screen, data are drawn without antialiasing (a slider drag redraws every plot; AA on tens
-  // of thousands of points costs ~10x); exports switch it back on (plot_export.cpp).
+  // of thousands of points costs ~10x); exports switch it back on (setExportLook).
   p->setNotAntialiasedElements(QCP::aePlottables | QCP::aeFills);
   p->setInteractions(QCP::iRangeDrag | QCP::iRangeZoom);
   QFont base = p->font();
@@ -57,6 +58,34 @@ QCustomPlot* makePlot(QWidget* parent, const QString& title, const QString& xLab
   return p;
 }
 
+namespace {
+
+const char* const kDotsProperty = "kfwDots";
+
+// A 2 × 2-pixel square dot. On screen it is blitted from a pixmap (≈ 0.1 µs a dot, a quarter of
+// what a painted square costs at tens of thousands of dots); exports paint vector squares.
+QCPScatterStyle dotStyle(const QColor& c, bool vector) {
+  if (vector) return QCPScatterStyle(QCPScatterStyle::ssSquare, c, c, 1.5);
+  QPixmap dot(2, 2);
+  dot.fill(c);
+  return QCPScatterStyle(dot);
+}
+
+}  // namespace
+
+void setExportLook(QCustomPlot* p, bool exporting) {
+  p->setNotAntialiasedElements(exporting ? QCP::aeNone : (QCP::aePlottables | QCP::aeFills));
+  for (int i = 0; i < p->graphCount(); ++i) {
+    QCPGraph* g = p->graph(i);
+    // Only graphs still wearing the house dot (a caller may have given its own marker).
+    const auto shape = g->scatterStyle().shape();
+    const bool dot = shape == QCPScatterStyle::ssPixmap ||
+                     (shape == QCPScatterStyle::ssSquare && g->scatterStyle().size() == 1.5);
+    if (g->property(kDotsProperty).toBool() && dot)
+      g->setScatterStyle(dotStyle(g->pen().color(), exporting));
+  }
+}
+
 QCPGraph* addGraph(QCustomPlot* p, const QString& name, const QColor& c, Style s, double width) {
   QCPGraph* g = p->addGraph();
   g->setName(name);
@@ -70,8 +99,8 @@ QCPGraph* addGraph(QCustomPlot* p, const QString& name, const QColor& c, Style s
       break;
     case Style::kDots:
       g->setLineStyle(QCPGraph::lsNone);
-      // A 2×2-pixel square: readable, and an order of magnitude cheaper than discs at 50k points.
-      g->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssSquare, c, c, 1.5));
+      g->setProperty(kDotsProperty, true);
+      g->setScatterStyle(dotStyle(c, false));
       break;
     case Style::kStep:
       g->setLineStyle(QCPGraph::lsStepLeft);
@@ -113,60 +142,99 @@ int columnsFor(const QCPGraph* g) {
 }
 
 int rowsFor(const QCPGraph* g) {
-  const int h = g->valueAxis() && g->valueAxis()->axisRect() ? g->valueAxis()->axisRect()->height() : 0;
+  const int h =
+      g->valueAxis() && g->valueAxis()->axisRect() ? g->valueAxis()->axisRect()->height() : 0;
   return std::max(h, 300);
 }
 
-struct Point {
-  double x, y;
-};
+// Cheap log2 for binning dots on a log axis: exponent plus a linear mantissa, within 0.09 of
+// log2. Binning only chooses which dots share a 2 × 2-pixel cell; every dot drawn is exact.
+double fastLog2(double y) {
+  int e = 0;
+  const double m = std::frexp(y, &e);  // y = m·2^e, m in [0.5, 1)
+  return static_cast<double>(e) + 2.0 * m - 2.0;
+}
+
+// The finite, drawable points among the first n, visited in order.
+template <typename F>
+void forEachPoint(const std::vector<double>& x, const std::vector<double>& y, std::size_t n,
+                  bool logY, F&& f) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const double xi = x[i], yi = y[i];
+    if (std::isfinite(xi) && std::isfinite(yi) && (!logY || yi > 0.0)) f(xi, yi);
+  }
+}
 
 // Keeps what a raster of `cols` columns can show of a line: per column the first, lowest,
 // highest and last point in time order. Exact on screen, and 55k points become a few thousand.
-void decimateLine(const std::vector<Point>& in, int cols, QVector<QCPGraphData>& out) {
-  const double x0 = in.front().x, span = in.back().x - x0;
-  std::size_t i = 0;
-  while (i < in.size()) {
-    const long col = span > 0 ? static_cast<long>((in[i].x - x0) / span * cols) : 0;
-    std::size_t j = i, lo = i, hi = i;
-    while (j < in.size() &&
-           (span > 0 ? static_cast<long>((in[j].x - x0) / span * cols) : 0) == col) {
-      if (in[j].y < in[lo].y) lo = j;
-      if (in[j].y > in[hi].y) hi = j;
-      ++j;
+void decimateLine(const std::vector<double>& x, const std::vector<double>& y, std::size_t n,
+                  bool logY, double x0, double x1, int cols, QVector<QCPGraphData>& out) {
+  const double scale = x1 > x0 ? cols / (x1 - x0) : 0.0;
+  long col = -1;
+  QCPGraphData first, lo, hi, last;
+  std::size_t count = 0;
+  auto flush = [&] {
+    if (count == 0) return;
+    out.append(first);
+    const bool lo_first = lo.key <= hi.key;
+    const QCPGraphData& a = lo_first ? lo : hi;
+    const QCPGraphData& b = lo_first ? hi : lo;
+    if (a.key != first.key || a.value != first.value) out.append(a);
+    if (b.key != a.key || b.value != a.value) out.append(b);
+    if (count > 1 && (last.key != b.key || last.value != b.value)) out.append(last);
+  };
+  forEachPoint(x, y, n, logY, [&](double xi, double yi) {
+    const long c = static_cast<long>((xi - x0) * scale);
+    const QCPGraphData p(xi, yi);
+    if (c != col) {
+      flush();
+      col = c;
+      first = lo = hi = last = p;
+      count = 1;
+      return;
     }
-    std::size_t keep[4] = {i, std::min(lo, hi), std::max(lo, hi), j - 1};
-    std::size_t last = static_cast<std::size_t>(-1);
-    for (std::size_t k : keep) {
-      if (k != last) out.append(QCPGraphData(in[k].x, in[k].y));
-      last = k;
-    }
-    i = j;
-  }
+    if (yi < lo.value) lo = p;
+    if (yi > hi.value) hi = p;
+    last = p;
+    ++count;
+  });
+  flush();
 }
 
 // Keeps one dot per occupied cell of a cols × rows raster: the same picture with fewer dots
 // (a dot is 2 px wide, so cells of 2 × 2 px lose nothing visible).
-void decimateDots(const std::vector<Point>& in, int cols, int rows, bool logY,
-                  QVector<QCPGraphData>& out) {
-  double y0 = in.front().y, y1 = y0;
-  for (const auto& p : in) {
-    y0 = std::min(y0, p.y);
-    y1 = std::max(y1, p.y);
-  }
-  auto fy = [&](double y) { return logY ? std::log10(y) : y; };
-  const double ly0 = fy(y0), lspan = fy(y1) - ly0;
-  const double x0 = in.front().x, span = in.back().x - x0;
-  std::vector<bool> seen(static_cast<std::size_t>(cols + 1) * (rows + 1), false);
-  for (const auto& p : in) {
-    const auto c = static_cast<std::size_t>(span > 0 ? (p.x - x0) / span * cols : 0);
-    const auto r = static_cast<std::size_t>(lspan > 0 ? (fy(p.y) - ly0) / lspan * rows : 0);
-    const std::size_t cell = c * (rows + 1) + r;
-    if (!seen[cell]) {
-      seen[cell] = true;
-      out.append(QCPGraphData(p.x, p.y));
+void decimateDots(const std::vector<double>& x, const std::vector<double>& y, std::size_t n,
+                  bool logY, int cols, int rows, QVector<QCPGraphData>& out) {
+  auto fy = [logY](double v) { return logY ? fastLog2(v) : v; };
+  const double inf = std::numeric_limits<double>::infinity();
+  double x0 = inf, x1 = -inf, y0 = inf, y1 = -inf;
+  forEachPoint(x, y, n, logY, [&](double xi, double yi) {
+    x0 = std::min(x0, xi);
+    x1 = std::max(x1, xi);
+    y0 = std::min(y0, yi);
+    y1 = std::max(y1, yi);
+  });
+  if (x0 > x1) return;
+  const double fy0 = fy(y0), fspan = fy(y1) - fy0;
+  const double cscale = x1 > x0 ? cols / (x1 - x0) : 0.0;
+  const double rscale = fspan > 0 ? rows / fspan : 0.0;
+  std::vector<unsigned char> seen(static_cast<std::size_t>(cols + 1) * (rows + 1), 0);
+  forEachPoint(x, y, n, logY, [&](double xi, double yi) {
+    const auto c = std::clamp(static_cast<long>((xi - x0) * cscale), 0L, static_cast<long>(cols));
+    const auto r =
+        std::clamp(static_cast<long>((fy(yi) - fy0) * rscale), 0L, static_cast<long>(rows));
+    unsigned char& s = seen[static_cast<std::size_t>(c * (rows + 1) + r)];
+    if (!s) {
+      s = 1;
+      out.append(QCPGraphData(xi, yi));
     }
-  }
+  });
+}
+
+// The dot raster of a graph: 2 × 2-pixel cells of its axis rect.
+void decimateDotsFor(const QCPGraph* g, const std::vector<double>& x, const std::vector<double>& y,
+                     std::size_t n, bool logY, QVector<QCPGraphData>& out) {
+  decimateDots(x, y, n, logY, std::max(columnsFor(g) / 2, 300), std::max(rowsFor(g) / 2, 150), out);
 }
 
 }  // namespace
@@ -179,18 +247,18 @@ void setSeries(QCPGraph* g, const std::vector<double>& x, const std::vector<doub
   const bool dots = g->lineStyle() == QCPGraph::lsNone;
   QVector<QCPGraphData> data;
   if (n > static_cast<std::size_t>(4 * cols) && skipNaN && g->lineStyle() != QCPGraph::lsStepLeft) {
-    std::vector<Point> pts;
-    pts.reserve(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      if (std::isfinite(y[i]) && std::isfinite(x[i]) && (!logY || y[i] > 0.0))
-        pts.push_back({x[i], y[i]});
-    }
-    if (pts.size() > static_cast<std::size_t>(4 * cols)) {
-      data.reserve(static_cast<qsizetype>(4 * cols));
+    // The time span of the drawable points (time is increasing, so the first and last finite x).
+    std::size_t a = 0, b = n;
+    while (a < n && !std::isfinite(x[a]))
+      ++a;
+    while (b > a && !std::isfinite(x[b - 1]))
+      --b;
+    if (b > a) {
+      data.reserve(static_cast<qsizetype>(4 * cols + 4));
       if (dots) {
-        decimateDots(pts, std::max(cols / 2, 300), std::max(rowsFor(g) / 2, 150), logY, data);
+        decimateDotsFor(g, x, y, n, logY, data);
       } else {
-        decimateLine(pts, cols, data);
+        decimateLine(x, y, n, logY, x[a], x[b - 1], cols, data);
       }
       g->data()->set(data, true);
       return;
@@ -229,40 +297,102 @@ Band addBand(QCustomPlot* p, const QString& name, const QColor& c) {
   return b;
 }
 
-void setBand(const Band& b, const std::vector<double>& x, const std::vector<double>& center,
-             const std::vector<double>& halfwidth, std::size_t n) {
-  n = std::min({n, x.size(), center.size(), halfwidth.size()});
-  std::vector<double> lo(n), hi(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    lo[i] = center[i] - halfwidth[i];
-    hi[i] = center[i] + halfwidth[i];
+void setDots(QCPGraph* g, const std::vector<double>& x, const std::vector<double>& y) {
+  const std::size_t n = std::min(x.size(), y.size());
+  const bool logY = g->valueAxis()->scaleType() == QCPAxis::stLogarithmic;
+  QVector<QCPGraphData> data;
+  if (n > static_cast<std::size_t>(4 * columnsFor(g))) {
+    decimateDotsFor(g, x, y, n, logY, data);
+  } else {
+    data.reserve(static_cast<qsizetype>(n));
+    forEachPoint(x, y, n, logY, [&](double xi, double yi) { data.append(QCPGraphData(xi, yi)); });
   }
-  setBandLimits(b, x, lo, hi, n);
+  g->data()->set(data, false);
 }
 
-// Dense bands are reduced to their per-column envelope (highest upper, lowest lower).
-void setBandLimits(const Band& b, const std::vector<double>& x, const std::vector<double>& lo,
-                   const std::vector<double>& hi, std::size_t n) {
-  n = std::min({n, x.size(), lo.size(), hi.size()});
+void setCurve(QCPCurve* c, const std::vector<double>& keys, const std::vector<double>& values,
+              std::size_t n) {
+  n = std::min({n, keys.size(), values.size()});
+  const double inf = std::numeric_limits<double>::infinity();
+  double k0 = inf, k1 = -inf, v0 = inf, v1 = -inf;
+  forEachPoint(keys, values, n, false, [&](double k, double v) {
+    k0 = std::min(k0, k);
+    k1 = std::max(k1, k);
+    v0 = std::min(v0, v);
+    v1 = std::max(v1, v);
+  });
+  // A point is kept when it leaves the last kept point's cell of a grid finer than any pixel
+  // raster (1000 cells over the larger extent, about a pixel of an export).
+  const double cell = std::max(k1 - k0, v1 - v0) / 1000.0;
+  const double inv = cell > 0 ? 1.0 / cell : 0.0;
+  QVector<QCPCurveData> d;
+  long last_k = std::numeric_limits<long>::min(), last_v = last_k;
+  double last_key = 0.0, last_value = 0.0;
+  bool pending = false;
+  forEachPoint(keys, values, n, false, [&](double k, double v) {
+    const long ck = static_cast<long>((k - k0) * inv), cv = static_cast<long>((v - v0) * inv);
+    if (ck == last_k && cv == last_v) {
+      last_key = k;
+      last_value = v;
+      pending = true;
+      return;
+    }
+    d.append(QCPCurveData(static_cast<double>(d.size()), k, v));
+    last_k = ck;
+    last_v = cv;
+    pending = false;
+  });
+  if (pending) d.append(QCPCurveData(static_cast<double>(d.size()), last_key, last_value));
+  c->data()->set(d, true);
+}
+
+namespace {
+
+// Fills a band from per-step limits lo(i), hi(i); dense bands are reduced to their per-column
+// envelope (highest upper, lowest lower).
+template <typename Lo, typename Hi>
+void fillBand(const Band& b, const std::vector<double>& x, std::size_t n, Lo&& lo, Hi&& hi) {
   const int cols = columnsFor(b.upper);
-  QVector<QCPGraphData> u, l;
   const bool dense = n > static_cast<std::size_t>(4 * cols);
+  QVector<QCPGraphData> u, l;
+  const qsizetype cap = static_cast<qsizetype>(dense ? cols + 2 : n);
+  u.reserve(cap);
+  l.reserve(cap);
   const double x0 = n ? x.front() : 0.0, span = n ? x[n - 1] - x0 : 0.0;
+  const double scale = dense && span > 0 ? cols / span : 0.0;
   long col = -1;
   for (std::size_t i = 0; i < n; ++i) {
-    if (!std::isfinite(lo[i]) || !std::isfinite(hi[i]) || !std::isfinite(x[i])) continue;
-    const long c = dense && span > 0 ? static_cast<long>((x[i] - x0) / span * cols) : -2;
-    if (dense && c == col && !u.isEmpty()) {
-      u.back().value = std::max(u.back().value, hi[i]);
-      l.back().value = std::min(l.back().value, lo[i]);
+    const double lo_i = lo(i), hi_i = hi(i);
+    if (!std::isfinite(lo_i) || !std::isfinite(hi_i) || !std::isfinite(x[i])) continue;
+    const long c = scale > 0 ? static_cast<long>((x[i] - x0) * scale) : -2;
+    if (scale > 0 && c == col && !u.isEmpty()) {
+      u.back().value = std::max(u.back().value, hi_i);
+      l.back().value = std::min(l.back().value, lo_i);
       continue;
     }
     col = c;
-    u.append(QCPGraphData(x[i], hi[i]));
-    l.append(QCPGraphData(x[i], lo[i]));
+    u.append(QCPGraphData(x[i], hi_i));
+    l.append(QCPGraphData(x[i], lo_i));
   }
   b.upper->data()->set(u, true);
   b.lower->data()->set(l, true);
+}
+
+}  // namespace
+
+void setBand(const Band& b, const std::vector<double>& x, const std::vector<double>& center,
+             const std::vector<double>& halfwidth, std::size_t n) {
+  n = std::min({n, x.size(), center.size(), halfwidth.size()});
+  fillBand(
+      b, x, n, [&](std::size_t i) { return center[i] - halfwidth[i]; },
+      [&](std::size_t i) { return center[i] + halfwidth[i]; });
+}
+
+void setBandLimits(const Band& b, const std::vector<double>& x, const std::vector<double>& lo,
+                   const std::vector<double>& hi, std::size_t n) {
+  n = std::min({n, x.size(), lo.size(), hi.size()});
+  fillBand(
+      b, x, n, [&](std::size_t i) { return lo[i]; }, [&](std::size_t i) { return hi[i]; });
 }
 
 QCPItemStraightLine* addCursor(QCustomPlot* p) {

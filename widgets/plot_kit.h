@@ -9,6 +9,7 @@
 
 class QCustomPlot;
 class QCPGraph;
+class QCPCurve;
 class QCPAxis;
 class QCPItemStraightLine;
 class QCPItemTracer;
@@ -40,6 +41,9 @@ QCPGraph* addGraph(QCustomPlot* p, const QString& name, const QColor& c, Style s
 // A graph drawn on the right-hand y axis (which the call turns on, labelled).
 QCPGraph* addGraphRight(QCustomPlot* p, const QString& name, const QColor& c,
                         const QString& rightLabel);
+// Exports draw antialiased, with vector dots; the screen draws without antialiasing and blits
+// dots (a slider drag redraws every plot). Switches a plot between the two looks.
+void setExportLook(QCustomPlot* p, bool exporting);
 // Log scale with decade ticks.
 void setLog(QCPAxis* axis);
 
@@ -47,6 +51,12 @@ void setLog(QCPAxis* axis);
 // joins across them); otherwise a non-finite y draws a gap.
 void setSeries(QCPGraph* g, const std::vector<double>& x, const std::vector<double>& y,
                std::size_t n, bool skipNaN = true);
+// Dots in any order (a raster of events, say), reduced to one per 2 × 2-pixel cell when dense.
+void setDots(QCPGraph* g, const std::vector<double>& x, const std::vector<double>& y);
+// A parametric curve (a trajectory) through the first n points, without the points that stay
+// inside the last kept point's cell of a grid finer than the screen.
+void setCurve(QCPCurve* c, const std::vector<double>& keys, const std::vector<double>& values,
+              std::size_t n);
 inline constexpr std::size_t kAll = static_cast<std::size_t>(-1);
 
 // A shaded band center ± halfwidth (two graphs, the lower filled to the upper).

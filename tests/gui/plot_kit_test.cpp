@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <random>
+#include <set>
 
 namespace kfw {
 namespace {
@@ -77,6 +78,91 @@ TEST(PlotKit, DenseDotsKeepOneDotPerCell) {
   const auto range = g->data()->valueRange(found);
   EXPECT_DOUBLE_EQ(range.lower, *std::min_element(s.y.begin(), s.y.end()));
   EXPECT_DOUBLE_EQ(range.upper, *std::max_element(s.y.begin(), s.y.end()));
+}
+
+TEST(PlotKit, DotsOnALogAxisKeepTheDecades) {
+  QCustomPlot p;
+  QCPGraph* g = plot::addGraph(&p, "dots", Qt::blue, plot::Style::kDots);
+  plot::setLog(p.yAxis);
+  std::vector<double> x, y;
+  std::mt19937 rng(5);
+  std::chi_squared_distribution<double> chi2(1.0);
+  for (int i = 0; i < 100000; ++i) {
+    x.push_back(0.001 * i);
+    y.push_back(i % 7 == 0 ? -1.0
+                           : chi2(rng));  // non-positive values cannot be drawn on a log axis
+  }
+  plot::setSeries(g, x, y, plot::kAll);
+  EXPECT_LT(g->data()->size(), 50000);
+  double lo = 1e300, hi = 0;
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    if (y[i] > 0) lo = std::min(lo, y[i]), hi = std::max(hi, y[i]);
+  }
+  bool found = false;
+  const auto range = g->data()->valueRange(found);
+  EXPECT_DOUBLE_EQ(range.lower, lo);
+  EXPECT_DOUBLE_EQ(range.upper, hi);
+}
+
+TEST(PlotKit, UnsortedDotsComeOutSortedWithEveryRow) {
+  QCustomPlot p;
+  QCPGraph* g = plot::addGraph(&p, "raster", Qt::blue, plot::Style::kDots);
+  std::vector<double> t, row;
+  for (int r = 0; r < 5; ++r) {
+    for (int k = 0; k < 20000; ++k) {
+      t.push_back(0.01 * k);
+      row.push_back(r);
+    }
+  }
+  plot::setDots(g, t, row);
+  EXPECT_LT(g->data()->size(), 20000);
+  std::set<double> rows;
+  double last = -1;
+  for (auto it = g->data()->constBegin(); it != g->data()->constEnd(); ++it) {
+    EXPECT_GE(it->key, last);
+    last = it->key;
+    rows.insert(it->value);
+  }
+  EXPECT_EQ(rows.size(), 5U);
+}
+
+TEST(PlotKit, DenseCurveKeepsItsEndsAndShape) {
+  QCustomPlot p;
+  auto* c = new QCPCurve(p.xAxis, p.yAxis);
+  std::vector<double> east, north;
+  for (int i = 0; i <= 40000; ++i) {
+    const double a = 1e-4 * i;  // two thirds of a turn, 40 001 points
+    east.push_back(std::cos(a));
+    north.push_back(std::sin(a));
+  }
+  plot::setCurve(c, east, north, plot::kAll);
+  EXPECT_LT(c->data()->size(), 20000);
+  EXPECT_GT(c->data()->size(), 1000);
+  EXPECT_DOUBLE_EQ(c->data()->constBegin()->key, east.front());
+  EXPECT_DOUBLE_EQ((c->data()->constEnd() - 1)->key, east.back());
+  EXPECT_DOUBLE_EQ((c->data()->constEnd() - 1)->value, north.back());
+  // Every kept point lies on the circle, and no two neighbours are far apart.
+  auto prev = c->data()->constBegin();
+  for (auto it = c->data()->constBegin(); it != c->data()->constEnd(); prev = it++) {
+    EXPECT_NEAR(std::hypot(it->key, it->value), 1.0, 1e-12);
+    EXPECT_LT(std::hypot(it->key - prev->key, it->value - prev->value), 0.01);
+  }
+}
+
+TEST(PlotKit, ExportLookDrawsVectorDotsAndLeavesMarkersAlone) {
+  QCustomPlot p;
+  QCPGraph* dots = plot::addGraph(&p, "dots", Qt::blue, plot::Style::kDots);
+  QCPGraph* marks = plot::addGraph(&p, "marks", Qt::red, plot::Style::kDots);
+  marks->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCross, 6));
+  EXPECT_EQ(dots->scatterStyle().shape(), QCPScatterStyle::ssPixmap);
+  plot::setExportLook(&p, true);
+  EXPECT_EQ(dots->scatterStyle().shape(), QCPScatterStyle::ssSquare);
+  EXPECT_EQ(marks->scatterStyle().shape(), QCPScatterStyle::ssCross);
+  EXPECT_EQ(p.notAntialiasedElements(), QCP::aeNone);
+  plot::setExportLook(&p, false);
+  EXPECT_EQ(dots->scatterStyle().shape(), QCPScatterStyle::ssPixmap);
+  EXPECT_EQ(marks->scatterStyle().shape(), QCPScatterStyle::ssCross);
+  EXPECT_TRUE(p.notAntialiasedElements().testFlag(QCP::aePlottables));
 }
 
 }  // namespace

@@ -35,20 +35,20 @@ class BallbeamView final : public ScenarioView {
     pos_sensor_ = addGraph(pos_, "raw sensor x̃", color::kSensor, Style::kDots);
     pos_lost_ = addMarkers(pos_, "contact lost", color::kSecond, QCPScatterStyle::ssCross, 6);
     pos_setpoint_ = addGraph(pos_, "set-point x_c", color::kFourth, Style::kDashed);
-    pos_truth_ = addGraph(pos_, "truth", color::kTruth, Style::kLine, 1.2);
-    pos_est_ = addGraph(pos_, "estimate x̂", color::kEstimate, Style::kLine, 1.6);
+    pos_truth_ = addGraph(pos_, "truth", color::kTruth, Style::kLine);
+    pos_est_ = addGraph(pos_, "estimate x̂", color::kEstimate, Style::kLine);
     pos_cursor_ = addCursor(pos_);
 
     volt_ = makePlot(parent, "Contact sensor voltage (seed 003, Fig. 7)", "time (s)",
                      "sensor output V_out (V)");
-    volt_raw_ = addGraph(volt_, "without circuit (a)", color::kSecond, Style::kLine, 1.0);
-    volt_circ_ = addGraph(volt_, "with circuit (b)", color::kEstimate, Style::kLine, 1.2);
+    volt_raw_ = addGraph(volt_, "without circuit (a)", color::kSecond, Style::kLine);
+    volt_circ_ = addGraph(volt_, "with circuit (b)", color::kEstimate, Style::kLine);
     volt_zero_ = addMarkers(volt_, "0 V detections", color::kTruth, QCPScatterStyle::ssCircle, 5);
     volt_cursor_ = addCursor(volt_);
 
     beam_ = makePlot(parent, "Beam angle and command", "time (s)", "beam angle (rad)");
-    beam_cmd_ = addGraph(beam_, "command θ_c", color::kFourth, Style::kLine, 1.0);
-    beam_theta_ = addGraph(beam_, "angle θ", color::kTruth, Style::kLine, 1.4);
+    beam_cmd_ = addGraph(beam_, "command θ_c", color::kFourth, Style::kLine);
+    beam_theta_ = addGraph(beam_, "angle θ", color::kTruth, Style::kLine);
     beam_V_ = addGraphRight(beam_, "motor voltage V", color::kFifth, "motor voltage V (V)");
     beam_cursor_ = addCursor(beam_);
 

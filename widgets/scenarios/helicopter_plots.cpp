@@ -1,5 +1,6 @@
 // Plots of the `helicopter` scenario (seed 000): angle, innovation, NIS, gain over time, the
-// steady-state gain curve k1(β) with the operating point, and the gyro bias.
+// steady-state gain curve k1(β) with the operating point, and the gyro bias. NEES and whiteness
+// are in the Consistency tab, the same for every scenario.
 #include <qcustomplot.h>
 
 #include <array>
@@ -47,36 +48,6 @@ class HelicopterView final : public ScenarioView {
     nis_avg_hi_->removeFromLegend();
     nis_cursor_ = addCursor(nis_);
 
-    nees_ = makePlot(parent, "NEES against truth with 95 % χ² bounds", "time (s)", "NEES (–)");
-    setLog(nees_->yAxis);
-    nees_y_ = addGraph(nees_, "NEES = eᵀP⁻¹e", color::kEstimate, Style::kDots);
-    nees_lo_ = addGraph(nees_, "χ² 2.5 % / 97.5 %", color::kBound, Style::kDashed);
-    nees_hi_ = addGraph(nees_, "", color::kBound, Style::kDashed);
-    nees_hi_->removeFromLegend();
-    nees_avg_ = addGraph(nees_, "moving average", color::kSecond);
-    nees_avg_lo_ = addGraph(nees_, "95 % bounds of the average", color::kSecond, Style::kDashed);
-    nees_avg_hi_ = addGraph(nees_, "", color::kSecond, Style::kDashed);
-    nees_avg_hi_->removeFromLegend();
-    nees_cursor_ = addCursor(nees_);
-
-    white_ = makePlot(parent, "Innovation whiteness: autocorrelation of y/√S",
-                      "lag (angle updates)", "autocorrelation (–)");
-    white_bars_ = new QCPBars(white_->xAxis, white_->yAxis);
-    white_bars_->setName("autocorrelation");
-    white_bars_->setPen(QPen(color::kEstimate));
-    white_bars_->setBrush(QBrush(color::kEstimate));
-    white_bars_->setWidth(0.5);
-    white_lo_ = addGraph(white_, "± 1.96/√N", color::kSecond, Style::kDashed);
-    white_hi_ = addGraph(white_, "", color::kSecond, Style::kDashed);
-    white_hi_->removeFromLegend();
-    white_label_ = new QCPItemText(white_);
-    white_label_->setPositionAlignment(Qt::AlignLeft | Qt::AlignTop);
-    white_label_->position->setType(QCPItemPosition::ptAxisRectRatio);
-    white_label_->position->setCoords(0.02, 0.03);
-    white_label_->setTextAlignment(Qt::AlignLeft);
-    white_label_->setPadding(QMargins(4, 2, 4, 2));
-    white_label_->setBrush(QBrush(QColor(255, 255, 255, 220)));
-
     gain_ = makePlot(parent, "Gain k1 over time", "time (s)", "gain k1 (–)");
     gain_k1_ = addGraph(gain_, "k1 (at angle updates)", color::kEstimate, Style::kStep);
     gain_ss_ = addGraph(gain_, "k1 steady state (DARE)", color::kSecond, Style::kDashed);
@@ -119,9 +90,7 @@ class HelicopterView final : public ScenarioView {
             {"nis", "NIS", nis_},
             {"gain", "Gain over time", gain_},
             {"gain_curve", "Gain curve", curve_},
-            {"bias", "Bias", bias_},
-            {"nees", "NEES", nees_},
-            {"whiteness", "Whiteness", white_}};
+            {"bias", "Bias", bias_}};
   }
 
   void setResult(std::shared_ptr<const RunResult> result, const ParamValues& values) override {
@@ -168,11 +137,6 @@ class HelicopterView final : public ScenarioView {
     const auto avg_bounds = nis_bounds(1.0, r->nis_window);
     nis_avg_lo_value_ = avg_bounds.lo;
     nis_avg_hi_value_ = avg_bounds.hi;
-    const auto nees1 = nis_bounds(r->nees_dof, 1), neesw = nis_bounds(r->nees_dof, r->nis_window);
-    nees_bounds_ = {nees1.lo, nees1.hi, neesw.lo, neesw.hi};
-    nis_avg_->setName(QString("moving average (%1 updates)").arg(r->nis_window));
-    nees_avg_->setName(QString("moving average (%1 updates)").arg(r->nis_window));
-    drawWhiteness(*r);
     drawUpTo(cursor_);
   }
 
@@ -203,36 +167,6 @@ class HelicopterView final : public ScenarioView {
   }
 
  private:
-  // The whole run's autocorrelation (whiteness is a property of the run, not of the cursor).
-  void drawWhiteness(const HelicopterResult& r) {
-    const auto& w = r.whiteness;
-    QVector<double> lag, acf;
-    for (std::size_t k = 1; k < w.acf.size(); ++k) {
-      if (!std::isfinite(w.acf[k])) continue;
-      lag << static_cast<double>(k);
-      acf << w.acf[k];
-    }
-    white_bars_->setData(lag, acf, true);
-    const double L = static_cast<double>(w.acf.size());
-    plot::setSeries(white_lo_, {0.5, L}, {-w.band, -w.band}, 2);
-    plot::setSeries(white_hi_, {0.5, L}, {w.band, w.band}, 2);
-    const bool white = !(w.p_value < 0.01);
-    white_label_->setText(
-        QString("Ljung–Box (20 lags): p = %1, N = %2%3")
-            .arg(w.p_value, 0, 'g', 3)
-            .arg(w.n)
-            .arg(white ? QString()
-                       : QString("\n⚠ innovations not white: a tuning without truth "
-                                 "(NLL / NIS) is not trustworthy")));
-    white_label_->setColor(white ? Qt::black : QColor(170, 20, 20));
-    white_->xAxis->setRange(0, L);
-    double top = w.band;
-    for (double a : acf)
-      top = std::max(top, std::abs(a));
-    white_->yAxis->setRange(-1.2 * top, 1.6 * top);
-    plot::replot(white_);
-  }
-
   void drawUpTo(std::size_t index) {
     const HelicopterResult& r = *result_;
     const std::size_t steps = r.steps();
@@ -255,12 +189,6 @@ class HelicopterView final : public ScenarioView {
     setSeries(nis_avg_, r.t, r.nis_avg, n);
     setSeries(nis_avg_lo_, span, {nis_avg_lo_value_, nis_avg_lo_value_}, 2);
     setSeries(nis_avg_hi_, span, {nis_avg_hi_value_, nis_avg_hi_value_}, 2);
-    setSeries(nees_y_, r.t, r.nees, n);
-    setSeries(nees_avg_, r.t, r.nees_avg, n);
-    setSeries(nees_lo_, span, {nees_bounds_[0], nees_bounds_[0]}, 2);
-    setSeries(nees_hi_, span, {nees_bounds_[1], nees_bounds_[1]}, 2);
-    setSeries(nees_avg_lo_, span, {nees_bounds_[2], nees_bounds_[2]}, 2);
-    setSeries(nees_avg_hi_, span, {nees_bounds_[3], nees_bounds_[3]}, 2);
     setSeries(gain_k1_, r.t, r.k1, n);
     setSeries(gain_ss_, span, {r.k1_steady, r.k1_steady}, 2);
     plot::setBand(bias_band_, r.t, r.bias, two_sigma_bias_, n);
@@ -278,16 +206,15 @@ class HelicopterView final : public ScenarioView {
       setSeries(g.gain, g.result->t, g.result->k1, gn);
       setSeries(g.bias, g.result->t, g.result->bias, gn);
     }
-    for (QCustomPlot* p : {angle_, innov_, nis_, gain_, bias_, nees_})
+    for (QCustomPlot* p : {angle_, innov_, nis_, gain_, bias_})
       plot::rescale(p, t0, t1);
     // Keep the gain axis readable: the start-up transient (k1 ≈ 1) would flatten the steady part.
     const double k_ss = std::isfinite(r.k1_steady) ? r.k1_steady : 0.5;
     gain_->yAxis->setRange(0.0, std::clamp(2.5 * k_ss, 1e-6, 1.05));
-    for (auto* c :
-         {angle_cursor_, innov_cursor_, nis_cursor_, gain_cursor_, bias_cursor_, nees_cursor_}) {
+    for (auto* c : {angle_cursor_, innov_cursor_, nis_cursor_, gain_cursor_, bias_cursor_}) {
       plot::setCursorAt(c, tc, !all);
     }
-    for (QCustomPlot* p : {angle_, innov_, nis_, gain_, bias_, nees_})
+    for (QCustomPlot* p : {angle_, innov_, nis_, gain_, bias_})
       plot::replot(p);
   }
 
@@ -302,16 +229,8 @@ class HelicopterView final : public ScenarioView {
   double nis_lo_value_ = 0.0, nis_hi_value_ = 0.0, nis_avg_lo_value_ = 0.0, nis_avg_hi_value_ = 0.0;
 
   QCustomPlot *angle_ = nullptr, *innov_ = nullptr, *nis_ = nullptr, *gain_ = nullptr,
-              *curve_ = nullptr, *bias_ = nullptr, *white_ = nullptr;
-  QCPBars* white_bars_ = nullptr;
-  QCPGraph *white_lo_ = nullptr, *white_hi_ = nullptr;
-  QCPItemText* white_label_ = nullptr;
+              *curve_ = nullptr, *bias_ = nullptr;
   QCPGraph *nis_avg_ = nullptr, *nis_avg_lo_ = nullptr, *nis_avg_hi_ = nullptr;
-  QCustomPlot* nees_ = nullptr;
-  QCPGraph *nees_y_ = nullptr, *nees_lo_ = nullptr, *nees_hi_ = nullptr, *nees_avg_ = nullptr,
-           *nees_avg_lo_ = nullptr, *nees_avg_hi_ = nullptr;
-  QCPItemStraightLine* nees_cursor_ = nullptr;
-  std::array<double, 4> nees_bounds_{};
   plot::Band angle_band_, innov_band_, bias_band_;
   QCPGraph *angle_sensor_ = nullptr, *angle_truth_ = nullptr, *angle_est_ = nullptr;
   QCPGraph *innov_y_ = nullptr, *nis_y_ = nullptr, *nis_lo_ = nullptr, *nis_hi_ = nullptr;

@@ -18,8 +18,9 @@ namespace {
 
 using underwater::UnderwaterResult;
 
+// Dense tracks keep 1-px pens (wider ones go through Qt's stroker).
 QCPCurve* addCurve(QCustomPlot* p, const QString& name, const QColor& c, plot::Style s,
-                   double width = 1.4) {
+                   double width = 1.0) {
   auto* curve = new QCPCurve(p->xAxis, p->yAxis);
   curve->setName(name);
   QPen pen(c);
@@ -41,29 +42,15 @@ QCPGraph* addMarks(QCustomPlot* p, const QString& name, const QColor& c,
   return g;
 }
 
-// The top view puts east to the right and north up: key = y, value = x.
-void setTrack(QCPCurve* c, const std::vector<double>& north, const std::vector<double>& east,
-              std::size_t n) {
-  n = std::min({n, north.size(), east.size()});
-  QVector<QCPCurveData> d;
-  d.reserve(static_cast<qsizetype>(n));
-  for (std::size_t i = 0; i < n; ++i) {
-    if (std::isfinite(north[i]) && std::isfinite(east[i])) {
-      d.append(QCPCurveData(static_cast<double>(d.size()), east[i], north[i]));
-    }
-  }
-  c->data()->set(d, true);
-}
-
 class UnderwaterView final : public ScenarioView {
  public:
   QList<PlotPanel> createPlots(QWidget* parent) override {
     using namespace plot;
     track_ = makePlot(parent, "Top view: command, true and estimated track; beacons", "y east (m)",
                       "x north (m)");
-    track_cmd_ = addCurve(track_, "command", color::kSensor, Style::kDashed, 1.2);
-    track_true_ = addCurve(track_, "true", color::kTruth, Style::kLine, 1.2);
-    track_est_ = addCurve(track_, "estimate", color::kEstimate, Style::kLine, 1.5);
+    track_cmd_ = addCurve(track_, "command", color::kSensor, Style::kDashed);
+    track_true_ = addCurve(track_, "true", color::kTruth, Style::kLine);
+    track_est_ = addCurve(track_, "estimate", color::kEstimate, Style::kLine);
     beacons_ =
         addCurve(track_, "beacons (at the edge when out of view)", color::kSecond, Style::kLine);
     beacons_->setLineStyle(QCPCurve::lsNone);
@@ -80,7 +67,7 @@ class UnderwaterView final : public ScenarioView {
 
     err_ = makePlot(parent, "Distance error |X̂ − X| (seed 004, Fig. 3b)", "time (s)",
                     "distance error (m)");
-    err_y_ = addGraph(err_, "distance error", color::kEstimate, Style::kLine, 1.2);
+    err_y_ = addGraph(err_, "distance error", color::kEstimate, Style::kLine);
     err_cursor_ = addCursor(err_);
 
     innov_ = makePlot(parent, "Range innovations with ± 2√S; gated samples marked", "time (s)",
@@ -236,9 +223,10 @@ class UnderwaterView final : public ScenarioView {
     const double tc = steps ? r.t[std::min(n, steps) - 1] : 0.0;
 
     // Trajectory.
-    setTrack(track_cmd_, r.x_cmd, r.y_cmd, n);
-    setTrack(track_true_, r.x_true, r.y_true, n);
-    setTrack(track_est_, r.x, r.y, n);
+    // The top view puts east to the right and north up: key = y, value = x.
+    plot::setCurve(track_cmd_, r.y_cmd, r.x_cmd, n);
+    plot::setCurve(track_true_, r.y_true, r.x_true, n);
+    plot::setCurve(track_est_, r.y, r.x, n);
     here_->data()->clear();
     if (n > 0 && std::isfinite(r.x[n - 1])) here_->addData(r.y[n - 1], r.x[n - 1]);
     drawBeacons(r);
@@ -247,26 +235,31 @@ class UnderwaterView final : public ScenarioView {
     plot::setSeries(err_y_, r.t, r.pos_err, n);
 
     // Innovations: accepted, rejected, injected (over every beacon).
-    QVector<QCPGraphData> used, rejected, injected;
-    const double kRange = static_cast<double>(underwater::kRange1);
+    std::vector<double> used_t, used_y;
+    QVector<QCPGraphData> rejected, injected;
+    const auto kRange = static_cast<std::size_t>(underwater::kRange1);
     for (std::size_t k = 0; k < n; ++k) {
-      for (int b = 0; b < underwater::kBeacons; ++b) {
-        const auto bi = static_cast<std::size_t>(b);
-        const double y = r.innovation[bi][k];
+      for (std::size_t b = 0; b < static_cast<std::size_t>(underwater::kBeacons); ++b) {
+        const double y = r.innovation[b][k];
         if (!std::isfinite(y)) continue;
-        const double st = r.status[static_cast<std::size_t>(kRange) + bi][k];
-        (st == underwater::kRejected ? rejected : used).append(QCPGraphData(r.t[k], y));
-        const double inj = r.injected[bi][k];
+        if (r.status[kRange + b][k] == underwater::kRejected) {
+          rejected.append(QCPGraphData(r.t[k], y));
+        } else {
+          used_t.push_back(r.t[k]);
+          used_y.push_back(y);
+        }
+        const double inj = r.injected[b][k];
         if (std::isfinite(inj) && inj != 0.0) injected.append(QCPGraphData(r.t[k], y));
       }
     }
-    innov_used_->data()->set(used, true);
+    plot::setDots(innov_used_, used_t, used_y);
     innov_rejected_->data()->set(rejected, true);
     innov_injected_->data()->set(injected, true);
     plot::setBand(innov_band_, r.t, zero_, two_sqrt_S_, n);
 
     // Timing raster.
-    QVector<QCPGraphData> sampled, rej, inval, miss;
+    std::vector<double> sampled_t, sampled_row;
+    QVector<QCPGraphData> rej, inval, miss;
     for (int s = 0; s < underwater::kSensorCount; ++s) {
       const auto& st = r.status[static_cast<std::size_t>(s)];
       for (std::size_t k = 0; k < n; ++k) {
@@ -276,14 +269,15 @@ class UnderwaterView final : public ScenarioView {
         } else if (st[k] == underwater::kInvalid) {
           inval.append(QCPGraphData(r.t[k], s));
         } else {
-          sampled.append(QCPGraphData(r.t[k], s));
+          sampled_t.push_back(r.t[k]);
+          sampled_row.push_back(s);
         }
       }
       for (double tm : r.missing_t[static_cast<std::size_t>(s)]) {
         if (tm <= tc || all) miss.append(QCPGraphData(tm, s));
       }
     }
-    raster_used_->data()->set(sampled, false);
+    plot::setDots(raster_used_, sampled_t, sampled_row);
     raster_rejected_->data()->set(rej, false);
     raster_invalid_->data()->set(inval, false);
     raster_missing_->data()->set(miss, false);

@@ -5,7 +5,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: setup configure build run test bench export clean format
+.PHONY: setup configure build run test bench screenshots clean format
 
 setup:
 	bash scripts/setup.sh
@@ -25,8 +25,8 @@ test: build
 bench: build
 	$(BUILD)/bench/kfw_bench
 
-export: build
-	QT_QPA_PLATFORM=offscreen $(BUILD)/app/kfw --export screenshots presets/helicopter.json
+screenshots: build
+	bash scripts/screenshots.sh $(BUILD)
 
 format:
 	clang-format -i $$(git ls-files '*.h' '*.cpp')

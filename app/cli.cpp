@@ -30,7 +30,9 @@ constexpr const char* kUsage =
     "  preset SCENARIO|PRESET [--set key=value]... --out FILE.json   write a full preset\n"
     "  list                        the scenarios and presets\n"
     "  CMD SCENARIO|PRESET [--data FILE] [--set key=value]...\n"
-    "                              a scenario's own analysis (e.g. stats for underwater)\n";
+    "                              a scenario's own analysis (e.g. stats for underwater)\n"
+    "  CMD FILE.csv [--set key=value]...\n"
+    "                              the same, for the one scenario that offers CMD\n";
 
 struct Args {
   std::vector<std::string> positional;
@@ -312,9 +314,26 @@ int cmd_params(const Args& a, std::ostream& out, std::ostream& err) {
 }
 
 // A command a scenario offers (Scenario::commands()), e.g. `kfw-cli stats underwater --data f.csv`.
-int cmd_scenario(const std::string& cmd, const Args& a, std::ostream& out, std::ostream& err) {
+// `kfw-cli CMD FILE.csv` is short for `kfw-cli CMD SCENARIO --data FILE.csv` when exactly one
+// scenario offers CMD.
+int cmd_scenario(const std::string& cmd, Args a, std::ostream& out, std::ostream& err) {
   if (a.positional.size() != 1) {
     return fail(err, "unknown command '" + cmd + "' (try --help)");
+  }
+  const std::string& first = a.positional[0];
+  const bool csv = first.size() > 4 && (first.compare(first.size() - 4, 4, ".csv") == 0 ||
+                                        first.compare(first.size() - 4, 4, ".CSV") == 0);
+  if (csv && !a.data) {
+    std::vector<std::string> offering;
+    for (const auto& name : scenarios().names()) {
+      const auto cmds = scenarios().make(name)->commands();
+      if (std::find(cmds.begin(), cmds.end(), cmd) != cmds.end()) offering.push_back(name);
+    }
+    if (offering.size() != 1) {
+      return fail(err, "unknown command '" + cmd + "' (try --help)");
+    }
+    a.data = first;
+    a.positional[0] = offering.front();
   }
   auto ws = open_any(a.positional[0], a);
   if (!ws) return fail(err, ws.error());

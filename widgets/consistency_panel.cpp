@@ -164,10 +164,13 @@ void ConsistencyPanel::refresh() {
     }
   }
   double worst_p = std::nan(""), band = 0.0;
+  QStringList per_channel;
   for (const InnovationChannel* sc : scalar) {
     const auto wt = ljung_box(sc->normalized, kLags);
     band = std::max(band, wt.band);
     if (!(wt.p_value >= worst_p)) worst_p = wt.p_value;
+    per_channel
+        << QString("%1 %2").arg(QString::fromStdString(sc->name)).arg(wt.p_value, 0, 'g', 3);
     QVector<double> l, a;
     for (std::size_t k = 1; k < wt.acf.size(); ++k) {
       if (!std::isfinite(wt.acf[k])) continue;
@@ -189,9 +192,8 @@ void ConsistencyPanel::refresh() {
   if (!scalar.empty()) {
     plot::setSeries(acf_lo_, {0.5, kLags + 0.5}, {-band, -band}, 2);
     plot::setSeries(acf_hi_, {0.5, kLags + 0.5}, {band, band}, 2);
-    text += QString("; Ljung–Box p = %1%2")
-                .arg(worst_p, 0, 'g', 3)
-                .arg(scalar.size() > 1 ? " (worst channel)" : "");
+    text += scalar.size() > 1 ? QString("; Ljung–Box p per channel: %1").arg(per_channel.join(", "))
+                              : QString("; Ljung–Box p = %1").arg(worst_p, 0, 'g', 3);
     if (worst_p < 0.01) {
       text +=
           " — <span style='color:#a01010'>innovations not white: a tuning without truth "

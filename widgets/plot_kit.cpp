@@ -434,8 +434,44 @@ void setHLine(QCPItemStraightLine* line, double y) {
   line->point2->setCoords(1, y);
 }
 
-void rescale(QCustomPlot* p, double x0, double x1) {
+namespace {
+// The value range of the visible plottables on `axis` over keys in [k0, k1]; invalid if none.
+QCPRange valueRangeIn(QCustomPlot* p, QCPAxis* axis, double k0, double k1, bool& found) {
+  found = false;
+  QCPRange all;
+  const auto sign = axis->scaleType() == QCPAxis::stLogarithmic ? QCP::sdPositive : QCP::sdBoth;
+  for (int i = 0; i < p->plottableCount(); ++i) {
+    QCPAbstractPlottable* pl = p->plottable(i);
+    if (!pl->visible() || pl->valueAxis() != axis) continue;
+    bool f = false;
+    const QCPRange r = pl->getValueRange(f, sign, QCPRange(k0, k1));
+    if (!f) continue;
+    if (found) {
+      all.expand(r);
+    } else {
+      all = r;
+      found = true;
+    }
+  }
+  return all;
+}
+}  // namespace
+
+void rescale(QCustomPlot* p, double x0, double x1, double settle) {
   p->rescaleAxes(true);
+  if (x1 > x0 && settle > x0) {
+    for (QCPAxis* a : {p->yAxis, p->yAxis2}) {
+      bool found = false;
+      const QCPRange r = valueRangeIn(p, a, settle, x1, found);
+      if (!found) continue;
+      const bool log = a->scaleType() == QCPAxis::stLogarithmic;
+      if (r.lower < r.upper) {
+        a->setRange(r);
+      } else {
+        a->setRange(log ? QCPRange(r.lower / 2, r.upper * 2) : QCPRange(r.lower - 1, r.upper + 1));
+      }
+    }
+  }
   for (QCPAxis* a : {p->yAxis, p->yAxis2}) {
     if (!a->visible() && a == p->yAxis2) continue;
     QCPRange r = a->range();

@@ -80,8 +80,14 @@ QCPItemStraightLine* addHLine(QCustomPlot* p, double y, const QColor& c,
 void setHLine(QCPItemStraightLine* line, double y);
 
 // Rescales both axes to the visible data with a small margin; keeps x fixed to [x0, x1] when
-// x1 > x0 (so replay does not squeeze the time axis). Replots (queued refresh).
-void rescale(QCustomPlot* p, double x0 = 0.0, double x1 = 0.0);
+// x1 > x0 (so replay does not squeeze the time axis). With settle > x0 the value axes hold only
+// the data from `settle` on, so a start-up transient does not flatten the rest (the transient
+// runs off the top).
+void rescale(QCustomPlot* p, double x0 = 0.0, double x1 = 0.0, double settle = 0.0);
+// Where a start-up transient is over, for rescale(): 5 % into [t0, t1].
+inline double settleTime(double t0, double t1) {
+  return t0 + 0.05 * (t1 - t0);
+}
 void replot(QCustomPlot* p);
 
 }  // namespace kfw::plot

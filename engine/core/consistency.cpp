@@ -85,9 +85,20 @@ Whiteness ljung_box(const std::vector<double>& v, std::size_t max_lag) {
   return w;
 }
 
+namespace {
+// A channel name as a metric key suffix: "range 1" -> "range_1".
+std::string key_of(std::string name) {
+  for (char& ch : name) {
+    if (ch == ' ') ch = '_';
+  }
+  return name;
+}
+}  // namespace
+
 void add_consistency_metrics(const std::vector<InnovationChannel>& channels, const NeesSeries& nees,
                              std::map<std::string, double>& metrics) {
   double nis_sum = 0.0, inside = 0.0, worst_p = std::numeric_limits<double>::quiet_NaN();
+  std::map<std::string, double> per_channel;
   std::size_t n = 0, counted = 0;
   for (const auto& c : channels) {
     const std::size_t cn = count_finite(c.nis);
@@ -102,6 +113,7 @@ void add_consistency_metrics(const std::vector<InnovationChannel>& channels, con
     if (!c.normalized.empty()) {
       const double p = ljung_box(c.normalized, 20).p_value;
       if (std::isfinite(p) && !(p >= worst_p)) worst_p = p;
+      if (std::isfinite(p) && channels.size() > 1) per_channel["whiteness_p." + key_of(c.name)] = p;
     }
   }
   auto put = [&](const char* key, double v) { metrics.emplace(key, v); };
@@ -111,6 +123,8 @@ void add_consistency_metrics(const std::vector<InnovationChannel>& channels, con
     put("nis_in_bounds", inside / static_cast<double>(counted));
   }
   if (std::isfinite(worst_p)) put("whiteness_p", worst_p);
+  for (const auto& [k, v] : per_channel)
+    metrics.emplace(k, v);
   if (!nees.nees.empty() && count_finite(nees.nees)) {
     put("nees_mean", mean_finite(nees.nees));
     put("nees_dof", nees.dof);

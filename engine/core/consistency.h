@@ -36,8 +36,9 @@ Whiteness ljung_box(const std::vector<double>& v, std::size_t max_lag = 20);
 struct InnovationChannel;
 struct NeesSeries;
 
-// nis_mean, nis_in_bounds (two-sided 95 %), whiteness_p (Ljung–Box on y/√S, the worst channel),
-// nees_mean and nees_in_bounds: the same keys for every scenario. Keys already present are kept.
+// nis_mean, nis_in_bounds (two-sided 95 %), whiteness_p (Ljung–Box on y/√S, the worst channel;
+// with several channels also whiteness_p.<channel>), nees_mean and nees_in_bounds: the same keys
+// for every scenario. Keys already present are kept.
 void add_consistency_metrics(const std::vector<InnovationChannel>& channels, const NeesSeries& nees,
                              std::map<std::string, double>& metrics);
 

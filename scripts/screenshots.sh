@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Regenerates screenshots/ from the built binaries (no display needed): every plot of every preset
+# made by `kfw --export`, the variants the README shows, and one window per preset.
+# Usage: scripts/screenshots.sh [BUILD_DIR]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build}
+kfw="$build/app/kfw"
+[ -x "$kfw" ] || { echo "screenshots: $kfw not built (make build)" >&2; exit 1; }
+export QT_QPA_PLATFORM=offscreen
+out=screenshots
+rm -rf "$out"
+mkdir -p "$out"
+for preset in presets/*.json; do
+  name=$(basename "$preset" .json)
+  "$kfw" --export "$out" "$preset" >/dev/null
+  "$kfw" --screenshot "$out/window_$name.png" "$preset" >/dev/null
+done
+# Variants shown in the README beside the defaults.
+"$kfw" --export "$out/radome_B_Kp045" presets/radome.json --set sim.amplitude=0.08 --set Kp=0.45 >/dev/null
+"$kfw" --export "$out/radome_B_Kp0" presets/radome.json --set sim.amplitude=0.08 --set Kp=0 >/dev/null
+"$kfw" --export "$out/ballbeam_detection_off" presets/ballbeam.json --set detection=0 >/dev/null
+"$kfw" --export "$out/underwater_SC" presets/underwater.json --set scheme=SC >/dev/null
+find "$out" -name '*.png' | sort

@@ -48,6 +48,17 @@ TEST(RadomeCli, ReproducesSeed001) {
   EXPECT_LT(c["slope_rmse_psi"].get<double>(), 0.5 * b["slope_rmse_psi"].get<double>());  // Fig. 7
   EXPECT_LT(c["slope_rmse_theta"].get<double>(), 0.5 * b["slope_rmse_theta"].get<double>());
   EXPECT_GT(c["grid_center_psi_max_abs"].get<double>(), 0.05);  // Fig. 9: the grid moves out
+  // The simulated data carry the true position: NEES of the combined position, dof 3.
+  for (const auto* m : {&a, &b, &c}) {
+    ASSERT_TRUE(m->contains("nees_mean") && (*m)["nees_mean"].is_number());
+    EXPECT_EQ((*m)["nees_dof"].get<double>(), 3.0);
+  }
+}
+
+TEST(RadomeCli, EqualGridEndsAreAWarningNamingTheKeys) {
+  const auto o = cli("run " + kPreset + " --set grid.min=0.02 --set grid.max=0.02");
+  EXPECT_EQ(o.code, 0) << o.text;
+  EXPECT_NE(o.text.find("warning: grid.min = grid.max"), std::string::npos) << o.text;
 }
 
 TEST(RadomeCli, BadGridIsAOneLineError) {

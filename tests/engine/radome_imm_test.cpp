@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
 
 #include "common/matrix_matchers.h"
@@ -76,7 +78,9 @@ TEST(RadomeImm, OneModeAxisBlocksEqualThreePlainKalmanFilters) {
       ASSERT_TRUE(u.ok);
       kf[ax] = u.post;
       ASSERT_NEAR(o.pos(ax), kf[ax].x(0), 1e-6 * (1 + std::abs(kf[ax].x(0)))) << k;
-      ASSERT_NEAR(o.var_pos(ax), kf[ax].P(0, 0), 1e-6 * kf[ax].P(0, 0)) << k;
+      ASSERT_NEAR(o.P_pos(ax, ax), kf[ax].P(0, 0), 1e-6 * kf[ax].P(0, 0)) << k;
+      // One mode: no spread term, so the axes stay uncorrelated.
+      ASSERT_EQ(o.P_pos(ax, (ax + 1) % 3), 0.0) << k;
       ASSERT_NEAR(o.innovation(ax), u.innovation(0), 1e-6 * (1 + std::abs(u.innovation(0))));
     }
     ASSERT_EQ(o.slope_psi, slope);
@@ -117,6 +121,30 @@ TEST(RadomeImm, OneModeFullEqualsThePlain9StateKalmanFilter) {
     ASSERT_TRUE(kfw::testing::MatricesNear(o.pos, kf.x.head<3>(), 1e-9 * kf.x.head<3>().norm()))
         << k;
     ASSERT_NEAR(o.nis, u.nis, 1e-9 * (1 + u.nis));
+    const Covariance<3> P = kf.P.topLeftCorner<3, 3>();
+    ASSERT_TRUE(kfw::testing::MatricesNear(o.P_pos, P, 1e-9 * P.norm())) << k;
+  }
+}
+
+TEST(RadomeImm, CombinedPositionCovarianceIsSymmetricPositiveDefinite) {
+  // 49 modes, both structures: the combined (x, y, z) block with its spread terms.
+  const auto s = simulated(0.05);
+  for (Structure st : {Structure::kAxisBlocks, Structure::kFull}) {
+    FilterParams p;
+    p.structure = st;
+    auto imm = RadomeImm::create(p, 0.05);
+    ASSERT_TRUE(imm.ok());
+    imm->initialize(s[0]);
+    double cross = 0.0;
+    for (std::size_t k = 1; k < s.size(); ++k) {
+      const StepOutput o = imm->step(s[k], 0.05);
+      ASSERT_TRUE(o.P_pos.allFinite()) << k;
+      ASSERT_LE((o.P_pos - o.P_pos.transpose()).norm(), 1e-12 * o.P_pos.norm()) << k;
+      ASSERT_EQ(Eigen::LLT<Covariance<3>>(o.P_pos).info(), Eigen::Success) << k;
+      cross = std::max(cross, std::abs(o.P_pos(0, 1)) + std::abs(o.P_pos(1, 2)));
+    }
+    // Several modes disagree on the position: the spread term correlates the axes.
+    EXPECT_GT(cross, 0.0) << static_cast<int>(st);
   }
 }
 

@@ -118,6 +118,78 @@ TEST(RadomeScenario, ModeProbabilitiesAreADistributionAndRenewalFollowsEq4) {
   EXPECT_EQ(res.top_modes(3).size(), 3u);
 }
 
+TEST(RadomeScenario, NeesOfTheCombinedPositionIsFiniteAndSensible) {
+  // Truth covers the relative position only: NEES of (x, y, z) with the combined covariance.
+  const SimRun r = run_with({});
+  const NeesSeries s = r.result->nees_series();
+  EXPECT_EQ(s.dof, 3.0);
+  ASSERT_EQ(s.nees.size(), r.result->steps());
+  for (std::size_t k = 0; k < s.nees.size(); ++k) {
+    ASSERT_TRUE(std::isfinite(s.nees[k])) << k;
+    ASSERT_GE(s.nees[k], 0.0) << k;
+  }
+  const Metrics& m = r.result->metrics;
+  EXPECT_EQ(m.at("nees_dof"), 3.0);
+  // The default truth (amplitude 0.05) falls between grid slopes: the residual slope error
+  // (≈ 0.007 × a 30° look angle × 10–30 km) biases the cross-range position by tens of metres,
+  // which no mode's covariance holds, so the IMM is overconfident (measured: mean ≈ 56).
+  EXPECT_GT(m.at("nees_mean"), 3.0);
+  EXPECT_LT(m.at("nees_mean"), 200.0);
+  // With the true slope on the grid (amplitude 0: the centre mode) it is consistent, slightly
+  // conservative (R_range is inflated; measured: mean ≈ 2.0, 90 % inside the 95 % bounds) ...
+  const SimRun on_grid = run_with({{"sim.amplitude", 0.0}});
+  EXPECT_GT(on_grid.result->metrics.at("nees_mean"), 1.5);
+  EXPECT_LT(on_grid.result->metrics.at("nees_mean"), 3.5);
+  EXPECT_GT(on_grid.result->metrics.at("nees_in_bounds"), 0.8);
+  // ... and a finer grid leaves a smaller slope residual, so a smaller NEES.
+  const SimRun fine = run_with({{"grid.n_psi", 15}, {"grid.n_theta", 15}});
+  EXPECT_LT(fine.result->metrics.at("nees_mean"), 0.5 * m.at("nees_mean"));
+
+  // Truth missing for a while: NaN there, finite elsewhere.
+  auto sc = make_scenario("radome");
+  ParamValues v = (*sc)->params().defaults();
+  Dataset e = r.data;
+  auto& x = e.columns[static_cast<std::size_t>(e.index("x_m"))];
+  for (std::size_t k = 300; k < 400; ++k)
+    x[k] = kNoSample;
+  auto gap = (*sc)->run(e, v);
+  ASSERT_TRUE(gap.ok()) << gap.error();
+  const NeesSeries g = (*gap)->nees_series();
+  ASSERT_EQ(g.nees.size(), e.rows());
+  EXPECT_TRUE(std::isfinite(g.nees[299]));
+  for (std::size_t k = 300; k < 400; ++k)
+    ASSERT_FALSE(std::isfinite(g.nees[k])) << k;
+  EXPECT_TRUE(std::isfinite(g.nees[400]));
+
+  // No truth columns at all: all NaN and no NEES metrics.
+  for (const char* col : {"x_m", "y_m", "z_m"}) {
+    const int i = e.index(col);
+    e.names.erase(e.names.begin() + i);
+    e.columns.erase(e.columns.begin() + i);
+  }
+  auto none = (*sc)->run(e, v);
+  ASSERT_TRUE(none.ok()) << none.error();
+  EXPECT_EQ(count_finite((*none)->nees_series().nees), 0u);
+  EXPECT_EQ((*none)->metrics.count("nees_mean"), 0u);
+}
+
+TEST(RadomeScenario, EqualGridEndsWarnNamingTheKeys) {
+  // grid.min = grid.max with n > 1 makes identical modes: a warning, not an error (a slider
+  // dragged through equality should not stop the run).
+  const SimRun r = run_with({{"grid.min", 0.02}, {"grid.max", 0.02}});
+  ASSERT_EQ(r.result->warnings.size(), 1u);
+  const std::string& w = r.result->warnings[0];
+  EXPECT_NE(w.find("grid.min"), std::string::npos) << w;
+  EXPECT_NE(w.find("grid.max"), std::string::npos) << w;
+  EXPECT_NE(w.find("49 modes"), std::string::npos) << w;
+  EXPECT_EQ(r.result->slope_psi.back(), 0.02);
+  // One value per axis is a legitimate single-mode filter; the default grid is fine too.
+  EXPECT_TRUE(
+      run_with({{"grid.min", 0.02}, {"grid.max", 0.02}, {"grid.n_psi", 1}, {"grid.n_theta", 1}})
+          .result->warnings.empty());
+  EXPECT_TRUE(run_with({}).result->warnings.empty());
+}
+
 TEST(RadomeScenario, BadParametersNameTheKey) {
   auto sc = make_scenario("radome");
   ASSERT_TRUE(sc.ok());

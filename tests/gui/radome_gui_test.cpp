@@ -10,6 +10,7 @@
 #include <QLabel>
 #include <QSpinBox>
 #include <QTemporaryDir>
+#include <algorithm>
 #include <cmath>
 
 #include "main_window.h"
@@ -114,6 +115,118 @@ TEST_F(RadomeWindow, HeatMapFollowsTheReplayCursor) {
       EXPECT_NEAR(map->data()->cell(j % 7, j / 7), expect, 1e-9) << "step " << k << " mode " << j;
     }
   }
+}
+
+TEST_F(RadomeWindow, HeatMapTicksSitOnTheGridSlopes) {
+  QCustomPlot* heat = plotNamed(w, "mode_heatmap");
+  ASSERT_NE(heat, nullptr);
+  auto ticks_of = [](QCPAxis* a) {
+    auto t = a->ticker().dynamicCast<QCPAxisTickerText>();
+    return t ? t->ticks() : QMap<double, QString>{};
+  };
+  auto expect_on_grid = [&](std::size_t k) {
+    auto r = radomeResult(w);
+    ASSERT_TRUE(r);
+    const auto gp = r->grid_psi(k), gt = r->grid_theta(k);
+    const auto tp = ticks_of(heat->xAxis), tt = ticks_of(heat->yAxis);
+    ASSERT_EQ(tp.size(), static_cast<int>(gp.size())) << "step " << k;
+    ASSERT_EQ(tt.size(), static_cast<int>(gt.size())) << "step " << k;
+    int i = 0;
+    for (auto it = tp.constBegin(); it != tp.constEnd(); ++it, ++i) {
+      EXPECT_NEAR(it.key(), gp[static_cast<std::size_t>(i)], 1e-12);
+      EXPECT_EQ(
+          it.value(),
+          QString::number(gp[static_cast<std::size_t>(i)], 'f', 3).replace("-0.000", "0.000"));
+    }
+    i = 0;
+    for (auto it = tt.constBegin(); it != tt.constEnd(); ++it, ++i)
+      EXPECT_NEAR(it.key(), gt[static_cast<std::size_t>(i)], 1e-12);
+  };
+  expect_on_grid(radomeResult(w)->steps() - 1);
+  EXPECT_TRUE(ticks_of(heat->xAxis).values().contains("-0.017"));
+  EXPECT_TRUE(ticks_of(heat->xAxis).values().contains("0.000"));
+  // The grid moves with renewal: the ticks follow it at the replay cursor.
+  w.setParam("Kp", 0.45);
+  ASSERT_TRUE(w.waitForRun());
+  for (std::size_t k : {std::size_t{300}, std::size_t{900}}) {
+    w.transport()->seek(k);
+    expect_on_grid(k);
+  }
+  // More than 9 values on an axis: the normal ticker there.
+  w.setParam("grid.n_psi", 11);
+  ASSERT_TRUE(w.waitForRun());
+  EXPECT_TRUE(ticks_of(heat->xAxis).isEmpty());
+  EXPECT_EQ(ticks_of(heat->yAxis).size(), 7);
+}
+
+TEST_F(RadomeWindow, SnapshotDrawsGhostSlopesAndRefractionError) {
+  w.pinSnapshot("plain");
+  w.setParam("Kp", 0.45);
+  ASSERT_TRUE(w.waitForRun());
+  const std::pair<const char*, const char*> ghosts[] = {{"slope_psi", "estimate [plain]"},
+                                                        {"slope_theta", "estimate [plain]"},
+                                                        {"refraction_error", "estimated [plain]"}};
+  for (const auto& [plot, name] : ghosts) {
+    QCPGraph* g = graphNamed(plotNamed(w, plot), QString::fromUtf8(name));
+    ASSERT_NE(g, nullptr) << name;
+    EXPECT_GT(g->data()->size(), 100) << name;
+    EXPECT_TRUE(std::isfinite(g->data()->constBegin()->value)) << name;
+  }
+  // The ghost holds the pinned (Kp = 0) estimate, not the live (Kp = 0.45) one.
+  auto r = radomeResult(w);
+  QCPGraph* ghost = graphNamed(plotNamed(w, "slope_psi"), "estimate [plain]");
+  double diff = 0.0;
+  for (auto it = ghost->data()->constBegin(); it != ghost->data()->constEnd(); ++it) {
+    const auto k = static_cast<std::size_t>(
+        std::lower_bound(r->t.begin(), r->t.end(), it->key - 1e-9) - r->t.begin());
+    ASSERT_LT(k, r->steps());
+    diff = std::max(diff, std::abs(it->value - r->slope_psi[k]));
+  }
+  EXPECT_GT(diff, 1e-3);
+  // Cut at the replay cursor like the live curves.
+  w.transport()->seek(200);
+  EXPECT_LE((ghost->data()->constEnd() - 1)->key, r->t[200] + 1e-9);
+  EXPECT_GE((ghost->data()->constEnd() - 1)->key, r->t[190]);
+  // A new snapshot list replaces the ghosts; an empty one removes them.
+  w.pinSnapshot("renewal");
+  EXPECT_NE(graphNamed(plotNamed(w, "slope_psi"), "estimate [renewal]"), nullptr);
+  EXPECT_NE(graphNamed(plotNamed(w, "slope_psi"), "estimate [plain]"), nullptr);
+  w.clearSnapshots();
+  for (const auto& [plot, name] : ghosts)
+    EXPECT_EQ(graphNamed(plotNamed(w, plot), QString::fromUtf8(name)), nullptr) << name;
+  EXPECT_EQ(graphNamed(plotNamed(w, "slope_psi"), "estimate [renewal]"), nullptr);
+}
+
+TEST_F(RadomeWindow, GridEnvelopeLegendShowsAFilledSwatch) {
+  QCustomPlot* p = plotNamed(w, "slope_psi");
+  int entries = 0;
+  for (int i = 0; i < p->legend->itemCount(); ++i) {
+    auto* item = qobject_cast<QCPPlottableLegendItem*>(p->legend->item(i));
+    if (!item || item->plottable()->name() != "grid envelope") continue;
+    ++entries;
+    EXPECT_NE(item->plottable()->brush().style(), Qt::NoBrush);
+    EXPECT_GE(item->plottable()->brush().color().alpha(), 100);
+    EXPECT_EQ(item->plottable()->pen().color().alpha(), 255);
+  }
+  EXPECT_EQ(entries, 1);
+}
+
+TEST_F(RadomeWindow, InnovationScaleIgnoresTheStartUpTransient) {
+  // The first steps' innovations reach hundreds of metres; the axis shows the settled ones.
+  auto r = radomeResult(w);
+  double settled = 0.0;
+  const double t_settle = r->t.front() + 0.05 * (r->t.back() - r->t.front());
+  for (std::size_t k = 0; k < r->steps(); ++k) {
+    if (r->t[k] < t_settle) continue;
+    for (int ax = 0; ax < 3; ++ax) {
+      const double y = r->innovation[static_cast<std::size_t>(ax)][k];
+      const double S = r->S[static_cast<std::size_t>(ax)][k];
+      if (std::isfinite(y)) settled = std::max({settled, std::abs(y), 2.0 * std::sqrt(S)});
+    }
+  }
+  const QCPRange y = plotNamed(w, "innovation")->yAxis->range();
+  EXPECT_LT(y.upper, 2.0 * settled);
+  EXPECT_GT(y.upper, settled);
 }
 
 TEST_F(RadomeWindow, ExportWritesEveryPlot) {

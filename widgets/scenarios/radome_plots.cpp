@@ -26,7 +26,39 @@ namespace {
 using radome::RadomeResult;
 
 constexpr int kTopModes = 5;
-constexpr double kLogMuFloor = -8.0;  // heat map shows log10 μ from 1e-8 to 1
+constexpr double kLogMuFloor = -8.0;         // heat map shows log10 μ from 1e-8 to 1
+constexpr std::size_t kMaxTickedSlopes = 9;  // up to this many grid values: a tick at each
+
+// Ticks at the grid's slope values (3 decimals) for a small grid, the normal ticker otherwise.
+void setGridTicks(QCPAxis* axis, const std::vector<double>& grid,
+                  const QSharedPointer<QCPAxisTickerText>& text,
+                  const QSharedPointer<QCPAxisTicker>& normal) {
+  if (grid.size() > kMaxTickedSlopes) {
+    if (axis->ticker() != normal) axis->setTicker(normal);
+    return;
+  }
+  text->clear();
+  for (double x : grid) {
+    QString label = QString::number(x, 'f', 3);
+    if (label == "-0.000") label = "0.000";
+    text->addTick(x, label);
+  }
+  if (axis->ticker() != text) axis->setTicker(text);
+}
+
+// A legend-only entry drawn as a filled swatch with an edge (a graph's own icon is a line, which
+// for a faint band is nearly invisible). It holds no data.
+class SwatchGraph final : public QCPGraph {
+ public:
+  using QCPGraph::QCPGraph;
+
+ protected:
+  void drawLegendIcon(QCPPainter* painter, const QRectF& rect) const override {
+    painter->setPen(pen());
+    painter->setBrush(brush());
+    painter->drawRect(rect.adjusted(1.0, 3.0, -1.0, -3.0));
+  }
+};
 
 // The IMM grid editor: one spin box per grid key, and the grid's slope values.
 class ImmGridEditor final : public QGroupBox {
@@ -137,6 +169,14 @@ class RadomeView final : public ScenarioView {
               .arg(sym),
           "time (s)", QString("slope R_%1 (–)").arg(sym));
       s.envelope = addBand(s.plot, "grid envelope", color::kSensor);
+      s.envelope.upper->removeFromLegend();
+      auto* key = new SwatchGraph(s.plot->xAxis, s.plot->yAxis);
+      key->setName("grid envelope");
+      QColor fill = color::kSensor;
+      fill.setAlpha(110);
+      key->setBrush(fill);
+      key->setPen(QPen(color::kBound));
+      key->addToLegend();
       s.center = addGraph(s.plot, "grid centre", color::kBound, Style::kDashed);
       s.truth = addGraph(s.plot, "truth", color::kTruth);
       s.est = addGraph(s.plot, QString("estimate Σ μ^j R̄_%1^j").arg(sym), color::kEstimate);
@@ -149,17 +189,22 @@ class RadomeView final : public ScenarioView {
     alpha_est_ = addGraph(alpha_, "estimated", color::kEstimate);
     alpha_cursor_ = addCursor(alpha_);
 
-    los_ = makePlot(parent, "LOS angles: true vs measured (seed 001, Fig. 3: ±2°)", "time (s)",
-                    "measured − true LOS (deg)");
-    los_psi_ = addGraph(los_, "z_ψ − ψ_LOS", color::kEstimate, Style::kDots);
-    los_theta_ = addGraph(los_, "z_θ − θ_LOS", color::kSecond, Style::kDots);
-    los_est_psi_ = addGraph(los_, "ψ̂_LOS − ψ_LOS (estimate)", color::kThird);
-    los_est_theta_ = addGraph(los_, "θ̂_LOS − θ_LOS (estimate)", color::kFourth);
+    los_ = makePlot(parent, "LOS angle error against the true LOS: measured and estimated",
+                    "time (s)", "LOS angle − true LOS (deg)");
+    los_psi_ = addGraph(los_, "measured z_ψ − ψ_LOS", color::kEstimate, Style::kDots);
+    los_theta_ = addGraph(los_, "measured z_θ − θ_LOS", color::kSecond, Style::kDots);
+    los_est_psi_ = addGraph(los_, "estimated ψ_LOS − ψ_LOS", color::kThird);
+    los_est_theta_ = addGraph(los_, "estimated θ_LOS − θ_LOS", color::kFourth);
     los_cursor_ = addCursor(los_);
 
     heat_ = makePlot(parent, "Mode probabilities μ on the slope grid at the replay cursor",
                      "slope R̄_ψ (–)", "slope R̄_θ (–)");
     heat_->legend->setVisible(false);
+    for (int axis = 0; axis < 2; ++axis) {
+      heat_text_ticker_[axis].reset(new QCPAxisTickerText);
+      heat_text_ticker_[axis]->setSubTickCount(0);
+      heat_normal_ticker_[axis].reset(new QCPAxisTicker);
+    }
     heat_map_ = new QCPColorMap(heat_->xAxis, heat_->yAxis);
     heat_scale_ = new QCPColorScale(heat_);
     // Beside the axis rect (below the title row that makePlot adds).
@@ -189,6 +234,12 @@ class RadomeView final : public ScenarioView {
     for (int i = 0; i < kTopModes; ++i)
       top_graphs_.push_back(addGraph(top_, "", color::cycle(i)));
     top_cursor_ = addCursor(top_);
+    // Probability ticks only (the axis runs above 1 to make room for the legend).
+    QSharedPointer<QCPAxisTickerText> mu_ticks(new QCPAxisTickerText);
+    for (double v : {0.0, 0.25, 0.5, 0.75, 1.0})
+      mu_ticks->addTick(v, QString::number(v));
+    mu_ticks->setSubTickCount(4);
+    top_->yAxis->setTicker(mu_ticks);
 
     innov_ = makePlot(parent, "Innovations of the most probable mode with ± 2√S", "time (s)",
                       "innovation (m)");
@@ -298,6 +349,27 @@ class RadomeView final : public ScenarioView {
     if (result_) drawUpTo(index);
   }
 
+  // Ghosts: each pinned tuning's slope estimates and refraction-error estimate as faded lines.
+  void setSnapshots(const Snapshots& snapshots) override {
+    for (auto& g : ghosts_) {
+      for (QCPGraph* graph : {g.slope[0], g.slope[1], g.alpha})
+        graph->parentPlot()->removeGraph(graph);
+    }
+    ghosts_.clear();
+    int i = 1;
+    for (const auto& [name, result] : snapshots) {
+      auto r = std::dynamic_pointer_cast<const RadomeResult>(result);
+      if (!r) continue;
+      QColor c = plot::color::cycle(i++ + 4);
+      c.setAlpha(130);
+      ghosts_.push_back({r,
+                         {plot::addGraph(slope_[0].plot, "estimate [" + name + "]", c),
+                          plot::addGraph(slope_[1].plot, "estimate [" + name + "]", c)},
+                         plot::addGraph(alpha_, "estimated [" + name + "]", c)});
+    }
+    if (result_) drawUpTo(cursor_);
+  }
+
  private:
   struct SlopePlot {
     QCustomPlot* plot = nullptr;
@@ -331,6 +403,8 @@ class RadomeView final : public ScenarioView {
     }
     heat_->xAxis->setRange(gp.front() - hp, gp.back() + hp);
     heat_->yAxis->setRange(gt.front() - ht, gt.back() + ht);
+    setGridTicks(heat_->xAxis, gp, heat_text_ticker_[0], heat_normal_ticker_[0]);
+    setGridTicks(heat_->yAxis, gt, heat_text_ticker_[1], heat_normal_ticker_[1]);
     const double tp = k < r.slope_psi_true.size() ? r.slope_psi_true[k] : kNoSample;
     const double tt = k < r.slope_theta_true.size() ? r.slope_theta_true[k] : kNoSample;
     heat_label_->setText(
@@ -361,6 +435,17 @@ class RadomeView final : public ScenarioView {
       setSeries(s.truth, r.t, axis == 0 ? r.slope_psi_true : r.slope_theta_true, n);
       setSeries(s.est, r.t, axis == 0 ? r.slope_psi : r.slope_theta, n);
     }
+    for (const auto& g : ghosts_) {
+      const RadomeResult& gr = *g.result;
+      // Cut at the cursor's time (a ghost may come from another dataset's time base).
+      const std::size_t gn =
+          all ? gr.steps()
+              : static_cast<std::size_t>(std::upper_bound(gr.t.begin(), gr.t.end(), tc) -
+                                         gr.t.begin());
+      setSeries(g.slope[0], gr.t, gr.slope_psi, gn);
+      setSeries(g.slope[1], gr.t, gr.slope_theta, gn);
+      setSeries(g.alpha, gr.t, gr.alpha_est_deg, gn);
+    }
     setSeries(alpha_meas_, r.t, r.alpha_meas_deg, n);
     setSeries(alpha_true_, r.t, r.alpha_true_deg, n);
     setSeries(alpha_est_, r.t, r.alpha_est_deg, n);
@@ -383,9 +468,14 @@ class RadomeView final : public ScenarioView {
     if (editor_) editor_->showGrid(r, n - 1, tc);
 
     QCustomPlot* timed[] = {slope_[0].plot, slope_[1].plot, alpha_, los_, top_, innov_, nis_};
-    for (QCustomPlot* p : timed)
+    for (QCustomPlot* p : {slope_[0].plot, slope_[1].plot, top_})
       plot::rescale(p, t0, t1);
-    top_->yAxis->setRange(-0.02, 1.02);
+    // The filter's start-up (first pseudo-measurement, P0) would set these ranges and flatten the
+    // steady part: scale them from the settled data on.
+    for (QCustomPlot* p : {alpha_, los_, innov_, nis_})
+      plot::rescale(p, t0, t1, plot::settleTime(t0, t1));
+    // Room above μ = 1 for the legend, which would otherwise hide the winning mode.
+    top_->yAxis->setRange(-0.02, 1.32);
     QCPItemStraightLine* cursors[] = {slope_[0].cursor, slope_[1].cursor, alpha_cursor_,
                                       los_cursor_,      top_cursor_,      innov_cursor_,
                                       nis_cursor_};
@@ -396,6 +486,12 @@ class RadomeView final : public ScenarioView {
     plot::replot(heat_);
   }
 
+  struct Ghost {
+    std::shared_ptr<const RadomeResult> result;
+    QCPGraph* slope[2];
+    QCPGraph* alpha;
+  };
+  std::vector<Ghost> ghosts_;
   std::shared_ptr<const RadomeResult> result_;
   std::size_t cursor_ = plot::kAll;
   ImmGridEditor* editor_ = nullptr;
@@ -412,6 +508,8 @@ class RadomeView final : public ScenarioView {
   QCPGraph *los_psi_ = nullptr, *los_theta_ = nullptr, *los_est_psi_ = nullptr,
            *los_est_theta_ = nullptr;
   QCPColorMap* heat_map_ = nullptr;
+  QSharedPointer<QCPAxisTickerText> heat_text_ticker_[2];  // [ψ, θ]
+  QSharedPointer<QCPAxisTicker> heat_normal_ticker_[2];
   QCPColorScale* heat_scale_ = nullptr;
   QCPItemText* heat_label_ = nullptr;
   std::vector<QCPGraph*> top_graphs_;

@@ -1,10 +1,12 @@
 #include "scenarios/radome/radome_imm.h"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <sstream>
 #include <string>
 
 #include "core/kalman_filter.h"
@@ -16,6 +18,12 @@ constexpr double kNegInf = -std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 const double kLog2Pi = std::log(2.0 * std::numbers::pi);
+std::string format_number(double v) {
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str();
+}
 }  // namespace
 
 Status check(const FilterParams& p) {
@@ -107,7 +115,7 @@ void RadomeImm::initialize(const Sample& s) {
       Vec<3>::Constant(p_.P0_acc_m2ps4);
   full_modes_.assign(r, g9);
   combined_pos_ = Y;
-  combined_var_.setConstant(p_.P0_pos_m2);
+  combined_P_pos_ = Covariance<3>::Identity() * p_.P0_pos_m2;
 }
 
 StepOutput RadomeImm::step(const Sample& s, double dt_s) {
@@ -303,20 +311,44 @@ void RadomeImm::finish(StepOutput& o) {
   if (p_.structure == Structure::kFull) {
     const Gaussian<9> c = imm_combine(full_modes_, mu);
     combined_pos_ = c.x.head<3>();
-    combined_var_ = c.P.diagonal().head<3>();
+    combined_P_pos_ = c.P.topLeftCorner<3, 3>();
   } else {
-    for (int ax = 0; ax < 3; ++ax) {
-      const Gaussian<3> c = imm_combine(axis_modes_[static_cast<std::size_t>(ax)], mu);
-      combined_pos_(ax) = c.x(kPos);
-      combined_var_(ax) = c.P(kPos, kPos);
-    }
+    combine_axis_positions(mu);
   }
   o.slope_psi = est_psi_;
   o.slope_theta = est_theta_;
   o.center_psi = center_psi_;
   o.center_theta = center_theta_;
   o.pos = combined_pos_;
-  o.var_pos = combined_var_;
+  o.P_pos = combined_P_pos_;
+}
+
+void RadomeImm::combine_axis_positions(const VecX& mu) {
+  // Combination (seed 001, Table 2) of the position, the only part the outputs use. Within a mode
+  // the axis blocks are independent, so across axes the mixture's covariance is the spread term
+  // Σ μ^j d^j d^jᵀ alone (d^j = x^j − x̂); along the diagonal Σ μ^j P^j_pp is added as well.
+  const auto r = static_cast<std::size_t>(modes());
+  Vec<3> x = Vec<3>::Zero();
+  for (std::size_t j = 0; j < r; ++j) {
+    for (std::size_t ax = 0; ax < 3; ++ax)
+      x(static_cast<Eigen::Index>(ax)) +=
+          mu(static_cast<Eigen::Index>(j)) * axis_modes_[ax][j].x(kPos);
+  }
+  Covariance<3> P = Covariance<3>::Zero();
+  for (std::size_t j = 0; j < r; ++j) {
+    const double m = mu(static_cast<Eigen::Index>(j));
+    if (m == 0.0) continue;
+    Vec<3> d;
+    for (std::size_t ax = 0; ax < 3; ++ax) {
+      const auto i = static_cast<Eigen::Index>(ax);
+      const Gaussian<3>& g = axis_modes_[ax][j];
+      d(i) = g.x(kPos) - x(i);
+      P(i, i) += m * g.P(kPos, kPos);
+    }
+    P.noalias() += (m * d) * d.transpose();
+  }
+  combined_pos_ = x;
+  combined_P_pos_ = P;
 }
 
 std::vector<double> RadomeResult::mode_probabilities(std::size_t k) const {
@@ -437,7 +469,32 @@ Dataset RadomeResult::table() const {
                S[2],
                nis,
                map_mode};
+  // The combined position variances and the NEES (appended: earlier columns keep their place).
+  const char* var_names[3] = {"var_x", "var_y", "var_z"};
+  for (int ax = 0; ax < 3; ++ax) {
+    std::vector<double> v(t.size(), kNaN);
+    for (std::size_t k = 0; k < v.size() && k < P_pos.size(); ++k)
+      v[k] = P_pos[k](ax, ax);
+    d.names.push_back(var_names[ax]);
+    d.columns.push_back(std::move(v));
+  }
+  d.names.push_back("nees");
+  d.columns.push_back(nees.size() == t.size() ? nees : std::vector<double>(t.size(), kNaN));
   return d;
+}
+
+void RadomeResult::compute_nees() {
+  const std::size_t n = t.size();
+  nees.assign(n, kNaN);
+  nees_dof = 3.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k >= P_pos.size() || k >= x_true.size() || k >= y_true.size() || k >= z_true.size()) break;
+    const Vec<3> e(x_est[k] - x_true[k], y_est[k] - y_true[k], z_est[k] - z_true[k]);
+    if (!e.allFinite() || !P_pos[k].allFinite()) continue;
+    const Eigen::LLT<Covariance<3>> llt(P_pos[k]);
+    if (llt.info() != Eigen::Success) continue;  // not positive definite: unknown
+    nees[k] = e.dot(llt.solve(e));
+  }
 }
 
 Expected<RadomeResult> run_radome_imm(const Inputs& in, const FilterParams& p,
@@ -483,6 +540,7 @@ Expected<RadomeResult> run_radome_imm(const Inputs& in, const FilterParams& p,
   r.alpha_est_deg = r.psi_los_est_deg = r.theta_los_est_deg = nan_col();
   r.psi_meas_deg = r.theta_meas_deg = nan_col();
   r.x_est = r.y_est = r.z_est = r.nis = r.map_mode = nan_col();
+  r.P_pos.assign(n, Covariance<3>::Constant(kNaN));
   for (int ax = 0; ax < 3; ++ax) {
     r.innovation[static_cast<std::size_t>(ax)] = nan_col();
     r.S[static_cast<std::size_t>(ax)] = nan_col();
@@ -499,6 +557,7 @@ Expected<RadomeResult> run_radome_imm(const Inputs& in, const FilterParams& p,
     r.x_est[k] = o.pos(0);
     r.y_est[k] = o.pos(1);
     r.z_est[k] = o.pos(2);
+    r.P_pos[k] = o.P_pos;
     const double pe = los_psi(o.pos), te = los_theta(o.pos);
     r.psi_los_est_deg[k] = pe * kRadToDeg;
     r.theta_los_est_deg[k] = te * kRadToDeg;
@@ -530,6 +589,7 @@ Expected<RadomeResult> run_radome_imm(const Inputs& in, const FilterParams& p,
   o0.slope_psi = o0.center_psi = 0.5 * (p.grid_min + p.grid_max);
   o0.slope_theta = o0.center_theta = o0.slope_psi;
   o0.pos = pseudo_measurement(s0.range_m, s0.psi_rad, s0.theta_rad);
+  o0.P_pos = Covariance<3>::Identity() * p.P0_pos_m2;
   o0.map_mode = imm.modes() / 2;
   record(first, s0, o0);
   for (std::size_t k = first + 1; k < n; ++k) {
@@ -545,6 +605,14 @@ Expected<RadomeResult> run_radome_imm(const Inputs& in, const FilterParams& p,
       }
       if (control.progress) control.progress(static_cast<double>(k) / static_cast<double>(n));
     }
+  }
+  // Equal ends with several values per axis (a slider passing through equality, say) make
+  // identical modes: the run is valid but the grid cannot tell slopes apart.
+  if (p.grid_min == p.grid_max && (p.n_psi > 1 || p.n_theta > 1)) {
+    r.warnings.push_back("grid.min = grid.max = " + format_number(p.grid_min) +
+                         " with grid.n_psi = " + std::to_string(p.n_psi) + ", grid.n_theta = " +
+                         std::to_string(p.n_theta) + ": all " + std::to_string(imm.modes()) +
+                         " modes have the same slopes, so the slope estimate cannot move");
   }
   if (first > 0) {
     r.warnings.push_back(std::to_string(first) + " leading rows without a measurement skipped");

@@ -51,8 +51,8 @@ struct Sample {
 struct StepOutput {
   double slope_psi = 0.0, slope_theta = 0.0;    // Σ μ^j R̄^j
   double center_psi = 0.0, center_theta = 0.0;  // grid centre used in this step
-  Vec<3> pos = Vec<3>::Zero();                  // combined relative position
-  Vec<3> var_pos = Vec<3>::Zero();              // its variance
+  Vec<3> pos = Vec<3>::Zero();                  // combined relative position, m
+  Covariance<3> P_pos = Covariance<3>::Zero();  // its covariance (spread terms included), m²
   Vec<3> innovation = Vec<3>::Zero();           // of the most probable mode
   Vec<3> S_diag = Vec<3>::Zero();
   double nis = 0.0;
@@ -86,6 +86,7 @@ class RadomeImm {
   void step_axis(const Sample& s, StepOutput& o);
   void step_full(const Sample& s, StepOutput& o);
   void finish(StepOutput& o);
+  void combine_axis_positions(const VecX& mu);
 
   FilterParams p_;
   double T_s_ = 0.0, model_dt_s_ = -1.0;
@@ -102,7 +103,8 @@ class RadomeImm {
   std::array<std::vector<Gaussian<3>>, 3> axis_modes_, axis_mixed_;  // [axis][mode]
   std::vector<Gaussian<9>> full_modes_, full_mixed_;
   VecX log_lik_;
-  Vec<3> combined_pos_ = Vec<3>::Zero(), combined_var_ = Vec<3>::Zero();
+  Vec<3> combined_pos_ = Vec<3>::Zero();
+  Covariance<3> combined_P_pos_ = Covariance<3>::Zero();
   // Scratch per grid line: corrected angles and their cos / sin.
   std::vector<double> cpsi_, spsi_, ctheta_, stheta_, inv1p_psi_, inv1p_theta_;
 };
@@ -117,6 +119,10 @@ struct RadomeResult final : RunResult {
   std::vector<double> psi_los_true_deg, theta_los_true_deg, psi_meas_deg, theta_meas_deg;
   std::vector<double> psi_los_est_deg, theta_los_est_deg;
   std::vector<double> x_est, y_est, z_est, x_true, y_true, z_true;
+  std::vector<Covariance<3>> P_pos;  // combined covariance of (x, y, z)_est, m²
+  // NEES of the combined position against the truth position (dof 3; NaN without truth).
+  std::vector<double> nees;
+  double nees_dof = 3.0;
   std::array<std::vector<double>, 3> innovation, S;  // most probable mode, per axis, m / m²
   std::vector<double> nis;
   std::vector<double> map_mode;
@@ -134,6 +140,9 @@ struct RadomeResult final : RunResult {
   Dataset table() const override;
   // The 3-D pseudo-measurement NIS (most probable mode) and each axis' y/√S.
   std::vector<InnovationChannel> channels() const override;
+  NeesSeries nees_series() const override { return {nees_dof, nees}; }
+  // Fills `nees` from x/y/z_est, P_pos and x/y/z_true: e^T P^{-1} e per step.
+  void compute_nees();
 };
 
 // Input columns of a dataset (angles in rad). `U` may be null (zero aircraft acceleration).

@@ -194,6 +194,7 @@ class RadomeScenario final : public Scenario {
     if (!rr) return Error{d.source + ": " + rr.error()};
     auto r = std::make_shared<radome::RadomeResult>(std::move(*rr));
     add_truth(*r, d);
+    r->compute_nees();
     compute_metrics(*r, d);
     return std::shared_ptr<const RunResult>(std::move(r));
   }
@@ -295,6 +296,16 @@ class RadomeScenario final : public Scenario {
         std::vector<double>(
             r.nis.begin() + static_cast<std::ptrdiff_t>(std::min(from, r.nis.size())), r.nis.end()),
         3.0);
+    // NEES of the combined position (truth covers x, y, z only: dof 3), over t ≥ 10 s like NIS.
+    if (r.nees.size() > from) {
+      const std::vector<double> tail(r.nees.begin() + static_cast<std::ptrdiff_t>(from),
+                                     r.nees.end());
+      if (count_finite(tail)) {
+        m["nees_mean"] = mean_finite(tail);
+        m["nees_dof"] = r.nees_dof;
+        m["nees_in_bounds"] = fraction_inside(tail, r.nees_dof);
+      }
+    }
     add_consistency_metrics(r.channels(), r.nees_series(), m);  // whiteness_p (worst axis)
     m["modes"] = r.modes();
     m["updates"] = static_cast<double>(r.updates);

@@ -1,5 +1,6 @@
 // kfw-cli on the ballbeam preset: `gain` prints the closed-form and DARE α-β, `run` prints the
-// paper-reproduction metrics, bad --set values fail with the key in the message.
+// paper-reproduction metrics and warns when the ball leaves the beam, bad --set values fail with
+// the key in the message.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -14,8 +15,10 @@ struct Output {
   std::string text;
 };
 
-Output cli(const std::string& args) {
-  const std::string cmd = std::string(KFW_CLI) + " " + args + " 2>&1";
+// `redirect` picks the stream(s) read: both by default, "2>/dev/null" stdout only,
+// "2>&1 >/dev/null" stderr only.
+Output cli(const std::string& args, const std::string& redirect = "2>&1") {
+  const std::string cmd = std::string(KFW_CLI) + " " + args + " " + redirect;
   Output out;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return out;
@@ -53,6 +56,24 @@ TEST(BallbeamCli, RunShowsDetectionOnNearNoiseFreeAndOffDegraded) {
   ASSERT_EQ(off.status, 0) << off.text;
   const auto k = nlohmann::json::parse(off.text);
   EXPECT_GT(k.at("rmse_pos").get<double>(), 5 * j.at("rmse_pos").get<double>());
+}
+
+TEST(BallbeamCli, BallLeavingTheBeamIsAWarningAndAMetric) {
+  const std::string args = "run " + preset() + " --set sim.burst=100";
+  const Output warnings = cli(args, "2>&1 >/dev/null");
+  EXPECT_EQ(warnings.status, 0) << warnings.text;
+  EXPECT_NE(warnings.text.find("kfw-cli: warning: ball off the beam"), std::string::npos)
+      << warnings.text;
+  EXPECT_NE(warnings.text.find("(detection on)"), std::string::npos) << warnings.text;
+  const Output metrics = cli(args, "2>/dev/null");
+  ASSERT_EQ(metrics.status, 0);
+  const auto j = nlohmann::json::parse(metrics.text);
+  ASSERT_TRUE(j.at("left_beam_at_s").is_number());
+  EXPECT_GT(j.at("left_beam_at_s").get<double>(), 1.0);  // after the set-point step
+  EXPECT_TRUE(j.at("left_beam_at_s_noise_free").is_null());
+  EXPECT_EQ(j.at("diverged").get<double>(), 0.0);
+  // The default run keeps the ball on the beam and prints no warning.
+  EXPECT_EQ(cli("run " + preset(), "2>&1 >/dev/null").text, "");
 }
 
 TEST(BallbeamCli, BadValuesNameTheKey) {

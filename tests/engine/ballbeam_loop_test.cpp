@@ -1,13 +1,18 @@
 // Seed 003 closed loop and the ballbeam scenario: Table 1's loop settles, detection on stays
 // close to the noise-free run while detection off degrades (Figs. 8, 9), runs are reproducible,
-// replaying a simulated log reproduces the in-loop filter, and bad input is a clear error.
+// replaying a simulated log reproduces the in-loop filter, bad input is a clear error, a ball
+// rolling off the beam is warned about (with time and variant), and K1_final is the settled gain.
 #include "scenarios/ballbeam/ballbeam_loop.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "core/scenario.h"
+#include "core/statistics.h"
 #include "scenarios/ballbeam/ballbeam_result.h"
 
 namespace kfw::ballbeam {
@@ -205,6 +210,112 @@ TEST(BallbeamScenario, TableHoldsEstimatesAndTheThreeStepResponses) {
   // Fig. 7b: the circuit output is exactly 0 V where the sample is flagged.
   for (std::size_t k = 0; k < t.rows(); ++k)
     ASSERT_EQ(t.col("v_sensor")[k] == 0.0, t.col("flagged")[k] == 1.0) << k;
+}
+
+TEST(BallbeamLoop, LeftBeamAtIsTheFirstSampleBeyondTheHalfLength) {
+  const double nan = std::nan("");
+  const std::vector<double> t{0.0, 0.1, 0.2, 0.3, 0.4, 0.5};
+  EXPECT_EQ(left_beam_at(t, {0.0, 0.2, -0.2, nan, -0.21, 0.3}, 0.2), 0.4);  // |x| = L/2 is on
+  EXPECT_TRUE(std::isnan(left_beam_at(t, {0.0, 0.1, nan, 0.2, -0.2, 0.0}, 0.2)));
+  EXPECT_TRUE(std::isnan(left_beam_at({}, {}, 0.2)));
+  EXPECT_EQ(SensorModel{}.half_length_m(), 0.2);  // the 0.4 m wire runs the whole beam
+}
+
+TEST(BallbeamLoop, SettledGainEndsTheLongestUnbrokenRunOfUpdates) {
+  const double nan = std::nan("");
+  LoopTrace tr;
+  tr.K1 = {0.9, 0.5, nan, 0.8, 0.6, 0.4, nan, 0.7, 0.45, 0.41, nan, 0.6};
+  tr.K2 = tr.K1;
+  SettledGain g = settled_gain(tr);
+  EXPECT_EQ(g.K1, 0.41);  // runs of 2, 3, 3 (the latest wins) and 1
+  EXPECT_EQ(g.K2, 0.41);
+  EXPECT_EQ(g.run, 3u);
+  tr.K1 = tr.K2 = {nan, nan};
+  g = settled_gain(tr);
+  EXPECT_TRUE(std::isnan(g.K1));
+  EXPECT_EQ(g.run, 0u);
+}
+
+TEST(BallbeamScenario, KfFinalGainIsTheSettledGainNotThePostGapOne) {
+  Fixture f;
+  f.v["filter"] = 0;  // kf
+  auto r = run(*f.s, Dataset{}, f.v);
+  ASSERT_TRUE(r);
+  const Metrics& m = r->metrics;
+  // The last update of the default run follows a contact loss: its gain is still well above α.
+  EXPECT_GT(last_finite(r->trace.K1), 1.2 * r->alpha);
+  // Between contact losses the KF's gain settles on the steady-state (DARE, eq. 16) gain.
+  EXPECT_NEAR(m.at("K1_final"), r->alpha, 1e-6);
+  EXPECT_NEAR(m.at("K1_final"), r->alpha_dare, 1e-6);
+  EXPECT_NEAR(m.at("K2_final_times_Ts"), r->beta, 1e-6);
+  EXPECT_GT(m.at("K_final_run"), 30.0);
+  // The steady filter uses α throughout.
+  f.v["filter"] = 1;
+  auto s = run(*f.s, Dataset{}, f.v);
+  ASSERT_TRUE(s);
+  EXPECT_NEAR(s->metrics.at("K1_final"), s->alpha, 1e-15);
+}
+
+bool has_warning(const RunResult& r, const std::string& a, const std::string& b) {
+  for (const auto& w : r.warnings) {
+    if (w.find(a) != std::string::npos && w.find(b) != std::string::npos) return true;
+  }
+  return false;
+}
+
+TEST(BallbeamScenario, BallLeavingTheBeamIsWarnedWithTimeAndVariant) {
+  Fixture f;
+  auto calm = run(*f.s, Dataset{}, f.v);
+  ASSERT_TRUE(calm);
+  EXPECT_TRUE(calm->warnings.empty());
+  for (const char* k : {"left_beam_at_s", "left_beam_at_s_noise_free", "left_beam_at_s_detect_on",
+                        "left_beam_at_s_detect_off"})
+    EXPECT_TRUE(std::isnan(calm->metrics.at(k))) << k;
+
+  // Contact losses of 100 samples on average: the ball rolls off although |x| stays far below
+  // the 1 km divergence limit.
+  f.v["sim.burst"] = 100;
+  auto r = run(*f.s, Dataset{}, f.v);
+  ASSERT_TRUE(r);
+  const Metrics& m = r->metrics;
+  EXPECT_EQ(m.at("diverged"), 0.0);
+  const double t_on = m.at("left_beam_at_s_detect_on");
+  ASSERT_TRUE(std::isfinite(t_on));
+  EXPECT_EQ(m.at("left_beam_at_s"), t_on);
+  EXPECT_TRUE(std::isnan(m.at("left_beam_at_s_noise_free")));
+  EXPECT_TRUE(std::isfinite(m.at("left_beam_at_s_detect_off")));
+  const auto& tr = r->trace;
+  std::size_t k_off = 0;
+  while (k_off < tr.t.size() && std::abs(tr.x_true[k_off]) <= 0.2)
+    ++k_off;
+  ASSERT_LT(k_off, tr.t.size());
+  EXPECT_EQ(tr.t[k_off], t_on);
+  // The simulation does not stop there.
+  EXPECT_EQ(tr.t.size(), 1501u);
+  EXPECT_TRUE(std::isfinite(tr.x_true.back()));
+  std::ostringstream at;
+  at << "t = " << t_on << " s";
+  EXPECT_TRUE(has_warning(*r, at.str(), "(detection on)"));
+  EXPECT_TRUE(has_warning(*r, "off the beam", "(detection off)"));
+  EXPECT_FALSE(has_warning(*r, "off the beam", "(noise-free)"));
+
+  // A replayed log whose truth leaves the beam says so too.
+  auto d = f.s->simulate(f.v);
+  ASSERT_TRUE(d.ok());
+  f.v["mode"] = 1;
+  auto replayed = run(*f.s, *d, f.v);
+  ASSERT_TRUE(replayed);
+  EXPECT_EQ(replayed->metrics.at("left_beam_at_s"), t_on);
+  EXPECT_TRUE(has_warning(*replayed, "off the beam", "(logged truth)"));
+
+  // Ts = 0.1 s: even the noise-free loop loses the ball.
+  f.v["mode"] = 0;
+  f.v["sim.burst"] = 3;
+  f.v["Ts"] = 0.1;
+  auto slow = run(*f.s, Dataset{}, f.v);
+  ASSERT_TRUE(slow);
+  EXPECT_TRUE(std::isfinite(slow->metrics.at("left_beam_at_s_noise_free")));
+  EXPECT_TRUE(has_warning(*slow, "off the beam", "(noise-free)"));
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // The ballbeam window driven as a user would, offscreen: the detection check box and the filter
 // combo re-run live, the step plot overlays the three closed-loop runs, the α-β operating point
-// follows Q and R, export writes every plot.
+// follows Q and R, export writes every plot, pinned tunings leave ghosts cut at the cursor.
 #include <qcustomplot.h>
 
 #include <gtest/gtest.h>
@@ -76,7 +76,7 @@ TEST_F(BallbeamWindow, DetectionCheckBoxRerunsLive) {
   auto* check = w.findChild<QCheckBox*>("check.detection");
   ASSERT_NE(check, nullptr);
   ASSERT_TRUE(check->isChecked());
-  QCPGraph* est = graphNamed(plotNamed(w, "position"), "estimate x̂");
+  QCPGraph* est = graphNamed(plotNamed(w, "position"), "estimate of x");
   ASSERT_NE(est, nullptr);
   const auto before = values(est);
   const double rmse_on = w.result()->metrics.at("rmse_pos");
@@ -125,7 +125,7 @@ TEST_F(BallbeamWindow, OperatingPointFollowsR) {
 }
 
 TEST_F(BallbeamWindow, ReplayRevealsUpToTheCursorAndExportWritesEveryPlot) {
-  QCPGraph* est = graphNamed(plotNamed(w, "position"), "estimate x̂");
+  QCPGraph* est = graphNamed(plotNamed(w, "position"), "estimate of x");
   w.transport()->seek(199);
   EXPECT_EQ(est->data()->size(), 200);
   w.transport()->setShowAll(true);
@@ -136,6 +136,71 @@ TEST_F(BallbeamWindow, ReplayRevealsUpToTheCursorAndExportWritesEveryPlot) {
   EXPECT_EQ(files->size(), w.exportedPlots().size());
   for (const QString& f : *files)
     EXPECT_GT(QFile(f).size(), 2000) << f.toStdString();
+}
+
+TEST_F(BallbeamWindow, PinnedTuningLeavesGhostsCutAtTheCursor) {
+  const auto pinned = result();
+  ASSERT_TRUE(pinned);
+  w.pinSnapshot("tight");
+  w.setParam("R", w.values().at("R") * 100);
+  ASSERT_TRUE(w.waitForRun());
+  ASSERT_EQ(w.snapshotCount(), 1);
+  QCustomPlot* pos = plotNamed(w, "position");
+  QCustomPlot* step = plotNamed(w, "step");
+  QCPGraph* est = graphNamed(pos, "estimate of x, tight");
+  QCPGraph* resp = graphNamed(step, "tight (detection on)");
+  ASSERT_TRUE(est && resp);
+  EXPECT_LT(est->pen().color().alpha(), 255);  // faded
+  // The ghosts hold the pinned run, not the live one.
+  const std::size_t n = pinned->steps();
+  ASSERT_EQ(values(est).size(), n);
+  ASSERT_EQ(values(resp).size(), n);
+  EXPECT_EQ(values(est), pinned->trace.x_hat);
+  EXPECT_EQ(values(resp), pinned->x_detect_on);
+  EXPECT_NE(values(est), values(graphNamed(pos, "estimate of x")));
+  // Replay cuts them at the cursor like the live curves.
+  w.transport()->seek(199);
+  EXPECT_EQ(est->data()->size(), 200);
+  EXPECT_EQ(resp->data()->size(), 200);
+  w.transport()->setShowAll(true);
+  EXPECT_EQ(static_cast<std::size_t>(est->data()->size()), n);
+  // A second pin adds a pair; clearing removes every ghost.
+  w.setParam("detection", 0.0);
+  ASSERT_TRUE(w.waitForRun());
+  w.pinSnapshot("no circuit");
+  EXPECT_NE(graphNamed(pos, "estimate of x, tight"), nullptr);
+  QCPGraph* off = graphNamed(step, "no circuit (detection off)");
+  ASSERT_NE(off, nullptr);
+  EXPECT_EQ(values(off), result()->x_detect_off);
+  const int graphs = step->graphCount();
+  w.clearSnapshots();
+  EXPECT_EQ(step->graphCount(), graphs - 2);
+  EXPECT_EQ(graphNamed(pos, "estimate of x, tight"), nullptr);
+  EXPECT_EQ(graphNamed(step, "no circuit (detection off)"), nullptr);
+}
+
+TEST_F(BallbeamWindow, LegendsUsePlainLabels) {
+  // x̂ (combining circumflex) and x_c do not render at the legend's size.
+  for (const auto& panel : w.plots()) {
+    for (int i = 0; i < panel.plot->graphCount(); ++i) {
+      const QString name = panel.plot->graph(i)->name();
+      EXPECT_FALSE(name.contains(QChar(0x0302))) << name.toStdString();
+      EXPECT_FALSE(name.contains('_')) << name.toStdString();
+    }
+  }
+}
+
+TEST_F(BallbeamWindow, StartUpTransientDoesNotSetTheInnovationAxis) {
+  auto r = result();
+  ASSERT_TRUE(r);
+  // Steady innovations are a few mm; the start-up band (P0) reaches ±0.2 m.
+  double late = 0.0;
+  for (std::size_t k = r->steps() / 10; k < r->steps(); ++k) {
+    if (std::isfinite(r->trace.S[k])) late = std::max(late, 2.0 * std::sqrt(r->trace.S[k]));
+  }
+  const QCPRange y = plotNamed(w, "innovation")->yAxis->range();
+  EXPECT_LT(y.upper, 3.0 * late);
+  EXPECT_GT(y.upper, late);
 }
 
 }  // namespace

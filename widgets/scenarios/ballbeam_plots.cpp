@@ -1,11 +1,14 @@
 // Plots of the `ballbeam` scenario (seed 003): ball position (truth, raw sensor with spikes,
 // estimate, flagged samples), sensor voltage with and without the circuit (Fig. 7), beam angle and
 // command, innovation ± 2√S, α and β versus λ with the operating point, and the step response
-// noise-free / detection on / detection off overlaid (Figs. 8, 9).
+// noise-free / detection on / detection off overlaid (Figs. 8, 9); pinned tunings as faded ghosts.
+// Legend text stays plain: at the legend's 8 pt a combining circumflex (x̂) is misplaced and there
+// is no subscript c, so "estimate of x" and "set-point" rather than x̂ and x_c.
 #include <qcustomplot.h>
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "plot_kit.h"
 #include "scenario_view.h"
@@ -34,20 +37,20 @@ class BallbeamView final : public ScenarioView {
     pos_band_ = addBand(pos_, "estimate ± 2σ", color::kEstimate);
     pos_sensor_ = addGraph(pos_, "raw sensor x̃", color::kSensor, Style::kDots);
     pos_lost_ = addMarkers(pos_, "contact lost", color::kSecond, QCPScatterStyle::ssCross, 6);
-    pos_setpoint_ = addGraph(pos_, "set-point x_c", color::kFourth, Style::kDashed);
+    pos_setpoint_ = addGraph(pos_, "set-point", color::kFourth, Style::kDashed);
     pos_truth_ = addGraph(pos_, "truth", color::kTruth, Style::kLine);
-    pos_est_ = addGraph(pos_, "estimate x̂", color::kEstimate, Style::kLine);
+    pos_est_ = addGraph(pos_, "estimate of x", color::kEstimate, Style::kLine);
     pos_cursor_ = addCursor(pos_);
 
     volt_ = makePlot(parent, "Contact sensor voltage (seed 003, Fig. 7)", "time (s)",
-                     "sensor output V_out (V)");
+                     "sensor output voltage (V)");
     volt_raw_ = addGraph(volt_, "without circuit (a)", color::kSecond, Style::kLine);
     volt_circ_ = addGraph(volt_, "with circuit (b)", color::kEstimate, Style::kLine);
     volt_zero_ = addMarkers(volt_, "0 V detections", color::kTruth, QCPScatterStyle::ssCircle, 5);
     volt_cursor_ = addCursor(volt_);
 
     beam_ = makePlot(parent, "Beam angle and command", "time (s)", "beam angle (rad)");
-    beam_cmd_ = addGraph(beam_, "command θ_c", color::kFourth, Style::kLine);
+    beam_cmd_ = addGraph(beam_, "angle command", color::kFourth, Style::kLine);
     beam_theta_ = addGraph(beam_, "angle θ", color::kTruth, Style::kLine);
     beam_V_ = addGraphRight(beam_, "motor voltage V", color::kFifth, "motor voltage V (V)");
     beam_cursor_ = addCursor(beam_);
@@ -77,7 +80,7 @@ class BallbeamView final : public ScenarioView {
 
     step_ = makePlot(parent, "Step response: noise-free vs detection on / off (Figs. 8, 9)",
                      "time (s)", "ball position x (m)");
-    step_setpoint_ = addGraph(step_, "set-point x_c", color::kFourth, Style::kDashed);
+    step_setpoint_ = addGraph(step_, "set-point", color::kFourth, Style::kDashed);
     step_off_ = addGraph(step_, "detection off", color::kSecond, Style::kLine, 1.2);
     step_on_ = addGraph(step_, "detection on", color::kEstimate, Style::kLine, 1.6);
     step_clean_ = addGraph(step_, "noise-free", color::kTruth, Style::kDashed, 1.4);
@@ -134,7 +137,9 @@ class BallbeamView final : public ScenarioView {
                               .arg(r->beta_dare, 0, 'f', 4)
                               .arg(r->Ts_s, 0, 'g', 3));
     curve_->xAxis->setRange(lo, hi);
-    curve_->yAxis->setRange(std::min(1e-5, r->beta / 3), 3.0);
+    // Down to the smallest β drawn (no empty decade under the curves).
+    const double beta_lo = curve.beta.empty() ? 1e-5 : curve.beta.front();
+    curve_->yAxis->setRange(std::min(beta_lo, r->beta) / 2, 3.0);
     plot::replot(curve_);
     drawUpTo(cursor_);
   }
@@ -142,6 +147,30 @@ class BallbeamView final : public ScenarioView {
   void setCursor(std::size_t index) override {
     cursor_ = index;
     if (result_) drawUpTo(index);
+  }
+
+  // Ghosts: each pinned tuning's estimate (position plot) and the true ball position of its own
+  // run (step plot: detection on or off as pinned, or the log's truth in replay), faded.
+  void setSnapshots(const Snapshots& snapshots) override {
+    for (const auto& g : ghosts_) {
+      for (QCPGraph* graph : {g.estimate, g.step})
+        graph->parentPlot()->removeGraph(graph);
+    }
+    ghosts_.clear();
+    int i = 1;
+    for (const auto& [name, result] : snapshots) {
+      auto r = std::dynamic_pointer_cast<const BallbeamResult>(result);
+      if (!r) continue;
+      // Past the colours the live curves use (pink, cyan, olive, ...).
+      QColor c = plot::color::cycle(i++ + 5);
+      c.setAlpha(170);
+      const QString run = !r->closed_loop                     ? "truth"
+                          : r->trace.x_true == r->x_detect_on ? "detection on"
+                                                              : "detection off";
+      ghosts_.push_back({r, plot::addGraph(pos_, "estimate of x, " + name, c),
+                         plot::addGraph(step_, name + " (" + run + ")", c)});
+    }
+    if (result_) drawUpTo(cursor_);
   }
 
  private:
@@ -172,7 +201,21 @@ class BallbeamView final : public ScenarioView {
     setSeries(step_clean_, r.t, r.x_noise_free, n);
     setSeries(step_on_, r.t, r.x_detect_on, n);
     setSeries(step_off_, r.t, r.x_detect_off, n);
-    for (QCustomPlot* p : {pos_, volt_, beam_, innov_, step_})
+    for (const auto& g : ghosts_) {
+      // Cut at the cursor's time (a pinned tuning may have another Ts).
+      const auto& gt = g.result->t;
+      const std::size_t gn =
+          all ? gt.size()
+              : static_cast<std::size_t>(std::upper_bound(gt.begin(), gt.end(), tc) - gt.begin());
+      setSeries(g.estimate, gt, g.result->trace.x_hat, gn);
+      setSeries(g.step, gt, g.result->trace.x_true, gn);
+    }
+    // The estimator's start-up (P0: ±0.2 m bands for the first 0.3 s) would set the position and
+    // innovation axes and flatten the ±4 mm steady innovations; they run off the top instead.
+    const double settle = plot::settleTime(t0, t1);
+    for (QCustomPlot* p : {pos_, innov_})
+      plot::rescale(p, t0, t1, settle);
+    for (QCustomPlot* p : {volt_, beam_, step_})
       plot::rescale(p, t0, t1);
     // The beam's motor-voltage axis follows its own data (the saturation limits stay visible).
     double v_lo = -1.0, v_hi = 1.0;
@@ -189,6 +232,11 @@ class BallbeamView final : public ScenarioView {
       plot::replot(p);
   }
 
+  struct Ghost {
+    std::shared_ptr<const BallbeamResult> result;
+    QCPGraph *estimate, *step;
+  };
+  std::vector<Ghost> ghosts_;
   std::shared_ptr<const BallbeamResult> result_;
   std::size_t cursor_ = plot::kAll;
   std::vector<double> two_sigma_, two_sqrt_S_, lost_x_, zero_v_, zero_;

@@ -150,7 +150,33 @@ LoopTrace run_closed_loop(const LoopParams& p, const BallTracker& tracker, const
       break;
     }
   }
+  tr.left_beam_at_s = left_beam_at(tr.t, tr.x_true, p.sensor.half_length_m());
   return tr;
+}
+
+double left_beam_at(const std::vector<double>& t, const std::vector<double>& x_m,
+                    double half_length_m) {
+  const std::size_t n = std::min(t.size(), x_m.size());
+  for (std::size_t k = 0; k < n; ++k) {
+    if (std::isfinite(x_m[k]) && std::abs(x_m[k]) > half_length_m) return t[k];
+  }
+  return kNaN;
+}
+
+SettledGain settled_gain(const LoopTrace& tr) {
+  SettledGain best;
+  std::size_t run = 0;
+  const std::size_t n = std::min(tr.K1.size(), tr.K2.size());
+  for (std::size_t k = 0; k < n; ++k) {
+    // K1 is NaN exactly where the update was skipped (flagged or no reading).
+    if (!std::isfinite(tr.K1[k])) {
+      run = 0;
+      continue;
+    }
+    ++run;
+    if (run >= best.run) best = {tr.K1[k], tr.K2[k], run};
+  }
+  return best;
 }
 
 LoopTrace replay(const std::vector<double>& t, const std::vector<double>& x_meas,

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/dataset.h"
@@ -36,6 +37,9 @@ struct SensorModel {
   // §III).
   double volts(double x_m) const { return Vcc_V * (0.5 + x_m / beam_length_m); }
   double position(double volts_V) const { return (volts_V / Vcc_V - 0.5) * beam_length_m; }
+  // The wire runs the beam's whole length, so the ball is on the beam while |x| ≤ L/2 (seed 003
+  // gives no beam length; 0.4 m is chosen, see presets/ballbeam.json).
+  double half_length_m() const { return beam_length_m / 2.0; }
 };
 
 struct LoopParams {
@@ -80,8 +84,26 @@ struct LoopTrace {
   std::size_t skipped_updates = 0;
   bool diverged = false;  // the loop left ±1 km or produced NaN; later samples are NaN
   double diverged_at_s = 0.0;
+  // First time the true ball position leaves the beam (|x| > L/2); NaN while it stays on. The
+  // linear plant (eq. 11) has no beam ends, so the simulation carries on past it.
+  double left_beam_at_s = std::numeric_limits<double>::quiet_NaN();
   void resize(std::size_t n);
 };
+
+// The first t_k with |x_k| > half_length_m (non-finite x are skipped); NaN if there is none.
+double left_beam_at(const std::vector<double>& t, const std::vector<double>& x_m,
+                    double half_length_m);
+
+// The tracker's gain once settled. A time-varying KF's gain jumps after every skipped update (P̄
+// grew over the missing samples) and decays back over the following updates, so the very last
+// update's gain may sit on that transient. This is the gain at the end of the longest unbroken
+// run of updates (the latest of equally long runs); `run` counts its updates (0: none).
+struct SettledGain {
+  double K1 = std::numeric_limits<double>::quiet_NaN();
+  double K2 = std::numeric_limits<double>::quiet_NaN();
+  std::size_t run = 0;
+};
+SettledGain settled_gain(const LoopTrace& tr);
 
 struct LoopOptions {
   bool detection = true;  // the circuit flags contact losses as missing data

@@ -88,6 +88,12 @@ std::string num(double v) {
   return os.str();
 }
 
+// The ball has rolled off the beam: eq. 11 knows no beam ends, so the run goes on regardless.
+std::string left_beam_warning(double t_s, double half_length_m, const std::string& variant) {
+  return "ball off the beam (|x| > " + num(half_length_m) + " m) at t = " + num(t_s) + " s (" +
+         variant + "); the linear model has no beam ends, the run goes on";
+}
+
 bool is_simulated(const Dataset& d) {
   return d.source.rfind("simulated ballbeam", 0) == 0;
 }
@@ -197,25 +203,30 @@ class BallbeamScenario final : public Scenario {
       r->x_hat_detect_off = t_off.x_hat;
       r->step_time_s = lp->step_time_s;
       Metrics& m = r->metrics;
-      auto variant = [&](const LoopTrace& t, const std::string& suffix) {
+      const double half_m = lp->sensor.half_length_m();
+      auto variant = [&](const LoopTrace& t, const std::string& suffix, const std::string& label) {
         const std::size_t from = first_index_at(t.t, lp->step_time_s);
         m["rmse_pos" + suffix] = rmse_finite(t.x_hat, t.x_true);
         m["tracking_rmse" + suffix] = rmse_finite(t.x_true, t.setpoint, from);
         m["max_abs_pos" + suffix] = max_abs(t.x_true);
         m["max_abs_theta" + suffix] = max_abs(t.theta);
         m["V_rms" + suffix] = std::sqrt(mean_square(t.V));
+        m["left_beam_at_s" + suffix] = t.left_beam_at_s;
+        if (std::isfinite(t.left_beam_at_s))
+          r->warnings.push_back(left_beam_warning(t.left_beam_at_s, half_m, label));
         if (t.diverged)
-          r->warnings.push_back("closed loop" + suffix +
-                                " diverged at t = " + num(t.diverged_at_s) + " s");
+          r->warnings.push_back("closed loop (" + label +
+                                ") diverged at t = " + num(t.diverged_at_s) + " s");
       };
-      variant(t_clean, "_noise_free");
-      variant(t_on, "_detect_on");
-      variant(t_off, "_detect_off");
+      variant(t_clean, "_noise_free", "noise-free");
+      variant(t_on, "_detect_on", "detection on");
+      variant(t_off, "_detect_off", "detection off");
       m["step_gap_detect_on"] = rmse_finite(t_on.x_true, t_clean.x_true);
       m["step_gap_detect_off"] = rmse_finite(t_off.x_true, t_clean.x_true);
       r->trace = detection ? std::move(t_on) : std::move(t_off);
       m["rmse_pos"] = m[detection ? "rmse_pos_detect_on" : "rmse_pos_detect_off"];
       m["tracking_rmse"] = m[detection ? "tracking_rmse_detect_on" : "tracking_rmse_detect_off"];
+      m["left_beam_at_s"] = r->trace.left_beam_at_s;
       m["diverged"] = r->trace.diverged ? 1.0 : 0.0;
     } else {
       if (auto st = require_columns(d, columns()); !st) return Error{st.error()};
@@ -247,6 +258,11 @@ class BallbeamScenario final : public Scenario {
       if (from == sp.size()) from = 0;
       r->step_time_s = from < r->trace.t.size() ? r->trace.t[from] : 0.0;
       m["tracking_rmse"] = rmse_finite(r->trace.x_true, sp, from);
+      const double half_m = SensorModel{}.half_length_m();
+      r->trace.left_beam_at_s = left_beam_at(r->trace.t, r->trace.x_true, half_m);
+      m["left_beam_at_s"] = r->trace.left_beam_at_s;
+      if (std::isfinite(r->trace.left_beam_at_s))
+        r->warnings.push_back(left_beam_warning(r->trace.left_beam_at_s, half_m, "logged truth"));
     }
     r->t = r->trace.t;
     const LoopTrace& tr = r->trace;
@@ -270,8 +286,12 @@ class BallbeamScenario final : public Scenario {
     m["beta_dare"] = r->beta_dare;
     m["missing_fraction"] = n > 0 ? static_cast<double>(tr.lost_samples) / n : kNoSample;
     m["skipped_fraction"] = n > 0 ? static_cast<double>(tr.skipped_updates) / n : kNoSample;
-    m["K1_final"] = last_finite(tr.K1);
-    m["K2_final_times_Ts"] = last_finite(tr.K2) * r->Ts_s;
+    // The settled gain (end of the longest unbroken run of updates), not the last update's,
+    // which may follow a skipped sample; for the steady filter both are α and β/Ts.
+    const SettledGain settled = settled_gain(tr);
+    m["K1_final"] = settled.K1;
+    m["K2_final_times_Ts"] = settled.K2 * r->Ts_s;
+    m["K_final_run"] = static_cast<double>(settled.run);
     m["nis_mean"] = mean_finite(tr.nis);
     add_consistency_metrics(r->channels(), r->nees_series(), m);
     m["steps"] = n;

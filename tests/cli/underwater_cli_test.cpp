@@ -57,9 +57,43 @@ TEST(UnderwaterCli, RunPrintsTheTable13Metrics) {
   ASSERT_EQ(r.status, 0) << r.text;
   const auto j = nlohmann::json::parse(r.text.substr(r.text.find('{')));
   for (const char* k : {"pos_mean", "pos_std", "pos_max", "pos_rmse", "outliers_injected",
-                        "outliers_detected", "outliers_false_alarm"}) {
+                        "outliers_detected", "outliers_false_alarm", "nees_mean", "nees_dof"}) {
     EXPECT_TRUE(j.contains(k)) << k;
   }
+  EXPECT_EQ(j["outliers_injected"].get<double>(), 276.0);
+  EXPECT_EQ(j["nees_dof"].get<double>(), 3.0);
+}
+
+// A log without the injected-outlier columns: which rejections were outliers is unknown, so the
+// outlier counts print as null, in `run` and in `stats`.
+TEST(UnderwaterCli, OutlierCountsAreNullWithoutInjectedColumns) {
+  const std::string csv = temp_csv("uw_full");
+  const std::string sets = " --set sim.clock=synchronous --set sim.duration=120";
+  ASSERT_EQ(cli("simulate underwater --out " + csv + sets).status, 0);
+  // outlier1..4 are the last four of the 26 columns.
+  const std::string cut = temp_csv("uw_no_outliers");
+  ASSERT_EQ(std::system(("cut -d, -f1-22 " + csv + " > " + cut).c_str()), 0);
+  auto r = cli("run underwater --data " + cut + sets);
+  ASSERT_EQ(r.status, 0) << r.text;
+  const auto j = nlohmann::json::parse(r.text.substr(r.text.find('{')));
+  for (const char* k : {"outliers_injected", "outliers_detected", "outliers_false_alarm"}) {
+    ASSERT_TRUE(j.contains(k)) << k;
+    EXPECT_TRUE(j[k].is_null()) << k << " = " << j[k];
+  }
+  EXPECT_GT(j["ranges_rejected"].get<double>(), 0.0);
+  EXPECT_TRUE(j["nees_mean"].is_number());
+  auto st = cli("stats underwater --data " + cut + sets);
+  ASSERT_EQ(st.status, 0) << st.text;
+  const auto js = nlohmann::json::parse(st.text);
+  for (const char* k : {"outliers_injected", "outliers_detected", "outliers_false_alarm"}) {
+    EXPECT_TRUE(js[k].is_null()) << k << " = " << js[k];
+  }
+  // With the columns the same counts are numbers.
+  const auto full = nlohmann::json::parse(cli("stats underwater --data " + csv + sets).text);
+  EXPECT_TRUE(full["outliers_false_alarm"].is_number());
+  EXPECT_EQ(full["outliers_injected"].get<int>(), 276);
+  std::filesystem::remove(csv);
+  std::filesystem::remove(cut);
 }
 
 TEST(UnderwaterCli, MissingBeaconColumnIsAClearError) {

@@ -44,6 +44,25 @@ std::vector<double> missing_times(const std::vector<double>& times) {
   return out;
 }
 
+// (X̂ − X)ᵀ P⁻¹ (X̂ − X) over the covered coordinates; NaN when one of them has no truth or P is
+// not positive definite there.
+double position_nees(const Gaussian<3>& g, const Vec<3>& truth, const std::vector<int>& covered) {
+  const auto m = static_cast<Eigen::Index>(covered.size());
+  if (m == 0) return kNoSample;
+  VecX e(m);
+  MatX P(m, m);
+  for (Eigen::Index a = 0; a < m; ++a) {
+    const int i = covered[static_cast<std::size_t>(a)];
+    if (!std::isfinite(truth(i))) return kNoSample;
+    e(a) = g.x(i) - truth(i);
+    for (Eigen::Index b = 0; b < m; ++b)
+      P(a, b) = g.P(i, covered[static_cast<std::size_t>(b)]);
+  }
+  const Eigen::LLT<MatX> llt(P);
+  if (llt.info() != Eigen::Success) return kNoSample;
+  return e.dot(llt.solve(e));
+}
+
 }  // namespace
 
 double predicted_range(const Vec<3>& X, const Vec<3>& B) {
@@ -81,6 +100,11 @@ std::vector<InnovationChannel> UnderwaterResult::channels() const {
   return out;
 }
 
+NeesSeries UnderwaterResult::nees_series() const {
+  if (!(nees_dof > 0.0)) return {};
+  return {nees_dof, nees};
+}
+
 Dataset UnderwaterResult::table() const {
   Dataset d;
   d.source = "underwater run";
@@ -95,10 +119,14 @@ Dataset UnderwaterResult::table() const {
   add("Pxx", Pxx);
   add("Pyy", Pyy);
   add("Pzz", Pzz);
+  add("Pxy", Pxy);
+  add("Pxz", Pxz);
+  add("Pyz", Pyz);
   add("x_true", x_true);
   add("y_true", y_true);
   add("z_true", z_true);
   add("pos_err", pos_err);
+  add("nees", nees);
   static const char* const kInnovation[kBeacons] = {"innovation1", "innovation2", "innovation3",
                                                     "innovation4"};
   static const char* const kS[kBeacons] = {"S1", "S2", "S3", "S4"};
@@ -146,8 +174,8 @@ Expected<UnderwaterResult> run_ekf(const Dataset& d, const FilterParams& p,
 
   UnderwaterResult r;
   r.t = t;
-  for (auto* v :
-       {&r.x, &r.y, &r.z, &r.Pxx, &r.Pyy, &r.Pzz, &r.pos_err, &r.depth_innovation, &r.depth_S}) {
+  for (auto* v : {&r.x, &r.y, &r.z, &r.Pxx, &r.Pyy, &r.Pzz, &r.Pxy, &r.Pxz, &r.Pyz, &r.pos_err,
+                  &r.nees, &r.depth_innovation, &r.depth_S}) {
     v->assign(n, kNoSample);
   }
   r.x_true = truth[0] ? *truth[0] : std::vector<double>(n, kNoSample);
@@ -163,6 +191,16 @@ Expected<UnderwaterResult> run_ekf(const Dataset& d, const FilterParams& p,
   }
   for (auto& s : r.status)
     s.assign(n, kNoSample);
+  r.outliers_known = outlier[0] && outlier[1] && outlier[2] && outlier[3];
+  // NEES covers the coordinates that have truth somewhere in the dataset.
+  std::vector<int> covered;
+  for (int i = 0; i < 3; ++i) {
+    const std::vector<double>& c = i == kX ? r.x_true : i == kY ? r.y_true : r.z_true;
+    if (std::any_of(c.begin(), c.end(), [](double v) { return std::isfinite(v); })) {
+      covered.push_back(i);
+    }
+  }
+  r.nees_dof = static_cast<double>(covered.size());
 
   // Initial state: the start point (0, 0) at the first depth reading.
   double z0 = 0.0;
@@ -198,7 +236,7 @@ Expected<UnderwaterResult> run_ekf(const Dataset& d, const FilterParams& p,
     if (status == kInvalid) ++r.ranges_invalid;
     if (status == kRejected) {
       ++r.ranges_rejected;
-      ++(injected ? r.outliers_detected : r.outliers_false_alarm);
+      if (r.outliers_known) ++(injected ? r.outliers_detected : r.outliers_false_alarm);
     }
   };
 
@@ -365,8 +403,12 @@ Expected<UnderwaterResult> run_ekf(const Dataset& d, const FilterParams& p,
     r.Pxx[k] = g.P(kX, kX);
     r.Pyy[k] = g.P(kY, kY);
     r.Pzz[k] = g.P(kZ, kZ);
+    r.Pxy[k] = g.P(kX, kY);
+    r.Pxz[k] = g.P(kX, kZ);
+    r.Pyz[k] = g.P(kY, kZ);
     const Vec<3> xt(r.x_true[k], r.y_true[k], r.z_true[k]);
     if (xt.allFinite()) r.pos_err[k] = (g.x - xt).norm();
+    r.nees[k] = position_nees(g, xt, covered);
     if ((k & 0x3FFF) == 0x3FFF && control.cancelled()) break;
   }
   flush();

@@ -41,8 +41,8 @@ inline constexpr double kRejected = 1.0;  // failed the χ² gate
 inline constexpr double kInvalid = 2.0;   // range ≤ 0, or S not positive definite
 
 struct UnderwaterResult final : RunResult {
-  // Estimate and covariance diagonal after the row's updates.
-  std::vector<double> x, y, z, Pxx, Pyy, Pzz;
+  // Estimate and covariance after the row's updates.
+  std::vector<double> x, y, z, Pxx, Pyy, Pzz, Pxy, Pxz, Pyz;
   // Truth and command trajectory (NaN where the dataset has none); distance error |X̂ − X|.
   std::vector<double> x_true, y_true, z_true, x_cmd, y_cmd, pos_err;
   // Range innovation y = r − ‖X̂⁻ − B‖ and its S at the row the range arrived (NaN elsewhere).
@@ -58,12 +58,20 @@ struct UnderwaterResult final : RunResult {
   bool has_stats = false;
   ErrorStats stats;
   Covariance<kErrorDims> design = Covariance<kErrorDims>::Zero();
+  // NEES of the position estimate against truth, (X̂ − X)ᵀ P⁻¹ (X̂ − X) over the coordinates truth
+  // covers (nees_dof of x, y, z; 3 with full truth); NaN where truth is missing.
+  std::vector<double> nees;
+  double nees_dof = 0.0;
   std::size_t ranges_used = 0, ranges_rejected = 0, ranges_invalid = 0, depth_used = 0;
+  // Outlier bookkeeping needs the injected offsets (outlier1..4): without them whether a rejected
+  // range was an outlier is unknown, and outliers_known is false (the counts mean nothing).
+  bool outliers_known = false;
   std::size_t outliers_injected = 0, outliers_detected = 0, outliers_false_alarm = 0;
 
   Dataset table() const override;
   // Each range and the depth: NIS and y/√S of the updates that passed the gate.
   std::vector<InnovationChannel> channels() const override;
+  NeesSeries nees_series() const override;
 };
 
 // Runs the EKF over a dataset with the columns of simulate() (truth optional). Errors name a

@@ -275,9 +275,13 @@ class UnderwaterScenario final : public Scenario {
     m["pos_std"] = sd;
     m["pos_max"] = mx;
     m["pos_rmse"] = rmse;
-    m["outliers_injected"] = static_cast<double>(r->outliers_injected);
-    m["outliers_detected"] = static_cast<double>(r->outliers_detected);
-    m["outliers_false_alarm"] = static_cast<double>(r->outliers_false_alarm);
+    // Without the injected-outlier columns these are unknown, not zero (the CLI prints null).
+    auto known = [&](std::size_t count) {
+      return r->outliers_known ? static_cast<double>(count) : kNoSample;
+    };
+    m["outliers_injected"] = known(r->outliers_injected);
+    m["outliers_detected"] = known(r->outliers_detected);
+    m["outliers_false_alarm"] = known(r->outliers_false_alarm);
     m["ranges_used"] = static_cast<double>(r->ranges_used);
     m["ranges_rejected"] = static_cast<double>(r->ranges_rejected);
     m["ranges_invalid"] = static_cast<double>(r->ranges_invalid);
@@ -313,9 +317,14 @@ class UnderwaterScenario final : public Scenario {
     j["range_cov_mean"] = cov;
     j["range_depth_cov_mean"] = dcov;
     j["depth_var"] = st->covariance(kBeacons, kBeacons);
-    j["outliers_injected"] = st->outliers_injected;
-    j["outliers_detected"] = run_result->outliers_detected;
-    j["outliers_false_alarm"] = run_result->outliers_false_alarm;
+    // Unknown (null) without the injected-outlier columns.
+    if (run_result->outliers_known) {
+      j["outliers_injected"] = st->outliers_injected;
+      j["outliers_detected"] = run_result->outliers_detected;
+      j["outliers_false_alarm"] = run_result->outliers_false_alarm;
+    } else {
+      j["outliers_injected"] = j["outliers_detected"] = j["outliers_false_alarm"] = nullptr;
+    }
     j["scheme"] = params().format("scheme", param(v, "scheme"));
     j["gate"] = param(v, "gate");
     return j.dump(2);

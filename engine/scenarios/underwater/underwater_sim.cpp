@@ -22,16 +22,33 @@ double snap(double t) {
   return std::round(t / kTimeGrid_s) * kTimeGrid_s;
 }
 
+// One independent random stream: its own engine and its own distributions. A
+// std::normal_distribution caches the second value of each pair it generates, so sharing one
+// across engines would hand a draw of one stream to the next caller of another.
+class Stream {
+ public:
+  explicit Stream(std::uint64_t seed) : rng_(seed) {}
+  double gauss() { return normal_(rng_); }            // N(0, 1)
+  double uniform() { return uniform_(rng_); }         // U[0, 1)
+  std::size_t pick(std::size_t lo, std::size_t hi) {  // uniform in [lo, hi]
+    return std::uniform_int_distribution<std::size_t>(lo, hi)(rng_);
+  }
+
+ private:
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> normal_{0.0, 1.0};
+  std::uniform_real_distribution<double> uniform_{0.0, 1.0};
+};
+
 // Sensor times t_{s,i} = t_{s,i-1} + Δt + n_t (seed 004, Table 2), from 0 to the end of the run.
 // An interval never shrinks below Δt/10, so time stays increasing whatever σ_t is.
-std::vector<double> clock(double dt_s, double sigma_t_s, double duration_s, std::mt19937_64& rng) {
-  std::normal_distribution<double> unit(0.0, 1.0);
+std::vector<double> clock(double dt_s, double sigma_t_s, double duration_s, Stream& jitter_stream) {
   std::vector<double> t;
   t.reserve(static_cast<std::size_t>(duration_s / dt_s) + 2);
   double ts = 0.0;
   while (ts <= duration_s + 1e-9) {
     t.push_back(snap(ts));
-    const double jitter = sigma_t_s > 0.0 ? sigma_t_s * unit(rng) : 0.0;
+    const double jitter = sigma_t_s > 0.0 ? sigma_t_s * jitter_stream.gauss() : 0.0;
     ts += std::max(dt_s + jitter, 0.1 * dt_s);
   }
   return t;
@@ -88,23 +105,20 @@ Vec<6> motion_model(const Vec<6>& pose, const Vec<6>& velocity, double dt_s) {
 
 Dataset simulate(const SimParams& p) {
   // Independent streams, so that changing one uncertainty leaves the others' draws unchanged.
-  std::mt19937_64 rng_motion(p.seed * 7919 + 1), rng_clock(p.seed * 7919 + 2),
-      rng_sensor(p.seed * 7919 + 3), rng_corr(p.seed * 7919 + 4), rng_outlier(p.seed * 7919 + 5),
-      rng_drop(p.seed * 7919 + 6);
-  std::normal_distribution<double> unit(0.0, 1.0);
-  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  Stream motion(p.seed * 7919 + 1), clocks(p.seed * 7919 + 2), sensor(p.seed * 7919 + 3),
+      corr(p.seed * 7919 + 4), outlier_draws(p.seed * 7919 + 5), drop(p.seed * 7919 + 6);
 
   // Sensor clocks (Table 2): one shared clock, or one per sensor with the Table 3 periods.
   std::vector<std::pair<double, int>> events;  // (time, sensor)
   if (p.synchronous) {
-    for (double t : clock(p.dt_sync_s, p.sigma_t_s, p.duration_s, rng_clock)) {
+    for (double t : clock(p.dt_sync_s, p.sigma_t_s, p.duration_s, clocks)) {
       for (int s = 0; s < kSensorCount; ++s)
         events.emplace_back(t, s);
     }
   } else {
     for (int s = 0; s < kSensorCount; ++s) {
       for (double t :
-           clock(p.period_s[static_cast<std::size_t>(s)], p.sigma_t_s, p.duration_s, rng_clock)) {
+           clock(p.period_s[static_cast<std::size_t>(s)], p.sigma_t_s, p.duration_s, clocks)) {
         events.emplace_back(t, s);
       }
     }
@@ -151,8 +165,7 @@ Dataset simulate(const SimParams& p) {
   std::size_t j = 0;
   auto draw_velocity = [&] {
     for (int i = 0; i < 6; ++i) {
-      vel(i) =
-          p.command(i) + (p.motion_sigma(i) > 0.0 ? p.motion_sigma(i) * unit(rng_motion) : 0.0);
+      vel(i) = p.command(i) + (p.motion_sigma(i) > 0.0 ? p.motion_sigma(i) * motion.gauss() : 0.0);
     }
   };
   draw_velocity();
@@ -181,7 +194,7 @@ Dataset simulate(const SimParams& p) {
   std::vector<double> n_c(windows, 0.0);
   if (p.sigma_corr_m > 0.0) {
     for (double& v : n_c)
-      v = p.sigma_corr_m * unit(rng_corr);
+      v = p.sigma_corr_m * corr.gauss();
   }
 
   // Measurements at each sensor time (eq. 1–3 plus n_c).
@@ -193,20 +206,20 @@ Dataset simulate(const SimParams& p) {
     const Vec<6>& u = row_vel[k];
     if (s == kDvl) {
       for (int i = 0; i < 3; ++i)
-        (*dvl[i])[k] = u(i) + p.velocity_sigma(i) * unit(rng_sensor);
+        (*dvl[i])[k] = u(i) + p.velocity_sigma(i) * sensor.gauss();
     } else if (s == kAhrs) {
       for (int i = 0; i < 3; ++i) {
-        const double a = x(3 + i) + p.attitude_sigma_rad * unit(rng_sensor);
+        const double a = x(3 + i) + p.attitude_sigma_rad * sensor.gauss();
         (*ahrs[i])[k] = i == 2 ? wrap_pi(a) : a;
       }
       for (int i = 3; i < 6; ++i)
-        (*ahrs[i])[k] = u(i) + p.velocity_sigma(i) * unit(rng_sensor);
+        (*ahrs[i])[k] = u(i) + p.velocity_sigma(i) * sensor.gauss();
     } else if (s == kDepth) {
-      depth[k] = x(2) + p.sigma_depth_m * unit(rng_sensor);
+      depth[k] = x(2) + p.sigma_depth_m * sensor.gauss();
     } else {
       const int b = s - kRange1;
-      const double noise = p.sigma_range_m * unit(rng_sensor);
-      if (p.range_dropout > 0.0 && uni(rng_drop) < p.range_dropout) continue;
+      const double noise = p.sigma_range_m * sensor.gauss();
+      if (p.range_dropout > 0.0 && drop.uniform() < p.range_dropout) continue;
       const auto w = std::min(static_cast<std::size_t>(t[k] / p.t_gap_s), windows - 1);
       const auto bi = static_cast<std::size_t>(b);
       (*range[bi])[k] = (beacons()[bi] - x.head<3>()).norm() + noise + n_c[w];
@@ -219,10 +232,9 @@ Dataset simulate(const SimParams& p) {
   const std::size_t n_out =
       std::min(range_samples.size(), static_cast<std::size_t>(std::max(0, p.outliers)));
   for (std::size_t i = 0; i < n_out; ++i) {
-    std::uniform_int_distribution<std::size_t> pick(i, range_samples.size() - 1);
-    std::swap(range_samples[i], range_samples[pick(rng_outlier)]);
+    std::swap(range_samples[i], range_samples[outlier_draws.pick(i, range_samples.size() - 1)]);
     const auto [k, b] = range_samples[i];
-    const double offset = uni(rng_outlier) < 0.5 ? -p.outlier_m : p.outlier_m;
+    const double offset = outlier_draws.uniform() < 0.5 ? -p.outlier_m : p.outlier_m;
     (*range[static_cast<std::size_t>(b)])[k] += offset;
     (*outlier[static_cast<std::size_t>(b)])[k] = offset;
   }

@@ -302,7 +302,7 @@ void MainWindow::rebuildScenarioUi() {
   connect(view_.get(), &ScenarioView::parameterEdited, this,
           [this](const QString& key, double v) { setParam(key.toStdString(), v); });
 
-  // Plots: two columns in a scroll area.
+  // Plots: two columns in a scroll area; three rows fit the default 1000-px window.
   delete plot_host_;
   plot_host_ = new QWidget;
   auto* grid = new QGridLayout(plot_host_);
@@ -311,7 +311,7 @@ void MainWindow::rebuildScenarioUi() {
   plots_ = view_->createPlots(plot_host_);
   for (int i = 0; i < plots_.size(); ++i) {
     plots_[i].plot->setObjectName("plot." + plots_[i].name);
-    plots_[i].plot->setMinimumHeight(300);
+    plots_[i].plot->setMinimumHeight(260);
     grid->addWidget(plots_[i].plot, i / 2, i % 2);
   }
   plot_area_->setWidget(plot_host_);

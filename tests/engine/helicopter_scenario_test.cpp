@@ -42,18 +42,6 @@ TEST(HelicopterSim, NoiseLevelsAreWhatWasAsked) {
   EXPECT_NEAR(std::sqrt(se / d.rows()), p.sigma_angle, 0.03 * p.sigma_angle);
 }
 
-TEST(HelicopterScenario, CommittedDatasetIsTheSeed1Simulation) {
-  auto s = heli();
-  auto ws = open_workspace(std::string(KFW_SOURCE_DIR) + "/presets/helicopter.json", {}, {});
-  ASSERT_TRUE(ws.ok()) << ws.error();
-  auto sim = s->simulate(ws->values);
-  ASSERT_TRUE(sim.ok());
-  auto file = load_dataset_file(*s, std::string(KFW_SOURCE_DIR) + "/data/helicopter.csv");
-  ASSERT_TRUE(file.ok()) << file.error();
-  EXPECT_EQ(file->names, sim->names);
-  EXPECT_EQ(file->columns, sim->columns);  // shortest round-trip text: exact
-}
-
 TEST(HelicopterScenario, MultiRateUpdatesEveryMthSample) {
   auto s = heli();
   auto v = s->params().defaults();

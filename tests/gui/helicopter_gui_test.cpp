@@ -50,7 +50,7 @@ TEST_F(HelicopterWindow, MovingTheRSliderChangesEstimateAndOperatingPoint) {
   QCustomPlot* angle = plotNamed(w, "angle");
   QCustomPlot* curve = plotNamed(w, "gain_curve");
   ASSERT_TRUE(angle && curve);
-  QCPGraph* est = graphNamed(angle, "estimate θ̂");
+  QCPGraph* est = graphNamed(angle, "estimate of θ");
   QCPGraph* op = graphNamed(curve, "operating point");
   ASSERT_TRUE(est && op);
   // Replay cursor at step 1999: below the decimation threshold, the plot holds every step.
@@ -86,7 +86,7 @@ TEST_F(HelicopterWindow, SimulatorSliderResimulates) {
 }
 
 TEST_F(HelicopterWindow, ReplayRevealsUpToTheCursor) {
-  QCPGraph* est = graphNamed(plotNamed(w, "angle"), "estimate θ̂");
+  QCPGraph* est = graphNamed(plotNamed(w, "angle"), "estimate of θ");
   const std::size_t all = w.result()->steps();
   w.transport()->seek(99);
   EXPECT_EQ(est->data()->size(), 100);

@@ -28,12 +28,13 @@ class HelicopterView final : public ScenarioView {
     angle_band_ = addBand(angle_, "estimate ± 2σ", color::kEstimate);
     angle_sensor_ = addGraph(angle_, "angle sensor", color::kSensor, Style::kDots);
     angle_truth_ = addGraph(angle_, "truth", color::kTruth, Style::kLine);
-    angle_est_ = addGraph(angle_, "estimate θ̂", color::kEstimate, Style::kLine);
+    angle_est_ = addGraph(angle_, "estimate of θ", color::kEstimate, Style::kLine);
     angle_cursor_ = addCursor(angle_);
 
     innov_ = makePlot(parent, "Innovation with ± 2√S", "time (s)", "innovation (deg)");
     innov_band_ = addBand(innov_, "± 2√S", color::kSecond);
-    innov_y_ = addGraph(innov_, "innovation θ_m − θ̂⁻", color::kEstimate, Style::kDots);
+    innov_y_ =
+        addGraph(innov_, "innovation: measured − predicted θ", color::kEstimate, Style::kDots);
     innov_cursor_ = addCursor(innov_);
 
     nis_ = makePlot(parent, "NIS with 95 % χ²(1) bounds", "time (s)", "NIS (–)");
@@ -82,7 +83,7 @@ class HelicopterView final : public ScenarioView {
     bias_ = makePlot(parent, "Gyro bias estimate ± 2σ", "time (s)", "bias b (deg/s)");
     bias_band_ = addBand(bias_, "estimate ± 2σ", color::kEstimate);
     bias_truth_ = addGraph(bias_, "true bias (simulated)", color::kTruth, Style::kLine);
-    bias_est_ = addGraph(bias_, "estimate b̂", color::kEstimate, Style::kLine);
+    bias_est_ = addGraph(bias_, "estimate of b", color::kEstimate, Style::kLine);
     bias_cursor_ = addCursor(bias_);
 
     return {{"angle", "Angle", angle_},
@@ -153,9 +154,9 @@ class HelicopterView final : public ScenarioView {
       if (!r) continue;
       QColor c = plot::color::cycle(i++ + 2);
       c.setAlpha(120);
-      Ghost g{r, plot::addGraph(angle_, "θ̂ " + name, c),
+      Ghost g{r, plot::addGraph(angle_, "θ " + name, c),
               plot::addGraph(gain_, "k1 " + name, c, plot::Style::kStep),
-              plot::addGraph(bias_, "b̂ " + name, c)};
+              plot::addGraph(bias_, "b " + name, c)};
       ghosts_.push_back(g);
     }
     if (result_) drawUpTo(cursor_);

@@ -207,8 +207,9 @@ class HelicopterView final : public ScenarioView {
       setSeries(g.gain, g.result->t, g.result->k1, gn);
       setSeries(g.bias, g.result->t, g.result->bias, gn);
     }
+    // The start-up transient (P0) runs off the top rather than flattening the rest.
     for (QCustomPlot* p : {angle_, innov_, nis_, gain_, bias_})
-      plot::rescale(p, t0, t1);
+      plot::rescale(p, t0, t1, plot::settleTime(t0, t1));
     // Keep the gain axis readable: the start-up transient (k1 ≈ 1) would flatten the steady part.
     const double k_ss = std::isfinite(r.k1_steady) ? r.k1_steady : 0.5;
     gain_->yAxis->setRange(0.0, std::clamp(2.5 * k_ss, 1e-6, 1.05));

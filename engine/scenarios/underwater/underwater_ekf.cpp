@@ -49,8 +49,27 @@ std::vector<double> missing_times(const std::vector<double>& times) {
 double position_nees(const Gaussian<3>& g, const Vec<3>& truth, const std::vector<int>& covered) {
   const auto m = static_cast<Eigen::Index>(covered.size());
   if (m == 0) return kNoSample;
-  VecX e(m);
-  MatX P(m, m);
+  if (m == 3) {  // the usual case: eᵀ adj(P) e / det(P), P positive definite by its leading minors
+    if (!truth.allFinite()) return kNoSample;
+    const auto& P3 = g.P;
+    const double c00 = P3(1, 1) * P3(2, 2) - P3(1, 2) * P3(2, 1);
+    const double c01 = P3(1, 2) * P3(2, 0) - P3(1, 0) * P3(2, 2);
+    const double c02 = P3(1, 0) * P3(2, 1) - P3(1, 1) * P3(2, 0);
+    const double det = P3(0, 0) * c00 + P3(0, 1) * c01 + P3(0, 2) * c02;
+    const double minor2 = P3(0, 0) * P3(1, 1) - P3(0, 1) * P3(1, 0);
+    if (!(P3(0, 0) > 0.0 && minor2 > 0.0 && det > 0.0)) return kNoSample;
+    const double c11 = P3(0, 0) * P3(2, 2) - P3(0, 2) * P3(2, 0);
+    const double c12 = P3(0, 1) * P3(2, 0) - P3(0, 0) * P3(2, 1);
+    const Vec<3> e3 = g.x - truth;
+    // adj(P) is symmetric for symmetric P: the quadratic form needs c00, c11, minor2 and the
+    // off-diagonal cofactors once each.
+    const double q = c00 * e3(0) * e3(0) + c11 * e3(1) * e3(1) + minor2 * e3(2) * e3(2) +
+                     2.0 * (c01 * e3(0) * e3(1) + c02 * e3(0) * e3(2) + c12 * e3(1) * e3(2));
+    return q / det;
+  }
+  // At most 3 × 3: fixed-capacity storage, no heap allocation per step.
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1> e(m);
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3> P(m, m);
   for (Eigen::Index a = 0; a < m; ++a) {
     const int i = covered[static_cast<std::size_t>(a)];
     if (!std::isfinite(truth(i))) return kNoSample;
@@ -58,7 +77,7 @@ double position_nees(const Gaussian<3>& g, const Vec<3>& truth, const std::vecto
     for (Eigen::Index b = 0; b < m; ++b)
       P(a, b) = g.P(i, covered[static_cast<std::size_t>(b)]);
   }
-  const Eigen::LLT<MatX> llt(P);
+  const Eigen::LLT<decltype(P)> llt(P);
   if (llt.info() != Eigen::Success) return kNoSample;
   return e.dot(llt.solve(e));
 }

@@ -277,23 +277,29 @@ void setSeries(QCPGraph* g, const std::vector<double>& x, const std::vector<doub
   g->data()->set(data, true);
 }
 
-Band addBand(QCustomPlot* p, const QString& name, const QColor& c) {
+namespace {
+// c at `alpha` over white, as an opaque colour.
+QColor overWhite(const QColor& c, int alpha) {
+  auto mix = [alpha](int v) { return (v * alpha + 255 * (255 - alpha) + 127) / 255; };
+  return QColor(mix(c.red()), mix(c.green()), mix(c.blue()));
+}
+}  // namespace
+
+Band addBand(QCustomPlot* p, const QString& name, const QColor& c, bool overlaps) {
+  // A translucent fill costs several milliseconds a replot on a dense band (alpha blending over
+  // the whole area); a band that stands alone is drawn in the same colour made opaque.
+  const QColor fill = overlaps ? QColor(c.red(), c.green(), c.blue(), 50) : overWhite(c, 50);
+  const QColor edge = overlaps ? QColor(c.red(), c.green(), c.blue(), 90) : overWhite(c, 90);
   Band b;
-  QColor fill = c;
-  fill.setAlpha(50);
-  QColor edge = c;
-  edge.setAlpha(90);
   b.upper = p->addGraph();
   b.upper->setName(name);
   b.upper->setPen(QPen(edge));
+  b.upper->setBrush(Qt::NoBrush);
   b.lower = p->addGraph();
   b.lower->setPen(QPen(edge));
   b.lower->setBrush(QBrush(fill));
   b.lower->setChannelFillGraph(b.upper);
   b.lower->removeFromLegend();
-  b.upper->setBrush(Qt::NoBrush);
-  // Legend swatch shows the fill.
-  b.upper->setBrush(Qt::NoBrush);
   return b;
 }
 

@@ -64,7 +64,9 @@ struct Band {
   QCPGraph* upper = nullptr;
   QCPGraph* lower = nullptr;
 };
-Band addBand(QCustomPlot* p, const QString& name, const QColor& c);
+// Add bands first: an opaque band hides what is under it. `overlaps`: the band shares its area
+// with other bands (a translucent fill, slower to draw).
+Band addBand(QCustomPlot* p, const QString& name, const QColor& c, bool overlaps = false);
 void setBand(const Band& b, const std::vector<double>& x, const std::vector<double>& center,
              const std::vector<double>& halfwidth, std::size_t n);
 // A band between two given curves.

@@ -247,7 +247,7 @@ class RadomeView final : public ScenarioView {
     const char* axis_name[3] = {"x", "y", "z"};
     for (int ax = 0; ax < 3; ++ax) {
       QColor c = axis_color[ax];
-      innov_band_[ax] = addBand(innov_, QString("± 2√S_%1").arg(axis_name[ax]), c);
+      innov_band_[ax] = addBand(innov_, QString("± 2√S_%1").arg(axis_name[ax]), c, true);
       innov_y_[ax] = addGraph(innov_, QString("innovation %1").arg(axis_name[ax]), c, Style::kDots);
     }
     innov_cursor_ = addCursor(innov_);

@@ -38,8 +38,7 @@ QCPGraph* addMarks(QCustomPlot* p, const QString& name, const QColor& c,
   QCPGraph* g = p->addGraph();
   g->setName(name);
   g->setLineStyle(QCPGraph::lsNone);
-  QPen pen(c);
-  pen.setWidthF(1.3);
+  const QPen pen(c);  // 1 px: wider marker pens go through Qt's stroker, hundreds of times a replot
   g->setPen(pen);
   g->setScatterStyle(QCPScatterStyle(shape, pen, Qt::NoBrush, size));
   return g;
@@ -67,11 +66,12 @@ class UnderwaterView final : public ScenarioView {
     using namespace plot;
     track_ = makePlot(parent, "Top view: command, true and estimated track; beacons", "y east (m)",
                       "x north (m)");
-    // The command is drawn last, dashed: it runs close to the truth and the estimate and would
-    // vanish under either.
+    // The command is drawn last, in its own colour: it runs close to the truth and the estimate
+    // and would vanish under either. Solid: a dashed pen over its thousands of vertices (14 turns
+    // of the helix) costs several milliseconds a replot.
     track_true_ = addCurve(track_, "true", color::kTruth, Style::kLine);
     track_est_ = addCurve(track_, "estimate", color::kEstimate, Style::kLine);
-    track_cmd_ = addCurve(track_, "command", color::kFourth, Style::kDashed);
+    track_cmd_ = addCurve(track_, "command", color::kFourth, Style::kLine);
     beacons_ =
         addCurve(track_, "beacons (at the edge\nwhen out of view)", color::kSecond, Style::kLine);
     beacons_->setLineStyle(QCPCurve::lsNone);

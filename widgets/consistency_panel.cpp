@@ -134,6 +134,7 @@ void ConsistencyPanel::refresh() {
   plot::setSeries(nis_y_, t, c.nis, plot::kAll);
   plot::setSeries(nis_avg_, t, moving_average_finite(c.nis, w), plot::kAll);
   plot::setSeries(nis_lo_, span, {b1.lo, b1.lo}, 2);
+  nis_lo_->setName(QString("χ²(%1) 2.5 % / 97.5 %").arg(c.dof));
   plot::setSeries(nis_hi_, span, {b1.hi, b1.hi}, 2);
   plot::setSeries(avg_lo_, span, {bw.lo, bw.lo}, 2);
   plot::setSeries(avg_hi_, span, {bw.hi, bw.hi}, 2);
@@ -222,6 +223,7 @@ void ConsistencyPanel::refresh() {
     plot::setSeries(nees_y_, t, nees_.nees, plot::kAll);
     plot::setSeries(nees_avg_, t, moving_average_finite(nees_.nees, w), plot::kAll);
     plot::setSeries(nees_lo_, span, {nb.lo, nb.lo}, 2);
+    nees_lo_->setName(QString("χ²(%1) 2.5 % / 97.5 %").arg(nees_.dof));
     plot::setSeries(nees_hi_, span, {nb.hi, nb.hi}, 2);
     plot::rescale(nees_plot_);
     plot::replot(nees_plot_);

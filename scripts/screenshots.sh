@@ -16,7 +16,7 @@ mkdir -p "$out"
 for preset in presets/*.json; do
   name=$(basename "$preset" .json)
   "$kfw" --export "$out" "$preset" >/dev/null
-  "$kfw" --screenshot "$out/window_$name.png" "$preset" >/dev/null
+  "$kfw" --screenshot "$out/window_$name.png" "$preset" 2>&1 >/dev/null | grep -v propagateSizeHints >&2 || true
 done
 # Variants shown in the README beside the defaults.
 "$kfw" --export "$out/radome_B_Kp045" presets/radome.json --set sim.amplitude=0.08 --set Kp=0.45 >/dev/null

@@ -165,6 +165,23 @@ void forEachPoint(const std::vector<double>& x, const std::vector<double>& y, st
   }
 }
 
+// The bounding box of the drawable points among the first n; x0 > x1 when there are none.
+struct Extent {
+  double x0, x1, y0, y1;
+};
+Extent extent(const std::vector<double>& x, const std::vector<double>& y, std::size_t n,
+              bool logY) {
+  const double inf = std::numeric_limits<double>::infinity();
+  Extent e{inf, -inf, inf, -inf};
+  forEachPoint(x, y, n, logY, [&](double xi, double yi) {
+    e.x0 = std::min(e.x0, xi);
+    e.x1 = std::max(e.x1, xi);
+    e.y0 = std::min(e.y0, yi);
+    e.y1 = std::max(e.y1, yi);
+  });
+  return e;
+}
+
 // Keeps what a raster of `cols` columns can show of a line: per column the first, lowest,
 // highest and last point in time order. Exact on screen, and 55k points become a few thousand.
 void decimateLine(const std::vector<double>& x, const std::vector<double>& y, std::size_t n,
@@ -206,14 +223,7 @@ void decimateLine(const std::vector<double>& x, const std::vector<double>& y, st
 void decimateDots(const std::vector<double>& x, const std::vector<double>& y, std::size_t n,
                   bool logY, int cols, int rows, QVector<QCPGraphData>& out) {
   auto fy = [logY](double v) { return logY ? fastLog2(v) : v; };
-  const double inf = std::numeric_limits<double>::infinity();
-  double x0 = inf, x1 = -inf, y0 = inf, y1 = -inf;
-  forEachPoint(x, y, n, logY, [&](double xi, double yi) {
-    x0 = std::min(x0, xi);
-    x1 = std::max(x1, xi);
-    y0 = std::min(y0, yi);
-    y1 = std::max(y1, yi);
-  });
+  const auto [x0, x1, y0, y1] = extent(x, y, n, logY);
   if (x0 > x1) return;
   const double fy0 = fy(y0), fspan = fy(y1) - fy0;
   const double cscale = x1 > x0 ? cols / (x1 - x0) : 0.0;
@@ -319,14 +329,7 @@ void setDots(QCPGraph* g, const std::vector<double>& x, const std::vector<double
 void setCurve(QCPCurve* c, const std::vector<double>& keys, const std::vector<double>& values,
               std::size_t n) {
   n = std::min({n, keys.size(), values.size()});
-  const double inf = std::numeric_limits<double>::infinity();
-  double k0 = inf, k1 = -inf, v0 = inf, v1 = -inf;
-  forEachPoint(keys, values, n, false, [&](double k, double v) {
-    k0 = std::min(k0, k);
-    k1 = std::max(k1, k);
-    v0 = std::min(v0, v);
-    v1 = std::max(v1, v);
-  });
+  const auto [k0, k1, v0, v1] = extent(keys, values, n, false);
   // A point is kept when it leaves the last kept point's cell of a grid finer than any pixel
   // raster (1000 cells over the larger extent, about a pixel of an export).
   const double cell = std::max(k1 - k0, v1 - v0) / 1000.0;

@@ -22,6 +22,18 @@ QColor color::cycle(int i) {
   return c[static_cast<std::size_t>(i) % (sizeof c / sizeof c[0])];
 }
 
+QColor color::ghost(int i) {
+  QColor c = cycle(5 + i % 5);  // brown, pink, cyan, olive, grey
+  c.setAlpha(150);
+  return c;
+}
+
+void removePlottables(std::initializer_list<QCPAbstractPlottable*> plottables) {
+  for (QCPAbstractPlottable* p : plottables) {
+    if (p) p->parentPlot()->removePlottable(p);
+  }
+}
+
 QCustomPlot* makePlot(QWidget* parent, const QString& title, const QString& xLabel,
                       const QString& yLabel) {
   auto* p = new QCustomPlot(parent);

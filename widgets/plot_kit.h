@@ -5,11 +5,13 @@
 #include <QColor>
 #include <QString>
 #include <cstddef>
+#include <initializer_list>
 #include <vector>
 
 class QCustomPlot;
 class QCPGraph;
 class QCPCurve;
+class QCPAbstractPlottable;
 class QCPAxis;
 class QCPItemStraightLine;
 class QCPItemTracer;
@@ -28,6 +30,9 @@ inline const QColor kFourth{255, 127, 14};
 inline const QColor kFifth{148, 103, 189};
 inline const QColor kBound{120, 120, 120};
 QColor cycle(int i);  // a distinct colour for series i
+// The faded colour of pinned snapshot i (0, 1, ...): the same in every scenario, none of the
+// colours with a fixed meaning above.
+QColor ghost(int i);
 }  // namespace color
 
 // A plot with title, axis labels (units in them), legend and the house fonts.
@@ -72,6 +77,9 @@ void setBand(const Band& b, const std::vector<double>& x, const std::vector<doub
 // A band between two given curves.
 void setBandLimits(const Band& b, const std::vector<double>& x, const std::vector<double>& lo,
                    const std::vector<double>& hi, std::size_t n);
+
+// Removes plottables (ghost curves, ...) from whichever plot holds each.
+void removePlottables(std::initializer_list<QCPAbstractPlottable*> plottables);
 
 // A vertical line at the replay cursor.
 QCPItemStraightLine* addCursor(QCustomPlot* p);

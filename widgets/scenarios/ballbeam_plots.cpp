@@ -152,18 +152,14 @@ class BallbeamView final : public ScenarioView {
   // Ghosts: each pinned tuning's estimate (position plot) and the true ball position of its own
   // run (step plot: detection on or off as pinned, or the log's truth in replay), faded.
   void setSnapshots(const Snapshots& snapshots) override {
-    for (const auto& g : ghosts_) {
-      for (QCPGraph* graph : {g.estimate, g.step})
-        graph->parentPlot()->removeGraph(graph);
-    }
+    for (const auto& g : ghosts_)
+      plot::removePlottables({g.estimate, g.step});
     ghosts_.clear();
-    int i = 1;
+    int i = 0;
     for (const auto& [name, result] : snapshots) {
       auto r = std::dynamic_pointer_cast<const BallbeamResult>(result);
       if (!r) continue;
-      // Past the colours the live curves use (pink, cyan, olive, ...).
-      QColor c = plot::color::cycle(i++ + 5);
-      c.setAlpha(170);
+      const QColor c = plot::color::ghost(i++);
       const QString run = !r->closed_loop                     ? "truth"
                           : r->trace.x_true == r->x_detect_on ? "detection on"
                                                               : "detection off";

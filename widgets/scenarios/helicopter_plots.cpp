@@ -143,17 +143,14 @@ class HelicopterView final : public ScenarioView {
 
   // Ghosts: each snapshot's estimate, gain and bias as faded lines.
   void setSnapshots(const Snapshots& snapshots) override {
-    for (auto& g : ghosts_) {
-      for (QCPGraph* graph : {g.angle, g.gain, g.bias})
-        graph->parentPlot()->removeGraph(graph);
-    }
+    for (const auto& g : ghosts_)
+      plot::removePlottables({g.angle, g.gain, g.bias});
     ghosts_.clear();
-    int i = 1;
+    int i = 0;
     for (const auto& [name, result] : snapshots) {
       auto r = std::dynamic_pointer_cast<const HelicopterResult>(result);
       if (!r) continue;
-      QColor c = plot::color::cycle(i++ + 2);
-      c.setAlpha(120);
+      const QColor c = plot::color::ghost(i++);
       Ghost g{r, plot::addGraph(angle_, "θ " + name, c),
               plot::addGraph(gain_, "k1 " + name, c, plot::Style::kStep),
               plot::addGraph(bias_, "b " + name, c)};

@@ -351,17 +351,14 @@ class RadomeView final : public ScenarioView {
 
   // Ghosts: each pinned tuning's slope estimates and refraction-error estimate as faded lines.
   void setSnapshots(const Snapshots& snapshots) override {
-    for (auto& g : ghosts_) {
-      for (QCPGraph* graph : {g.slope[0], g.slope[1], g.alpha})
-        graph->parentPlot()->removeGraph(graph);
-    }
+    for (const auto& g : ghosts_)
+      plot::removePlottables({g.slope[0], g.slope[1], g.alpha});
     ghosts_.clear();
-    int i = 1;
+    int i = 0;
     for (const auto& [name, result] : snapshots) {
       auto r = std::dynamic_pointer_cast<const RadomeResult>(result);
       if (!r) continue;
-      QColor c = plot::color::cycle(i++ + 4);
-      c.setAlpha(130);
+      const QColor c = plot::color::ghost(i++);
       ghosts_.push_back({r,
                          {plot::addGraph(slope_[0].plot, "estimate [" + name + "]", c),
                           plot::addGraph(slope_[1].plot, "estimate [" + name + "]", c)},

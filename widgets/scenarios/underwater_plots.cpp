@@ -231,19 +231,14 @@ class UnderwaterView final : public ScenarioView {
 
   // Ghosts: each snapshot's estimated track and distance error as faded lines.
   void setSnapshots(const Snapshots& snapshots) override {
-    for (const Ghost& g : ghosts_) {
-      track_->removePlottable(g.track);
-      err_->removeGraph(g.err);
-    }
+    for (const Ghost& g : ghosts_)
+      plot::removePlottables({g.track, g.err});
     ghosts_.clear();
-    // Colours the live plots do not use (blue estimate, red beacons, orange command).
-    static const int kGhostColors[] = {4, 5, 6, 7, 8, 2};
-    std::size_t i = 0;
+    int i = 0;
     for (const auto& [name, result] : snapshots) {
       auto r = std::dynamic_pointer_cast<const UnderwaterResult>(result);
       if (!r) continue;
-      QColor c = plot::color::cycle(kGhostColors[i++ % std::size(kGhostColors)]);
-      c.setAlpha(120);
+      const QColor c = plot::color::ghost(i++);
       ghosts_.push_back({r, addCurve(track_, "estimate " + name, c, plot::Style::kLine),
                          plot::addGraph(err_, "error " + name, c)});
     }

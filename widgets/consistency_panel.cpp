@@ -81,7 +81,17 @@ ConsistencyPanel::ConsistencyPanel(QWidget* parent) : QWidget(parent) {
 }
 
 void ConsistencyPanel::setResult(std::shared_ptr<const RunResult> result) {
+  // Only kept here: the channels are copied out of the result when the panel is drawn, not on
+  // every slider move while the tab is hidden.
   result_ = std::move(result);
+  loaded_ = false;
+  dirty_ = true;
+  if (isVisible()) refresh();
+}
+
+void ConsistencyPanel::load() {
+  if (loaded_) return;
+  loaded_ = true;
   channels_ = result_ ? result_->channels() : std::vector<InnovationChannel>{};
   nees_ = result_ ? result_->nees_series() : NeesSeries{};
   const QString keep = channel_->currentText();
@@ -94,14 +104,13 @@ void ConsistencyPanel::setResult(std::shared_ptr<const RunResult> result) {
     const int i = channel_->findText(keep);
     channel_->setCurrentIndex(i >= 0 ? i : 0);
   }
-  dirty_ = true;
-  if (isVisible()) refresh();
 }
 
 void ConsistencyPanel::setWindow(int updates) {
   window_->setValue(updates);
 }
 void ConsistencyPanel::setChannel(int index) {
+  load();
   channel_->setCurrentIndex(index);
 }
 QString ConsistencyPanel::summary() const {
@@ -120,6 +129,7 @@ void ConsistencyPanel::showEvent(QShowEvent* e) {
 }
 
 void ConsistencyPanel::refresh() {
+  load();
   dirty_ = false;
   const int ci = channel_->currentIndex();
   if (!result_ || ci < 0 || ci >= static_cast<int>(channels_.size())) {

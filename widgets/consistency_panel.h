@@ -37,10 +37,13 @@ class ConsistencyPanel : public QWidget {
   void showEvent(QShowEvent* e) override;
 
  private:
+  // Copies the channels and NEES out of the result and lists the channels (once per result).
+  void load();
   std::shared_ptr<const RunResult> result_;
   std::vector<InnovationChannel> channels_;
   NeesSeries nees_;
   bool dirty_ = false;
+  bool loaded_ = true;
   QComboBox* channel_ = nullptr;
   QSpinBox* window_ = nullptr;
   QLabel* summary_ = nullptr;

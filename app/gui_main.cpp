@@ -7,9 +7,14 @@
 
 #include "app_options.h"
 #include "core/memory.h"
+#include "core/suggest.h"
 #include "latency_bench.h"
 #include "main_window.h"
 #include "plot_export.h"
+
+#ifndef KFW_VERSION
+#error "KFW_VERSION comes from CMake's project(VERSION)"
+#endif
 
 int main(int argc, char** argv) {
   kfw::retain_freed_memory();
@@ -18,11 +23,15 @@ int main(int argc, char** argv) {
     raw << QString::fromLocal8Bit(argv[i]);
   auto opt = kfw::parseAppOptions(raw);
   if (!opt) {
-    std::fprintf(stderr, "kfw: %s\n%s", opt.error().c_str(), kfw::kAppUsage);
-    return 2;
+    std::fprintf(stderr, "kfw: %s\n", kfw::one_line(opt.error()).c_str());
+    return opt.exit_code();
   }
   if (opt->help) {
-    std::printf("%s", kfw::kAppUsage);
+    std::printf("%s", kfw::appHelp().c_str());
+    return 0;
+  }
+  if (opt->version) {
+    std::printf("kfw %s\n", KFW_VERSION);
     return 0;
   }
   const bool headless = opt->export_dir || opt->bench_latency || opt->screenshot;
@@ -35,8 +44,8 @@ int main(int argc, char** argv) {
 
   kfw::MainWindow w;
   if (auto st = w.loadPreset(opt->preset, opt->data, opt->sets); !st) {
-    std::fprintf(stderr, "kfw: %s\n", st.error().c_str());
-    return 2;
+    std::fprintf(stderr, "kfw: %s\n", kfw::one_line(st.error()).c_str());
+    return st.exit_code();
   }
   if (opt->export_dir) {
     auto formats = kfw::parseFormats(opt->formats);

@@ -6,6 +6,7 @@ packages=(
   qt6-base-dev qt6-svg-dev libqcustomplot-dev
   libeigen3-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libcli11-dev libmuparser-dev libginac-dev libfast-float-dev
   fonts-dejavu-core fontconfig
 )
 missing=()

@@ -1,57 +1,130 @@
 #include "app_options.h"
 
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <vector>
+
+#include "core/suggest.h"
+
 namespace kfw {
 
-Expected<AppOptions> parseAppOptions(const QStringList& args) {
-  AppOptions o;
-  for (int i = 0; i < args.size(); ++i) {
-    const QString& a = args[i];
-    auto next = [&](QString& dst) -> bool {
-      if (i + 1 >= args.size()) return false;
-      dst = args[++i];
-      return true;
-    };
-    QString v;
-    if (a == "--help" || a == "-h") {
-      o.help = true;
-    } else if (a == "--data") {
-      if (!next(v)) return Error{"--data needs a file"};
-      o.data = v;
-    } else if (a == "--set") {
-      if (!next(v)) return Error{"--set needs key=value"};
-      o.sets << v;
-    } else if (a.startsWith("--set=")) {
-      o.sets << a.mid(6);
-    } else if (a == "--export") {
-      if (!next(v)) return Error{"--export needs a directory"};
-      o.export_dir = v;
-    } else if (a == "--format") {
-      if (!next(v)) return Error{"--format needs a list such as png,pdf,svg"};
-      o.formats = v;
-    } else if (a == "--session") {
-      if (!next(v)) return Error{"--session needs a file"};
-      o.session = v;
-    } else if (a == "--screenshot") {
-      if (!next(v)) return Error{"--screenshot needs a file name"};
-      o.screenshot = v;
-    } else if (a == "--bench-latency") {
-      o.bench_latency = true;
-    } else if (a == "--changes") {
-      if (!next(v)) return Error{"--changes needs a number"};
-      bool ok = false;
-      o.bench_changes = v.toInt(&ok);
-      if (!ok || o.bench_changes < 2)
-        return Error{"--changes: '" + v.toStdString() + "' is not a count >= 2"};
-    } else if (a.startsWith("-")) {
-      return Error{"unknown option " + a.toStdString()};
-    } else if (o.preset.isEmpty()) {
-      o.preset = a;
-    } else {
-      return Error{"more than one preset given ('" + o.preset.toStdString() + "', '" +
-                   a.toStdString() + "')"};
-    }
+namespace {
+
+// What CLI11 parses into, before it becomes AppOptions.
+struct Parsed {
+  std::string preset = "helicopter";
+  std::optional<std::string> data, export_dir, screenshot, session;
+  std::vector<std::string> sets;
+  std::string formats = "png";
+  bool bench_latency = false;
+  int bench_changes = 200;
+  bool version = false;
+};
+
+struct Declaration {
+  CLI::App app{"kfw: the Kalman filter tuning workbench.", "kfw"};
+  Parsed p;
+};
+
+void add_path(CLI::App& app, const std::string& name, std::optional<std::string>& dst,
+              const std::string& type, const std::string& help) {
+  app.add_option_function<std::string>(
+         name, [&dst](const std::string& v) { dst = v; }, help)
+      ->type_name(type);
+}
+
+std::unique_ptr<Declaration> declare() {
+  auto d = std::make_unique<Declaration>();
+  CLI::App& app = d->app;
+  Parsed& p = d->p;
+  app.get_formatter()->column_width(30);
+  app.set_help_flag("-h,--help", "print this help and exit");
+  app.allow_extras();  // unknown options are answered with "did you mean"
+  app.add_option("PRESET", p.preset, "a preset file or a name in presets/ (default: helicopter)");
+  add_path(app, "--data", p.data, "FILE.csv", "the dataset (CSV); default: the preset's");
+  app.add_option("--set", p.sets, "set a parameter (repeatable)")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false)
+      ->take_all();
+  add_path(app, "--session", p.session, "FILE.json", "restore a saved session after the preset");
+  add_path(app, "--export", p.export_dir, "DIR", "write every plot to DIR and exit");
+  app.add_option("--format", p.formats, "the export formats, comma-separated: png,pdf,svg")
+      ->type_name("LIST")
+      ->capture_default_str();
+  add_path(app, "--screenshot", p.screenshot, "FILE.png", "grab the whole window and exit");
+  app.add_flag("--bench-latency", p.bench_latency,
+               "measure slider-to-redraw latency and print p50/p95");
+  app.add_option("--changes", p.bench_changes, "parameter changes for --bench-latency")
+      ->type_name("N")
+      ->check(CLI::Range(2, 1000000).description(""))
+      ->capture_default_str();
+  app.add_flag("--version", p.version, "print the version and exit");
+  app.footer(
+      "\n--export, --screenshot and --bench-latency need no display (they default\n"
+      "QT_QPA_PLATFORM to offscreen). Exit codes: 0 done; 2 an argument, preset, data file or\n"
+      "output path is invalid; 1 the work failed.\n");
+  return d;
+}
+
+std::vector<std::string> option_names(const CLI::App& app) {
+  std::vector<std::string> names;
+  for (const CLI::Option* o : app.get_options()) {
+    for (const auto& l : o->get_lnames())
+      names.push_back("--" + l);
   }
-  if (o.preset.isEmpty()) o.preset = "helicopter";
+  return names;
+}
+
+// An unknown option (with the nearest valid one) or a second preset.
+std::optional<Error> check_extras(const CLI::App& app, const std::string& preset) {
+  const auto rest = app.remaining(false);
+  if (rest.empty()) return std::nullopt;
+  const std::string& t = rest.front();
+  if (t.size() > 1 && t.front() == '-') {
+    return Error{unknown_message("option", t.substr(0, t.find('=')), option_names(app)) +
+                 " (try kfw --help)"};
+  }
+  return Error{"more than one preset given (" + quote_token(preset) + ", " + quote_token(t) + ")"};
+}
+
+}  // namespace
+
+std::string appHelp() {
+  return declare()->app.help();
+}
+
+Expected<AppOptions> parseAppOptions(const QStringList& args) {
+  auto d = declare();
+  std::vector<std::string> reversed;  // CLI11 takes the arguments last first
+  for (auto it = args.rbegin(); it != args.rend(); ++it)
+    reversed.push_back(it->toStdString());
+  AppOptions o;
+  try {
+    d->app.parse(reversed);
+  } catch (const CLI::CallForHelp&) {
+    o.help = true;
+    return o;
+  } catch (const CLI::ParseError& e) {
+    if (auto extra = check_extras(d->app, d->p.preset)) return *extra;
+    return Error{one_line(e.what())};
+  }
+  if (auto extra = check_extras(d->app, d->p.preset)) return *extra;
+  const Parsed& p = d->p;
+  auto q = [](const std::optional<std::string>& s) -> std::optional<QString> {
+    if (!s) return std::nullopt;
+    return QString::fromStdString(*s);
+  };
+  o.preset = QString::fromStdString(p.preset);
+  o.data = q(p.data);
+  for (const auto& s : p.sets)
+    o.sets << QString::fromStdString(s);
+  o.export_dir = q(p.export_dir);
+  o.formats = QString::fromStdString(p.formats);
+  o.screenshot = q(p.screenshot);
+  o.session = q(p.session);
+  o.bench_latency = p.bench_latency;
+  o.bench_changes = p.bench_changes;
+  o.version = p.version;
   return o;
 }
 

@@ -1,9 +1,11 @@
-// Command line of the GUI executable, shared by app/gui_main.cpp and the tests.
+// Command line of the GUI executable, shared by app/gui_main.cpp and the tests. One CLI11
+// declaration yields the parsing, the help (appHelp) and the errors ("did you mean").
 #pragma once
 
 #include <QString>
 #include <QStringList>
 #include <optional>
+#include <string>
 
 #include "core/expected.h"
 
@@ -15,22 +17,19 @@ struct AppOptions {
   QStringList sets;
   std::optional<QString> export_dir;
   QString formats = "png";
-  std::optional<QString> screenshot;
-  std::optional<QString> session;  // restore a saved session after the preset  // grab the whole window to this PNG and exit
+  std::optional<QString> screenshot;  // grab the whole window to this PNG and exit
+  std::optional<QString> session;     // restore a saved session after the preset
   bool bench_latency = false;
   int bench_changes = 200;
   bool help = false;
+  bool version = false;
 };
 
-inline constexpr const char* kAppUsage =
-    "usage: kfw [PRESET] [--data FILE] [--set key=value]... [--session FILE.json]\n"
-    "       kfw --export DIR [PRESET] [--data FILE] [--set key=value]... [--format png,pdf,svg]\n"
-    "       kfw --screenshot FILE.png [PRESET] [--data FILE] [--set key=value]...\n"
-    "       kfw --bench-latency [PRESET] [--data FILE] [--changes N]\n"
-    "PRESET is a preset file or a name in presets/ (default: helicopter).\n"
-    "--export, --screenshot and --bench-latency need no display (they default QT_QPA_PLATFORM to "
-    "offscreen).\n";
+// The help text, generated from the declaration.
+std::string appHelp();
 
+// Parses the arguments (without the program name). Bad arguments are an Error (exit 2) of one
+// line; --help and --version set their flags.
 Expected<AppOptions> parseAppOptions(const QStringList& args);
 
 }  // namespace kfw

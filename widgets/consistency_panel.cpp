@@ -99,7 +99,7 @@ void ConsistencyPanel::load() {
     const QSignalBlocker b(channel_);
     channel_->clear();
     for (const auto& c : channels_) {
-      channel_->addItem(QString("%1 (%2 dof)").arg(QString::fromStdString(c.name)).arg(c.dof));
+      channel_->addItem(QString("%1 (%2 dof)").arg(QString::fromStdString(c.display())).arg(c.dof));
     }
     const int i = channel_->findText(keep);
     channel_->setCurrentIndex(i >= 0 ? i : 0);
@@ -155,7 +155,7 @@ void ConsistencyPanel::refresh() {
   QString text = QString(
                      "<b>%1</b>: %2 updates, mean NIS %3 (expected %4), %5 % inside the 95 % "
                      "bounds")
-                     .arg(QString::fromStdString(c.name))
+                     .arg(QString::fromStdString(c.display()))
                      .arg(count_finite(c.nis))
                      .arg(mean_finite(c.nis), 0, 'g', 4)
                      .arg(c.dof)

@@ -42,6 +42,7 @@ namespace kfw {
 
 namespace {
 const ParamValues kEmpty;
+const Preset kNoPreset;
 QString q(const std::string& s) {
   return QString::fromStdString(s);
 }
@@ -217,6 +218,19 @@ void MainWindow::buildMenus() {
   });
   file->addSeparator();
   file->addAction("&Quit", QKeySequence::Quit, this, &QWidget::close);
+  QMenu* edit = menuBar()->addMenu("&Edit");
+  undo_action_ = edit->addAction("&Undo", QKeySequence::Undo, this, [this] { undo(); });
+  undo_action_->setObjectName("undoAction");
+  redo_action_ = edit->addAction("&Redo", QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_Z), this,
+                                 [this] { redo(); });
+  redo_action_->setObjectName("redoAction");
+  edit->addSeparator();
+  edit->addAction("Reset to &preset values", this, [this] {
+    if (!doc_) return;
+    doc_->reset_to_preset();
+    syncFromDocument();
+  });
+  updateUndoActions();
   QMenu* tools = menuBar()->addMenu("&Tools");
   tools->addAction("Auto-&tune…", this, [this] { openTuneDialog(); });
   tools->addAction("&Sweep a metric…", this, [this] { openSweepDialog(); });
@@ -241,12 +255,13 @@ void MainWindow::refreshPresetList() {
   for (const QFileInfo& f : dir.entryInfoList({"*.json"}, QDir::Files, QDir::Name)) {
     presets_->addItem(f.completeBaseName(), f.absoluteFilePath());
   }
-  if (!preset_.path.empty()) {
-    const int i = presets_->findData(QFileInfo(q(preset_.path)).absoluteFilePath());
+  const Preset& current = preset();
+  if (!current.path.empty()) {
+    const int i = presets_->findData(QFileInfo(q(current.path)).absoluteFilePath());
     if (i >= 0) {
       presets_->setCurrentIndex(i);
     } else {
-      presets_->addItem(QFileInfo(q(preset_.path)).completeBaseName(), q(preset_.path));
+      presets_->addItem(QFileInfo(q(current.path)).completeBaseName(), q(current.path));
       presets_->setCurrentIndex(presets_->count() - 1);
     }
   }
@@ -259,30 +274,43 @@ Status MainWindow::loadPreset(const QString& preset, const std::optional<QString
     sets.push_back(a.toStdString());
   std::optional<std::string> d;
   if (data_file) d = data_file->toStdString();
-  auto ws = open_workspace(preset.toStdString(), d, sets);
-  if (!ws) return Error{ws.error()};
+  auto doc = Document::open(preset.toStdString(), d, sets);
+  if (!doc) return doc.err();
+  return adoptDocument(std::move(*doc));
+}
+
+const Preset& MainWindow::preset() const {
+  return doc_ ? doc_->preset() : kNoPreset;
+}
+
+// Everything a new document needs before it is shown: its dataset read, its plots made. On
+// failure nothing changes.
+Status MainWindow::adoptDocument(Document doc) {
   std::shared_ptr<const Dataset> file;
-  if (ws->data_path) {
-    auto ds = load_dataset_file(*ws->scenario, *ws->data_path);
-    if (!ds) return Error{ds.error()};
+  if (doc.data()) {
+    auto ds = load_dataset_file(doc.scenario(), doc.data()->path, doc.data()->mapping);
+    if (!ds) return ds.err();
     file = std::make_shared<const Dataset>(std::move(*ds));
   }
-  auto view = views().make(ws->scenario->name());
-  if (!view) return Error{"no plots registered for scenario '" + ws->scenario->name() + "'"};
-  preset_ = ws->preset;
-  preset_.values = ws->values;
-  scenario_ = ws->scenario;
+  auto view = views().make(doc.scenario().name());
+  if (!view) return Error{"no plots registered for scenario '" + doc.scenario().name() + "'"};
+  doc_ = std::make_unique<Document>(std::move(doc));
+  scenario_ = doc_->scenario_ptr();
   file_data_ = file;
+  loaded_data_ = doc_->data();
   view_ = std::move(view);
   result_.reset();
   snapshots_.clear();
-  column_map_.clear();
+  for (const auto& snap : doc_->snapshots())
+    snapshots_.push_back({snap, nullptr, nullptr});
   runner_->setScenario(scenario_);
   runner_->setFileDataset(file_data_);
   rebuildScenarioUi();
   refreshPresetList();
   clearError();
-  setWindowTitle("kfw — " + q(preset_.title.empty() ? scenario_->title() : preset_.title));
+  const Preset& p = doc_->preset();
+  setWindowTitle("kfw — " + q(p.title.empty() ? scenario_->title() : p.title));
+  updateUndoActions();
   requestRun();
   return Ok{};
 }
@@ -291,12 +319,25 @@ void MainWindow::rebuildScenarioUi() {
   delete panel_;
   delete controls_;
   controls_ = nullptr;
-  panel_ = new ParamPanel(scenario_->params(), preset_.ranges);
+  panel_ = new ParamPanel(scenario_->params(), doc_->preset().ranges);
   panel_->setObjectName("paramPanel");
-  panel_->setValues(preset_.values);
+  panel_->setValues(doc_->values());
   left_->insertWidget(left_->count() - 1, panel_);
-  connect(panel_, &ParamPanel::valueChanged, this,
-          [this](const QString&, double) { requestRun(); });
+  connect(panel_, &ParamPanel::valueChanged, this, [this](const QString& key, double v) {
+    // Changes of one key in quick succession (a slider drag) are one undo step.
+    const std::string k = key.toStdString();
+    const bool drag = k == last_edit_key_ && last_edit_.isValid() && last_edit_.elapsed() < 800;
+    last_edit_key_ = k;
+    last_edit_.start();
+    if (auto st = doc_->set_value(k, v, drag ? UndoMerge::kMergeSameKey : UndoMerge::kNewStep);
+        !st) {
+      showError(q(st.error()));
+      panel_->setValues(doc_->values());
+      return;
+    }
+    updateUndoActions();
+    requestRun();
+  });
   controls_ = view_->createControls(nullptr);
   if (controls_) left_->insertWidget(left_->count() - 1, controls_);
   connect(view_.get(), &ScenarioView::parameterEdited, this,
@@ -335,216 +376,14 @@ void MainWindow::updateDataLabel() {
   }
 }
 
-namespace {
-QString mapKey(const Dataset& d) {
-  return "columnMaps/" +
-         QCryptographicHash::hash(QByteArray::fromStdString(header_key(d)), QCryptographicHash::Md5)
-             .toHex();
-}
-}  // namespace
-
-Expected<Dataset> MainWindow::readMapped(const QString& path, const ColumnMap* map) {
-  auto raw = read_csv(path.toStdString());
-  if (!raw) return raw;
-  ColumnMap m;
-  if (map) {
-    m = *map;
-  } else if (!require_columns(*raw, scenario_->columns())) {
-    // Remembered for this header (QSettings), else ask (GUI only).
-    QSettings settings("kfw", "kfw");
-    const QString stored = settings.value(mapKey(*raw)).toString();
-    for (const QString& pair : stored.split(';', Qt::SkipEmptyParts)) {
-      const auto kv = pair.split('=');
-      if (kv.size() == 2) m[kv[0].toStdString()] = kv[1].toStdString();
-    }
-    if (m.empty() && interactive_) {
-      ColumnMapDialog dialog(scenario_->columns(), *raw, column_map_, this);
-      if (dialog.exec() != QDialog::Accepted)
-        return Error{path.toStdString() + ": column mapping cancelled"};
-      m = dialog.mapping();
-    }
-  }
-  auto mapped = apply_column_map(std::move(*raw), m);
-  if (!mapped) return mapped;
-  if (auto st = require_columns(*mapped, scenario_->columns()); !st) return Error{st.error()};
-  if (!m.empty()) {
-    QStringList pairs;
-    for (const auto& [role, col] : m)
-      pairs << QString::fromStdString(role + "=" + col);
-    QSettings("kfw", "kfw").setValue(mapKey(*read_csv(path.toStdString())), pairs.join(';'));
-  }
-  column_map_ = m;
-  return mapped;
-}
-
-Status MainWindow::openDataset(const QString& path) {
-  return openFile(path, nullptr);
-}
-
-Status MainWindow::openDatasetMapped(const QString& path, const ColumnMap& map) {
-  return openFile(path, &map);
-}
-
-Status MainWindow::openFile(const QString& path, const ColumnMap* map) {
-  if (!scenario_) return Error{"load a preset first"};
-  auto ds = readMapped(path, map);
-  if (!ds) {
-    showError(q(ds.error()));
-    return Error{ds.error()};
-  }
-  file_data_ = std::make_shared<const Dataset>(std::move(*ds));
-  runner_->setFileDataset(file_data_);
-  clearError();
-  updateDataLabel();
-  requestRun();
-  return Ok{};
-}
-
-void MainWindow::pinSnapshot(const QString& name) {
-  if (!result_ || !scenario_) return;
-  snapshots_.push_back({{name.toStdString(), values()}, result_, runner_->dataset()});
-  refreshSnapshots();
-}
-
-void MainWindow::clearSnapshots() {
-  snapshots_.clear();
-  refreshSnapshots();
-}
-
-// Re-runs stale snapshots on the current dataset (synchronously: a few ms each), then redraws
-// the ghosts and the metrics columns.
-void MainWindow::refreshSnapshots() {
-  const auto current = runner_->dataset();
-  for (auto& p : snapshots_) {
-    if (current && p.data != current) {
-      auto r = scenario_->run(*current, p.snap.values);
-      p.result = r ? *r : nullptr;
-      p.data = current;
-    }
-  }
-  ScenarioView::Snapshots ghosts;
-  for (const auto& p : snapshots_) {
-    if (p.result) ghosts.append({q(p.snap.name), p.result});
-  }
-  if (view_) view_->setSnapshots(ghosts);
-  fillMetrics();
-}
-
-void MainWindow::fillMetrics() {
-  const int cols = 2 + static_cast<int>(snapshots_.size());
-  metrics_->setColumnCount(cols);
-  QStringList headers{"metric", "live"};
-  for (const auto& p : snapshots_)
-    headers << q(p.snap.name);
-  metrics_->setHorizontalHeaderLabels(headers);
-  if (!result_) {
-    metrics_->setRowCount(0);
+void MainWindow::applyValues(const ParamValues& values) {
+  if (!panel_ || !doc_) return;
+  if (auto st = doc_->set_values(values, "apply values"); !st) {
+    showError(q(st.error()));
     return;
   }
-  metrics_->setRowCount(static_cast<int>(result_->metrics.size()));
-  auto cell = [](double x) {
-    return new QTableWidgetItem(std::isfinite(x) ? QString::number(x, 'g', 6) : "–");
-  };
-  int row = 0;
-  for (const auto& [k, x] : result_->metrics) {
-    metrics_->setItem(row, 0, new QTableWidgetItem(q(k)));
-    metrics_->setItem(row, 1, cell(x));
-    for (std::size_t j = 0; j < snapshots_.size(); ++j) {
-      const auto& r = snapshots_[j].result;
-      const double v = r && r->metrics.count(k) ? r->metrics.at(k) : std::nan("");
-      metrics_->setItem(row, 2 + static_cast<int>(j), cell(v));
-    }
-    ++row;
-  }
-}
-
-Status MainWindow::saveSession(const QString& path) const {
-  if (!scenario_) return Error{"nothing to save"};
-  Session s;
-  s.preset_path = preset_.path;
-  s.scenario = scenario_->name();
-  s.values = values();
-  if (file_data_) {
-    s.data_path = file_data_->source;
-    auto h = file_hash(file_data_->source);
-    if (h) s.data_hash = *h;
-  }
-  s.columns = column_map_;
-  for (const auto& p : snapshots_)
-    s.snapshots.push_back(p.snap);
-  // Window layout: geometry, then each splitter's state, base64, ':'-separated.
-  QByteArrayList parts{saveGeometry().toBase64()};
-  for (const char* name : {"mainSplit", "leftSplit"}) {
-    if (auto* sp = findChild<QSplitter*>(name)) parts << sp->saveState().toBase64();
-  }
-  s.window_state = parts.join(':').toStdString();
-  return save_session(path.toStdString(), s);
-}
-
-Status MainWindow::loadSession(const QString& path) {
-  auto s = load_session(path.toStdString());
-  if (!s) return Error{s.error()};
-  auto scenario = make_scenario(s->scenario);
-  if (!scenario) return Error{path.toStdString() + ": " + scenario.error()};
-  for (const auto& [k, v] : s->values) {
-    if (auto st = (*scenario)->params().check(k, v); !st)
-      return Error{path.toStdString() + ": values: " + st.error()};
-  }
-  if (auto st = loadPreset(q(s->preset_path)); !st) return st;
-  QString warning;
-  if (s->data_path) {
-    auto h = file_hash(*s->data_path);
-    if (h && !s->data_hash.empty() && *h != s->data_hash) {
-      warning = q(*s->data_path) + " changed since the session was saved (hash differs)";
-    }
-    auto st = openDatasetMapped(q(*s->data_path), s->columns);
-    if (!st) return st;
-  }
-  applyValues(s->values);
-  waitForRun();
-  snapshots_.clear();
-  for (const auto& snap : s->snapshots)
-    snapshots_.push_back({snap, nullptr, nullptr});
-  refreshSnapshots();
-  const QByteArrayList parts = QByteArray::fromStdString(s->window_state).split(':');
-  if (!parts.isEmpty() && !parts[0].isEmpty()) restoreGeometry(QByteArray::fromBase64(parts[0]));
-  const char* splits[] = {"mainSplit", "leftSplit"};
-  for (int i = 1; i < parts.size() && i <= 2; ++i) {
-    if (auto* sp = findChild<QSplitter*>(splits[i - 1])) {
-      sp->restoreState(QByteArray::fromBase64(parts[i]));
-    }
-  }
-  if (!warning.isEmpty()) showError(warning);
-  return Ok{};
-}
-
-void MainWindow::useSimulatedData() {
-  if (!file_data_) return;
-  file_data_.reset();
-  runner_->setFileDataset(nullptr);
-  updateDataLabel();
-  requestRun();
-}
-
-void MainWindow::setParam(const std::string& key, double value) {
-  if (panel_) panel_->setValue(key, value);
-}
-
-Status MainWindow::savePreset(const QString& path) const {
-  if (!scenario_) return Error{"nothing to save"};
-  Preset p = preset_;
-  p.values = values();
-  if (file_data_) {
-    p.data_path = file_data_->source;
-  } else {
-    p.data_path.reset();
-  }
-  return save_preset(path.toStdString(), p);
-}
-
-void MainWindow::applyValues(const ParamValues& values) {
-  if (!panel_) return;
-  panel_->setValues(values);
+  panel_->setValues(doc_->values());
+  updateUndoActions();
   requestRun();
 }
 
@@ -566,7 +405,7 @@ SweepDialog* MainWindow::openSweepDialog() {
 }
 
 const ParamValues& MainWindow::values() const {
-  return panel_ ? panel_->values() : kEmpty;
+  return doc_ ? doc_->values() : kEmpty;
 }
 
 std::shared_ptr<const Dataset> MainWindow::dataset() const {
@@ -577,7 +416,7 @@ void MainWindow::requestRun() {
   if (!scenario_ || !panel_) return;
   if (applied_latest_) since_request_.start();
   applied_latest_ = false;
-  runner_->request(panel_->values());
+  runner_->request(doc_->values());
 }
 
 void MainWindow::applyResult(std::shared_ptr<const RunResult> r, const ParamValues& v, double ms) {
@@ -671,7 +510,7 @@ Expected<QStringList> MainWindow::exportAll(const QString& dir, const QStringLis
   if (!result_) return Error{"export: no result to plot (" + last_error_.toStdString() + ")"};
   // Files are named after the preset (two presets of one scenario do not overwrite each other).
   const QString stem =
-      preset_.path.empty() ? q(scenario_->name()) : QFileInfo(q(preset_.path)).completeBaseName();
+      preset().path.empty() ? q(scenario_->name()) : QFileInfo(q(preset().path)).completeBaseName();
   consistency_->refresh();
   return exportPanels(exportedPlots(), dir, formats, stem + "_");
 }

@@ -11,12 +11,14 @@
 #include <memory>
 #include <optional>
 
+#include "core/document.h"
 #include "core/expected.h"
 #include "core/preset.h"
 #include "core/scenario.h"
 #include "core/session.h"
 #include "scenario_view.h"
 
+class QAction;
 class QComboBox;
 class QLabel;
 class QScrollArea;
@@ -51,6 +53,12 @@ class MainWindow : public QMainWindow {
   Status savePreset(const QString& path) const;
   // Loads a CSV whose columns are named otherwise, with role -> column; remembered per header.
   Status openDatasetMapped(const QString& path, const ColumnMap& map);
+  Status openDatasetMapped(const QString& path, const Mapping& map);
+  // Undo / redo through the document (values, data, mapping, snapshot deletion).
+  bool undo();
+  bool redo();
+  // The open document (preset, values, data, snapshots, history); null before a preset loads.
+  const Document* document() const { return doc_.get(); }
   // Pins the live tuning as a named snapshot: ghost curves and a metrics column.
   void pinSnapshot(const QString& name);
   void clearSnapshots();
@@ -81,7 +89,7 @@ class MainWindow : public QMainWindow {
   std::shared_ptr<const Dataset> dataset() const;
   const ParamValues& values() const;
   QString lastError() const { return last_error_; }
-  const Preset& preset() const { return preset_; }
+  const Preset& preset() const;
   std::shared_ptr<const Scenario> scenario() const { return scenario_; }
   // The parameter a user drags most: Q when there is one, else the first continuous filter one.
   std::string primaryParameter() const;
@@ -109,15 +117,25 @@ class MainWindow : public QMainWindow {
   };
   void refreshSnapshots();
   void fillMetrics();
-  Expected<Dataset> readMapped(const QString& path, const ColumnMap* map);
-  Status openFile(const QString& path, const ColumnMap* map);
+  Status adoptDocument(Document doc);
+  // Reads `path` for the scenario; with no mapping, tries the file as it is, then a mapping
+  // remembered for its header, then (interactive) the mapping dialog. `used` gets the mapping.
+  Expected<Dataset> readMapped(const QString& path, const Mapping* map, Mapping& used);
+  Status openFile(const QString& path, const Mapping* map);
+  // Makes the window show what the document holds (after undo/redo): values, data, snapshots.
+  void syncFromDocument();
+  void updateUndoActions();
 
   std::shared_ptr<const Scenario> scenario_;
-  std::vector<Pinned> snapshots_;
-  ColumnMap column_map_;
+  std::unique_ptr<Document> doc_;
+  std::vector<Pinned> snapshots_;       // the document's snapshots with their runs
+  std::optional<DataRef> loaded_data_;  // what file_data_ was read from
+  std::string last_edit_key_;           // slider drags join one undo step
+  QElapsedTimer last_edit_;
+  QAction* undo_action_ = nullptr;
+  QAction* redo_action_ = nullptr;
   bool interactive_ = false;
   std::unique_ptr<ScenarioView> view_;
-  Preset preset_;
   std::shared_ptr<const Dataset> file_data_;
   std::shared_ptr<const RunResult> result_;
   QList<PlotPanel> plots_;

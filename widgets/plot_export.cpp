@@ -74,7 +74,7 @@ Expected<QStringList> exportPanels(const QList<PlotPanel>& panels, const QString
   for (const PlotPanel& p : panels) {
     for (const QString& f : formats) {
       const QString path = QDir(dir).filePath(prefix + p.name + "." + f);
-      if (auto st = exportPlot(p.plot, path); !st) return Error{st.error()};
+      if (auto st = exportPlot(p.plot, path); !st) return st.err();
       written << path;
     }
   }

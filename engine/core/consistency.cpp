@@ -85,50 +85,72 @@ Whiteness ljung_box(const std::vector<double>& v, std::size_t max_lag) {
   return w;
 }
 
-namespace {
-// A channel name as a metric key suffix: "range 1" -> "range_1".
-std::string key_of(std::string name) {
-  for (char& ch : name) {
-    if (ch == ' ') ch = '_';
-  }
-  return name;
-}
-}  // namespace
-
 void add_consistency_metrics(const std::vector<InnovationChannel>& channels, const NeesSeries& nees,
-                             std::map<std::string, double>& metrics) {
+                             Metrics& metrics, UndefinedMetrics& undefined) {
+  constexpr double kLog2Pi = 1.8378770664093453;
   double nis_sum = 0.0, inside = 0.0, worst_p = std::numeric_limits<double>::quiet_NaN();
-  std::map<std::string, double> per_channel;
-  std::size_t n = 0, counted = 0;
+  double nll_sum = 0.0;
+  bool nll_known = true;
+  std::size_t n = 0;
+  auto put = [&](const std::string& key, double v) { metrics.emplace(key, v); };
   for (const auto& c : channels) {
+    const std::string key = metric_identifier(c.name);
     const std::size_t cn = count_finite(c.nis);
-    if (cn == 0) continue;
-    // NIS normalised by its dof so that channels of different size average together.
-    for (double v : c.nis) {
-      if (std::isfinite(v)) nis_sum += v / c.dof;
+    if (cn == 0) {
+      undefined.emplace("nis_mean." + key, "the channel never updated");
+      continue;
     }
+    // NIS normalised by its dof so that channels of different size average together.
+    double raw = 0.0;
+    for (std::size_t k = 0; k < c.nis.size(); ++k) {
+      const double v = c.nis[k];
+      if (!std::isfinite(v)) continue;
+      raw += v;
+      nis_sum += v / c.dof;
+      if (c.log_det_s.size() == c.nis.size() && std::isfinite(c.log_det_s[k])) {
+        nll_sum += 0.5 * (c.dof * kLog2Pi + c.log_det_s[k] + v);
+      } else {
+        nll_known = false;
+      }
+    }
+    put("nis_mean." + key, raw / static_cast<double>(cn));
     n += cn;
     inside += fraction_inside(c.nis, c.dof) * static_cast<double>(cn);
-    counted += cn;
     if (!c.normalized.empty()) {
       const double p = ljung_box(c.normalized, 20).p_value;
-      if (std::isfinite(p) && !(p >= worst_p)) worst_p = p;
-      if (std::isfinite(p) && channels.size() > 1) per_channel["whiteness_p." + key_of(c.name)] = p;
+      if (std::isfinite(p)) {
+        if (!(p >= worst_p)) worst_p = p;
+        put("whiteness_p." + key, p);
+      } else {
+        undefined.emplace("whiteness_p." + key, "too few updates for 20 lags");
+      }
+    } else {
+      undefined.emplace("whiteness_p." + key, "the channel is not scalar");
     }
   }
-  auto put = [&](const char* key, double v) { metrics.emplace(key, v); };
   if (n) {
-    put("nis_mean",
-        nis_sum / static_cast<double>(n) * (channels.size() == 1 ? channels[0].dof : 1.0));
-    put("nis_in_bounds", inside / static_cast<double>(counted));
+    put("nis_mean", nis_sum / static_cast<double>(n));
+    put("nis_in_bounds", inside / static_cast<double>(n));
+    if (nll_known) {
+      put("nll", nll_sum / static_cast<double>(n));
+    } else {
+      undefined.emplace("nll", "the channels do not report their innovation covariance");
+    }
+  } else {
+    for (const char* k : {"nis_mean", "nis_in_bounds", "nll"})
+      undefined.emplace(k, "no measurement update in this run");
   }
-  if (std::isfinite(worst_p)) put("whiteness_p", worst_p);
-  for (const auto& [k, v] : per_channel)
-    metrics.emplace(k, v);
+  if (std::isfinite(worst_p)) {
+    put("whiteness_p", worst_p);
+  } else {
+    undefined.emplace("whiteness_p", "no scalar channel with enough updates for 20 lags");
+  }
   if (!nees.nees.empty() && count_finite(nees.nees)) {
-    put("nees_mean", mean_finite(nees.nees));
-    put("nees_dof", nees.dof);
+    put("nees_mean", mean_finite(nees.nees) / nees.dof);
     put("nees_in_bounds", fraction_inside(nees.nees, nees.dof));
+  } else {
+    undefined.emplace("nees_mean", "no truth column");
+    undefined.emplace("nees_in_bounds", "no truth column");
   }
 }
 

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "core/metrics.h"
+
 namespace kfw {
 
 // Two-sided (1 - alpha) χ² bounds of the NIS for `dof` degrees of freedom, averaged over `window`
@@ -36,10 +38,11 @@ Whiteness ljung_box(const std::vector<double>& v, std::size_t max_lag = 20);
 struct InnovationChannel;
 struct NeesSeries;
 
-// nis_mean, nis_in_bounds (two-sided 95 %), whiteness_p (Ljung–Box on y/√S, the worst channel;
-// with several channels also whiteness_p.<channel>), nees_mean and nees_in_bounds: the same keys
-// for every scenario. Keys already present are kept.
+// The shared consistency metrics (metrics.h): nis_mean (NIS/dof over every update), nis_mean.<ch>
+// (raw), nis_in_bounds, nll (when every channel reports log det S), whiteness_p (worst channel)
+// and whiteness_p.<ch>, nees_mean (NEES/dof) and nees_in_bounds. Keys already present are kept;
+// what cannot be computed goes to `undefined` with the reason.
 void add_consistency_metrics(const std::vector<InnovationChannel>& channels, const NeesSeries& nees,
-                             std::map<std::string, double>& metrics);
+                             Metrics& metrics, UndefinedMetrics& undefined);
 
 }  // namespace kfw

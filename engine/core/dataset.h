@@ -43,14 +43,30 @@ struct ColumnSpec {
 // Names the first required column that is missing, with the file.
 Status require_columns(const Dataset& d, const std::vector<ColumnSpec>& spec);
 
+// Required columns that are present but hold no finite value at all are invalid (column named).
+Status require_some_value(const Dataset& d, const std::vector<ColumnSpec>& spec);
+
+// Limits (README "Limits"): refused at once with a message, in bounded time and memory.
+inline constexpr std::size_t kMaxCsvLineBytes = 1024u * 1024u;
+inline constexpr std::size_t kMaxCsvColumns = 10000;
+
 struct CsvOptions {
   std::string time_column = "t";
+  // Columns bound to a role: only these (and time) are validated; a bad cell elsewhere reads as
+  // no sample. Empty: every column is validated.
+  std::vector<std::string> validate;
   std::function<bool(double)> progress;  // fraction read; return false to cancel
 };
 
-// Parses CSV with a header row. Empty cells and NaN are "no sample". Errors name file, line and
-// column: malformed numbers, ragged rows, duplicate or empty header names, a missing, non-finite
-// or non-increasing time column, infinities.
+// One cell: empty, NaN, nan, NA -> no sample (kNoSample); a finite number; else an Error
+// (text, inf, a number that overflows a double).
+Expected<double> parse_cell(std::string_view text);
+
+// Parses CSV with a header row (the data policy, README "Missing and invalid data"): an empty
+// cell or NaN/nan/NA is a missing sample; inf, a number that overflows a double or text in a
+// validated column is invalid. Errors name FILE:LINE:COL: malformed numbers, ragged rows,
+// duplicate or empty header names, a missing, empty or non-increasing time, binary files, the
+// line-length and column-count limits.
 Expected<Dataset> parse_csv(std::istream& in, const std::string& source,
                             const CsvOptions& opt = {});
 Expected<Dataset> read_csv(const std::string& path, const CsvOptions& opt = {});

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/suggest.h"
+
 namespace kfw {
 
 const ParamSpec* ParamTable::find(std::string_view key) const {
@@ -21,6 +23,15 @@ ParamValues ParamTable::defaults() const {
   return v;
 }
 
+// Every key, for "did you mean".
+static std::vector<std::string> keys_of(const std::vector<ParamSpec>& specs) {
+  std::vector<std::string> keys;
+  keys.reserve(specs.size());
+  for (const auto& s : specs)
+    keys.push_back(s.key);
+  return keys;
+}
+
 static std::string number(double v) {
   std::ostringstream os;
   os.precision(10);
@@ -30,7 +41,7 @@ static std::string number(double v) {
 
 Status ParamTable::check(std::string_view key, double value) const {
   const ParamSpec* s = find(key);
-  if (!s) return Error{"unknown parameter '" + std::string(key) + "'"};
+  if (!s) return Error{unknown_message("parameter", key, keys_of(specs_))};
   if (!std::isfinite(value)) {
     return Error{"parameter '" + s->key + "': value must be a finite number"};
   }
@@ -72,12 +83,12 @@ bool parse_double(std::string_view text, double& out) {
 Status ParamTable::apply_assignment(std::string_view assignment, ParamValues& values) const {
   const auto eq = assignment.find('=');
   if (eq == std::string_view::npos || eq == 0) {
-    return Error{"--set expects key=value, got '" + std::string(assignment) + "'"};
+    return Error{"--set expects key=value, got " + quote_token(assignment)};
   }
   const std::string_view key = assignment.substr(0, eq);
   const std::string_view text = assignment.substr(eq + 1);
   const ParamSpec* s = find(key);
-  if (!s) return Error{"unknown parameter '" + std::string(key) + "'"};
+  if (!s) return Error{unknown_message("parameter", key, keys_of(specs_))};
   double value = 0.0;
   bool parsed = false;
   if (s->scale == Scale::kChoice) {
@@ -89,11 +100,12 @@ Status ParamTable::apply_assignment(std::string_view assignment, ParamValues& va
     }
   }
   if (!parsed && !parse_double(text, value)) {
-    std::string msg = "parameter '" + s->key + "': '" + std::string(text) + "' is not a number";
+    std::string msg = "parameter '" + s->key + "': " + quote_token(text) + " is not a number";
     if (s->scale == Scale::kChoice) {
       msg += " or one of";
       for (const auto& c : s->choices)
         msg += " " + c;
+      msg += did_you_mean(text, s->choices);
     }
     return Error{msg};
   }

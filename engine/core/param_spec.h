@@ -31,6 +31,9 @@ struct ParamSpec {
   std::string description;
   int decimals = 3;                  // spin-box precision for linear scales
   std::vector<std::string> choices;  // labels for kChoice
+  // Defaults of the preset's per-parameter flags (a preset may override them).
+  bool tunable = false;     // offered to the tuner
+  std::string scale_group;  // noise variances that scale together
 };
 
 // Values by key. Ordered, so that output is stable.

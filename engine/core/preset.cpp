@@ -1,13 +1,16 @@
 #include "core/preset.h"
 
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <nlohmann/json.hpp>
+#include <mutex>
 #include <sstream>
 
 #include "core/dataset.h"
+#include "core/json_io.h"
 #include "core/scenario.h"
+#include "core/suggest.h"
+#include "model/model_scenario.h"
 
 #ifndef KFW_SOURCE_DIR
 #define KFW_SOURCE_DIR "."
@@ -19,19 +22,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-std::string line_col(const std::string& text, std::size_t byte) {
-  std::size_t line = 1, col = 1;
-  for (std::size_t i = 0; i < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
-  }
-  return std::to_string(line) + ":" + std::to_string(col);
-}
 
 const char* scale_name(Scale s) {
   switch (s) {
@@ -49,139 +39,261 @@ const char* scale_name(Scale s) {
   return "linear";
 }
 
+// The schema (presets/README.md): top-level keys and the keys of a parameter entry.
+const std::vector<std::string> kTopKeys = {"format",      "version", "scenario",   "title",
+                                           "description", "data",    "parameters", "mapping",
+                                           "model",       "sim"};
+const std::vector<std::string> kParamKeys = {"value",       "min",   "max",         "unit",
+                                             "scale",       "label", "choices",     "tunable",
+                                             "scale_group", "group", "description", "decimals"};
+
+// Scenarios built from the preset itself: a user model ("scenario": "model").
+std::map<std::string, PresetScenarioFactory>& preset_factories() {
+  static std::map<std::string, PresetScenarioFactory> f = {{"model", &make_model_scenario}};
+  return f;
+}
+std::mutex& factories_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+std::string unknown_key(const std::string& key, const std::vector<std::string>& allowed) {
+  if (auto near = nearest(key, allowed)) return "unknown key (did you mean '" + *near + "'?)";
+  std::string msg = "unknown key (";
+  for (std::size_t i = 0; i < allowed.size(); ++i)
+    msg += (i ? ", " : "") + allowed[i];
+  return msg + ")";
+}
+
+bool allowed(const std::string& key, const std::vector<std::string>& keys) {
+  for (const auto& k : keys) {
+    if (k == key) return true;
+  }
+  return false;
+}
+
+// Reads one parameter entry into the preset. `where` is "FILE: parameters.KEY".
+Status read_parameter(Preset& p, const ParamTable& table, const std::string& key, const json& e,
+                      const std::string& file) {
+  const std::string where = file + ": " + key_path("parameters", key);
+  const ParamSpec* spec = table.find(key);
+  if (!spec) {
+    return Error{where + ": unknown parameter for scenario '" + p.scenario + "'"};
+  }
+  double value = 0.0;
+  ParamMeta& meta = p.meta[key];
+  if (e.is_number()) {
+    value = e.get<double>();
+  } else if (e.is_object()) {
+    for (auto it = e.begin(); it != e.end(); ++it) {
+      if (!allowed(it.key(), kParamKeys)) {
+        return Error{where + "." + it.key() + ": " + unknown_key(it.key(), kParamKeys)};
+      }
+    }
+    auto v = e.find("value");
+    if (v == e.end()) return Error{where + ": missing 'value'"};
+    if (v->is_string() && spec->scale == Scale::kChoice) {
+      ParamValues tmp;
+      if (auto st = table.apply_assignment(key + "=" + v->get<std::string>(), tmp); !st) {
+        return Error{where + ".value: " + st.error()};
+      }
+      value = tmp[key];
+    } else if (!v->is_number()) {
+      return Error{where + ".value: must be a number, not " + json_type_name(*v)};
+    } else {
+      value = v->get<double>();
+    }
+    if (auto u = e.find("unit"); u != e.end()) {
+      if (!u->is_string() || u->get<std::string>() != spec->unit) {
+        return Error{where + ".unit: '" + (u->is_string() ? u->get<std::string>() : u->dump()) +
+                     "' does not match the parameter's unit '" + spec->unit + "'"};
+      }
+    }
+    for (const char* k : {"scale", "label", "scale_group", "group", "description"}) {
+      if (auto f = e.find(k); f != e.end() && !f->is_string()) {
+        return Error{where + "." + k + ": must be a string, not " + json_type_name(*f)};
+      }
+    }
+    if (auto f = e.find("tunable"); f != e.end()) {
+      if (!f->is_boolean()) return Error{where + ".tunable: must be true or false"};
+      meta.tunable = f->get<bool>();
+    }
+    if (auto f = e.find("scale_group"); f != e.end()) meta.scale_group = f->get<std::string>();
+    if (auto f = e.find("choices"); f != e.end() && !f->is_array()) {
+      return Error{where + ".choices: must be an array of labels"};
+    }
+    if (auto f = e.find("decimals"); f != e.end() && !f->is_number_integer()) {
+      return Error{where + ".decimals: must be a whole number"};
+    }
+    const bool has_min = e.contains("min"), has_max = e.contains("max");
+    if (has_min || has_max) {
+      double lo = spec->min, hi = spec->max;
+      if (has_min) {
+        if (!e["min"].is_number()) return Error{where + ".min: must be a number"};
+        lo = e["min"].get<double>();
+      }
+      if (has_max) {
+        if (!e["max"].is_number()) return Error{where + ".max: must be a number"};
+        hi = e["max"].get<double>();
+      }
+      if (!(lo < hi) || lo < spec->min || hi > spec->max) {
+        std::ostringstream os;
+        os << where << ": range [" << lo << ", " << hi << "] must be increasing and inside ["
+           << spec->min << ", " << spec->max << "]";
+        return Error{os.str()};
+      }
+      if (lo != spec->min || hi != spec->max) p.ranges[key] = {lo, hi};
+    }
+  } else {
+    return Error{where + ": expected a number or an object with 'value', not " + json_type_name(e)};
+  }
+  if (auto st = table.check(key, value); !st) return Error{where + ": " + st.error()};
+  if (auto r = p.ranges.find(key); r != p.ranges.end()) {
+    if (value < r->second.first || value > r->second.second) {
+      return Error{where + ": value outside the preset's own range"};
+    }
+  }
+  p.values[key] = value;
+  return Ok{};
+}
+
 }  // namespace
 
-Expected<Preset> parse_preset(const std::string& text, const std::string& path) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    std::string what = e.what();
-    if (auto p = what.find("syntax error"); p != std::string::npos) what = what.substr(p);
-    return Error{path + ":" + line_col(text, e.byte == 0 ? 0 : e.byte - 1) +
-                 ": invalid JSON: " + what};
-  }
+void register_preset_scenario(const std::string& name, PresetScenarioFactory factory) {
+  std::lock_guard lock(factories_mutex());
+  preset_factories()[name] = factory;
+}
+
+namespace {
+
+Expected<Preset> preset_from_json(const json& j, const std::string& path) {
   if (!j.is_object()) return Error{path + ": a preset must be a JSON object"};
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    if (!allowed(it.key(), kTopKeys)) {
+      return Error{path + ": " + it.key() + ": " + unknown_key(it.key(), kTopKeys)};
+    }
+  }
   auto str = [&](const char* key, std::string& out, bool required) -> Status {
     auto it = j.find(key);
     if (it == j.end() || it->is_null()) {
-      if (required) return Error{path + ": missing key '" + key + "'"};
+      if (required) return Error{path + ": " + key + ": missing (required)"};
       return Ok{};
     }
-    if (!it->is_string()) return Error{path + ": key '" + key + "' must be a string"};
+    if (!it->is_string()) {
+      return Error{path + ": " + key + ": must be a string, not " + json_type_name(*it)};
+    }
     out = it->get<std::string>();
     return Ok{};
   };
   std::string format;
-  if (auto st = str("format", format, true); !st) return Error{st.error()};
+  if (auto st = str("format", format, true); !st) return st.err();
   if (format != kPresetFormat) {
-    return Error{path + ": key 'format' is '" + format + "', expected '" + kPresetFormat + "'"};
-  }
-  auto ver = j.find("version");
-  if (ver == j.end() || !ver->is_number_integer()) {
-    return Error{path + ": key 'version' must be an integer"};
-  }
-  if (ver->get<int>() != kPresetVersion) {
-    return Error{path + ": key 'version' is " + std::to_string(ver->get<int>()) +
-                 ", this build reads version " + std::to_string(kPresetVersion)};
+    return Error{path + ": format: '" + format + "', expected '" + kPresetFormat + "'"};
   }
   Preset p;
   p.path = path;
-  if (auto st = str("scenario", p.scenario, true); !st) return Error{st.error()};
-  if (auto st = str("title", p.title, false); !st) return Error{st.error()};
-  if (auto st = str("description", p.description, false); !st) return Error{st.error()};
+  {
+    auto ver = j.find("version");
+    if (ver == j.end() || !ver->is_number_integer()) {
+      return Error{path + ": version: must be a whole number (1 or 2)"};
+    }
+    // Compared as the JSON's own integer type: 4294967297 is not 1.
+    const bool known = ver->is_number_unsigned()
+                           ? (ver->get<std::uint64_t>() == 1 || ver->get<std::uint64_t>() == 2)
+                           : (ver->get<std::int64_t>() == 1 || ver->get<std::int64_t>() == 2);
+    if (!known) {
+      return Error{path + ": version: " + ver->dump() + "; this build reads versions 1 and 2"};
+    }
+    p.version = static_cast<int>(ver->get<std::int64_t>());
+  }
+  if (auto st = str("scenario", p.scenario, true); !st) return st.err();
+  if (auto st = str("title", p.title, false); !st) return st.err();
+  if (auto st = str("description", p.description, false); !st) return st.err();
   std::string data;
-  if (auto st = str("data", data, false); !st) return Error{st.error()};
+  if (auto st = str("data", data, false); !st) return st.err();
   if (!data.empty()) {
     fs::path dp(data);
     if (dp.is_relative() && !path.empty()) dp = fs::path(path).parent_path() / dp;
     p.data_path = dp.lexically_normal().string();
   }
-  auto scenario = make_scenario(p.scenario);
-  if (!scenario) return Error{path + ": key 'scenario': " + scenario.error()};
-  const ParamTable& table = (*scenario)->params();
+  PresetScenarioFactory factory = nullptr;
+  {
+    std::lock_guard lock(factories_mutex());
+    auto f = preset_factories().find(p.scenario);
+    if (f != preset_factories().end()) factory = f->second;
+  }
+  if (auto m = j.find("model"); m != j.end()) {
+    if (!factory) {
+      return Error{path +
+                   ": model: only a preset whose scenario is a model may carry a model "
+                   "block (scenario is '" +
+                   p.scenario + "')"};
+    }
+    if (!m->is_object()) return Error{path + ": model: must be an object"};
+    p.model = *m;
+  }
+  if (factory) {
+    auto s = factory(j, path);
+    if (!s) return s.err();
+    p.instance = std::shared_ptr<const Scenario>(std::move(*s));
+    if (auto params = j.find("parameters"); params != j.end()) p.parameters_block = *params;
+  } else {
+    auto s = make_scenario(p.scenario);
+    if (!s) return Error{path + ": scenario: " + s.error()};
+    p.instance = std::shared_ptr<const Scenario>(std::move(*s));
+  }
+  const ParamTable& table = p.instance->params();
   p.values = table.defaults();
-  auto params = j.find("parameters");
-  if (params != j.end()) {
-    if (!params->is_object()) return Error{path + ": key 'parameters' must be an object"};
+  for (const auto& spec : table.specs())
+    p.meta[spec.key] = ParamMeta{spec.tunable, spec.scale_group};
+  if (auto params = j.find("parameters"); params != j.end()) {
+    if (!params->is_object()) return Error{path + ": parameters: must be an object"};
     for (auto it = params->begin(); it != params->end(); ++it) {
-      const std::string& key = it.key();
-      const std::string where = path + ": parameters." + key;
-      const ParamSpec* spec = table.find(key);
-      if (!spec) return Error{where + ": unknown parameter for scenario '" + p.scenario + "'"};
-      double value = 0.0;
-      const json& e = it.value();
-      if (e.is_number()) {
-        value = e.get<double>();
-      } else if (e.is_object()) {
-        auto v = e.find("value");
-        if (v == e.end()) return Error{where + ": missing 'value'"};
-        if (v->is_string() && spec->scale == Scale::kChoice) {
-          ParamValues tmp;
-          if (auto st = table.apply_assignment(key + "=" + v->get<std::string>(), tmp); !st) {
-            return Error{where + ": " + st.error()};
-          }
-          value = tmp[key];
-        } else if (!v->is_number()) {
-          return Error{where + ".value: must be a number"};
-        } else {
-          value = v->get<double>();
-        }
-        if (auto u = e.find("unit"); u != e.end()) {
-          if (!u->is_string() || u->get<std::string>() != spec->unit) {
-            return Error{where + ".unit: '" + (u->is_string() ? u->get<std::string>() : u->dump()) +
-                         "' does not match the parameter's unit '" + spec->unit + "'"};
-          }
-        }
-        const bool has_min = e.contains("min"), has_max = e.contains("max");
-        if (has_min || has_max) {
-          double lo = spec->min, hi = spec->max;
-          if (has_min) {
-            if (!e["min"].is_number()) return Error{where + ".min: must be a number"};
-            lo = e["min"].get<double>();
-          }
-          if (has_max) {
-            if (!e["max"].is_number()) return Error{where + ".max: must be a number"};
-            hi = e["max"].get<double>();
-          }
-          if (!(lo < hi) || lo < spec->min || hi > spec->max) {
-            std::ostringstream os;
-            os << where << ": range [" << lo << ", " << hi << "] must be increasing and inside ["
-               << spec->min << ", " << spec->max << "]";
-            return Error{os.str()};
-          }
-          if (lo != spec->min || hi != spec->max) p.ranges[key] = {lo, hi};
-        }
-      } else {
-        return Error{where + ": expected a number or an object with 'value'"};
+      if (auto st = read_parameter(p, table, it.key(), it.value(), path); !st) return st.err();
+    }
+  }
+  if (auto m = j.find("mapping"); m != j.end()) {
+    auto mapping = mapping_from_json(*m, "mapping");
+    if (!mapping) return Error{path + ": " + mapping.error()};
+    p.mapping = std::move(*mapping);
+  }
+  if (auto s = j.find("sim"); s != j.end()) {
+    if (!s->is_object()) return Error{path + ": sim: must be an object"};
+    for (auto it = s->begin(); it != s->end(); ++it) {
+      if (it.key() != "x0_from_prior") {
+        return Error{path + ": sim." + it.key() + ": unknown key (x0_from_prior)"};
       }
-      if (auto st = table.check(key, value); !st) return Error{path + ": " + st.error()};
-      if (auto r = p.ranges.find(key); r != p.ranges.end()) {
-        if (value < r->second.first || value > r->second.second) {
-          return Error{where + ": value outside the preset's own range"};
-        }
-      }
-      p.values[key] = value;
+      if (!it->is_boolean()) return Error{path + ": sim.x0_from_prior: must be true or false"};
+      p.sim_x0_from_prior = it->get<bool>();
     }
   }
   return p;
 }
 
+}  // namespace
+
+Expected<Preset> parse_preset(const std::string& text, const std::string& path) {
+  auto doc = parse_json_document(text, path);
+  if (!doc) return doc.err();
+  return preset_from_json(*doc, path);
+}
+
 Expected<Preset> load_preset(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path + ": cannot open preset"};
-  std::ostringstream os;
-  os << in.rdbuf();
-  return parse_preset(os.str(), path);
+  auto doc = read_json_document(path, "preset");
+  if (!doc) return doc.err();
+  return preset_from_json(*doc, path);
 }
 
 Expected<Preset> default_preset(const std::string& scenario) {
   auto s = make_scenario(scenario);
-  if (!s) return Error{s.error()};
+  if (!s) return s.err();
   Preset p;
   p.scenario = scenario;
   p.title = (*s)->title();
   p.values = (*s)->params().defaults();
+  for (const auto& spec : (*s)->params().specs())
+    p.meta[spec.key] = ParamMeta{spec.tunable, spec.scale_group};
+  p.instance = std::shared_ptr<const Scenario>(std::move(*s));
   return p;
 }
 
@@ -194,16 +306,26 @@ std::string preset_to_json(const Preset& preset) {
   j["description"] = preset.description;
   if (preset.data_path) {
     fs::path dp(*preset.data_path);
-    if (!preset.path.empty()) {
-      dp = fs::path(*preset.data_path).lexically_relative(fs::path(preset.path).parent_path());
-      if (dp.empty()) dp = *preset.data_path;
+    if (!preset.path.empty() && dp.is_absolute()) {
+      const fs::path dir = fs::absolute(fs::path(preset.path)).parent_path();
+      fs::path rel = dp.lexically_relative(dir);
+      if (!rel.empty()) dp = rel;
+    } else if (!preset.path.empty()) {
+      const fs::path dir = fs::path(preset.path).parent_path();
+      fs::path rel = fs::absolute(dp).lexically_relative(fs::absolute(dir));
+      if (!rel.empty()) dp = rel;
     }
     j["data"] = dp.string();
   }
-  auto scenario = make_scenario(preset.scenario);
+  std::shared_ptr<const Scenario> scenario = preset.instance;
+  if (!scenario) {
+    auto s = make_scenario(preset.scenario);
+    if (s) scenario = std::shared_ptr<const Scenario>(std::move(*s));
+  }
+  const bool own_table = !preset.model.is_null();
   nlohmann::ordered_json params = nlohmann::ordered_json::object();
   if (scenario) {
-    for (const auto& spec : (*scenario)->params().specs()) {
+    for (const auto& spec : scenario->params().specs()) {
       nlohmann::ordered_json e;
       auto v = preset.values.find(spec.key);
       e["value"] = v == preset.values.end() ? spec.def : v->second;
@@ -214,10 +336,22 @@ std::string preset_to_json(const Preset& preset) {
       e["scale"] = scale_name(spec.scale);
       e["label"] = spec.label;
       if (!spec.choices.empty()) e["choices"] = spec.choices;
+      auto m = preset.meta.find(spec.key);
+      const ParamMeta meta =
+          m == preset.meta.end() ? ParamMeta{spec.tunable, spec.scale_group} : m->second;
+      e["tunable"] = meta.tunable;
+      if (!meta.scale_group.empty()) e["scale_group"] = meta.scale_group;
+      if (own_table) {
+        if (!spec.group.empty()) e["group"] = spec.group;
+        if (!spec.description.empty()) e["description"] = spec.description;
+      }
       params[spec.key] = e;
     }
   }
   j["parameters"] = params;
+  if (!preset.mapping.empty()) j["mapping"] = mapping_to_json(preset.mapping);
+  if (!preset.model.is_null()) j["model"] = preset.model;
+  if (preset.sim_x0_from_prior) j["sim"] = {{"x0_from_prior", true}};
   return j.dump(2) + "\n";
 }
 

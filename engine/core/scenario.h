@@ -12,19 +12,31 @@
 
 #include "core/dataset.h"
 #include "core/expected.h"
+#include "core/metrics.h"
 #include "core/param_spec.h"
 
 namespace kfw {
 
-// Summary numbers of a run: a flat, ordered map (the CLI writes it as a JSON object of numbers).
-using Metrics = std::map<std::string, double>;
-
 // One measurement channel's innovations, for consistency checks that work for every scenario.
 struct InnovationChannel {
-  std::string name;                // "angle", "range 1", "position", ...
+  std::string name;                // identifier: "angle", "range_1", "position" (metric keys)
+  std::string label;               // display name ("range 1"); empty: the name
   double dof = 1.0;                // measurement dimension
   std::vector<double> nis;         // per step; NaN where the channel did not update
   std::vector<double> normalized;  // y/√S per step (scalar channels; empty otherwise)
+  std::vector<double> log_det_s;   // log det S per step, for the NLL (empty: not reported)
+  const std::string& display() const { return label.empty() ? name : label; }
+};
+
+// One estimated state over the run: what rmse.<state>, the finiteness check and generic plots
+// read. Pointers into the result's own arrays (valid while the result lives).
+struct StateSeries {
+  std::string key;    // identifier: "theta", "x"
+  std::string label;  // "θ (angle)"
+  std::string unit;   // "deg"
+  const std::vector<double>* estimate = nullptr;
+  const std::vector<double>* variance = nullptr;  // may be null
+  const std::vector<double>* truth = nullptr;     // may be null (no truth)
 };
 
 // NEES against truth, when the dataset has truth.
@@ -37,8 +49,9 @@ struct NeesSeries {
 // arrays its plots need; plots read from it and nothing reaches back into a filter object.
 struct RunResult {
   virtual ~RunResult() = default;
-  std::vector<double> t;  // time of each step, s
-  Metrics metrics;
+  std::vector<double> t;              // time of each step, s
+  Metrics metrics;                    // finite values only (see finalize_run)
+  UndefinedMetrics undefined;         // metrics undefined for this run, with the reason
   std::vector<std::string> warnings;  // numerical trouble recorded during the run, shown to users
   std::size_t steps() const { return t.size(); }
   // Per-step output as a CSV table (estimates, covariance diagonal, innovations, ...).
@@ -46,6 +59,8 @@ struct RunResult {
   // The innovation channels and the NEES, for the consistency panel (empty: none offered).
   virtual std::vector<InnovationChannel> channels() const { return {}; }
   virtual NeesSeries nees_series() const { return {}; }
+  // The estimated states (empty: the scenario reports its accuracy metrics itself).
+  virtual std::vector<StateSeries> states() const { return {}; }
 };
 
 // Lets a long run be cancelled and report progress; both may be empty.
@@ -65,9 +80,18 @@ class Scenario {
 
   // A reproducible synthetic dataset from the `sim.*` parameters (seeded by `sim.seed`).
   virtual Expected<Dataset> simulate(const ParamValues& p) const = 0;
-  // Filters a dataset. Bad parameters or a dataset missing columns come back as an Error.
-  virtual Expected<std::shared_ptr<const RunResult>> run(const Dataset& d, const ParamValues& p,
-                                                         const RunControl& control = {}) const = 0;
+  // Filters a dataset. Bad parameters or a dataset missing columns come back as an Error (exit
+  // code 2); a run that breaks down numerically as a failure naming the step and time (exit 1).
+  // Runs run_impl, then finalize_run: metrics shared by every scenario, non-finite metrics moved
+  // to `undefined`, and the estimates checked finite.
+  Expected<std::shared_ptr<const RunResult>> run(const Dataset& d, const ParamValues& p,
+                                                 const RunControl& control = {}) const;
+
+  // The state whose RMSE is `rmse` (a key of RunResult::states()); empty when the scenario
+  // sets `rmse` itself (a compound such as the 3-D position).
+  virtual std::string primary_state() const { return {}; }
+  // The scenario's own metrics (the shared vocabulary is declared in metrics.h).
+  virtual std::vector<MetricSpec> metric_specs() const { return {}; }
   // Steady-state gains for the current parameters (closed form and DARE), when the scenario has
   // any. With a dataset, its sample period is used; without, the simulator's.
   virtual Expected<Metrics> gain(const ParamValues& p, const Dataset* data = nullptr) const;
@@ -78,7 +102,27 @@ class Scenario {
   // Runs one of commands() on a dataset; returns the JSON text to print.
   virtual Expected<std::string> command(const std::string& name, const Dataset& d,
                                         const ParamValues& p) const;
+
+ protected:
+  virtual Expected<std::shared_ptr<RunResult>> run_impl(const Dataset& d, const ParamValues& p,
+                                                        const RunControl& control) const = 0;
 };
+
+// The shared metrics every run gets (rmse.<state>, rmse from the primary state), non-finite
+// metrics moved to `undefined` with a reason, and a failure (exit 1) naming the first step at
+// which an estimate or its variance stopped being finite.
+Status finalize_run(RunResult& r, const Scenario& s, bool check_finite = true);
+
+// The spec of a metric key for this scenario: shared (exact or pattern), else the scenario's.
+// A key declared nowhere gets a plain spec (label = key, group scenario, lower is better).
+// With a result, pattern targets are filled in (nis_mean.<channel>: that channel's dof).
+MetricSpec describe_metric(const Scenario& s, std::string_view key, const RunResult* r = nullptr);
+// True when the key is declared (shared, pattern, or by the scenario).
+bool is_declared_metric(const Scenario& s, std::string_view key);
+// Every metric key that a scenario can produce, for "did you mean" (with a result: its keys too).
+std::vector<std::string> metric_keys(const Scenario& s, const RunResult* r = nullptr);
+// The flat metrics JSON: {"rmse": 1.6, ..., "undefined": {"nees_mean": "no truth column"}}.
+std::string metrics_to_json(const Metrics& m, const UndefinedMetrics& undefined, int indent = 2);
 
 class ScenarioRegistry {
  public:

@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "core/json_io.h"
+
 namespace kfw {
 
 using nlohmann::json;
@@ -43,7 +45,10 @@ std::string session_to_json(const Session& s) {
   } else {
     j["data"] = nullptr;
   }
-  j["columns"] = s.columns;
+  j["mapping"] = mapping_to_json(s.mapping);
+  j["tuning_set"] = nlohmann::ordered_json::array();
+  for (const auto& d : s.tuning_set)
+    j["tuning_set"].push_back({{"path", d.path}, {"mapping", mapping_to_json(d.mapping)}});
   j["snapshots"] = nlohmann::ordered_json::array();
   for (const auto& snap : s.snapshots) {
     j["snapshots"].push_back({{"name", snap.name}, {"values", values_json(snap.values)}});
@@ -53,18 +58,15 @@ std::string session_to_json(const Session& s) {
 }
 
 Expected<Session> parse_session(const std::string& text, const std::string& path) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    return Error{path + ": invalid JSON at byte " + std::to_string(e.byte)};
-  }
+  auto doc = parse_json_document(text, path);
+  if (!doc) return doc.err();
+  const json& j = *doc;
   if (!j.is_object()) return Error{path + ": a session must be a JSON object"};
   if (!j.contains("format") || j["format"] != kSessionFormat) {
-    return Error{path + ": key 'format' must be '" + std::string(kSessionFormat) + "'"};
+    return Error{path + ": format: must be '" + std::string(kSessionFormat) + "'"};
   }
-  if (!j.contains("version") || j["version"] != kSessionVersion) {
-    return Error{path + ": key 'version' must be " + std::to_string(kSessionVersion)};
+  if (!j.contains("version") || !(j["version"] == 1 || j["version"] == 2)) {
+    return Error{path + ": version: must be 1 or 2"};
   }
   Session s;
   for (const char* key : {"preset", "scenario"}) {
@@ -74,7 +76,7 @@ Expected<Session> parse_session(const std::string& text, const std::string& path
   s.preset_path = j["preset"].get<std::string>();
   s.scenario = j["scenario"].get<std::string>();
   auto v = values_from(j.value("values", json::object()), path + ": values");
-  if (!v) return Error{v.error()};
+  if (!v) return v.err();
   s.values = *v;
   if (j.contains("data") && !j["data"].is_null()) {
     const json& d = j["data"];
@@ -85,11 +87,28 @@ Expected<Session> parse_session(const std::string& text, const std::string& path
     if (d.contains("fnv1a64") && d["fnv1a64"].is_string())
       s.data_hash = d["fnv1a64"].get<std::string>();
   }
-  if (j.contains("columns")) {
-    if (!j["columns"].is_object()) return Error{path + ": key 'columns' must be an object"};
-    for (auto it = j["columns"].begin(); it != j["columns"].end(); ++it) {
-      if (!it->is_string()) return Error{path + ": columns." + it.key() + " must be a string"};
-      s.columns[it.key()] = it->get<std::string>();
+  for (const char* key : {"columns", "mapping"}) {  // version 1 wrote "columns"
+    if (!j.contains(key)) continue;
+    auto m = mapping_from_json(j[key], key);
+    if (!m) return Error{path + ": " + m.error()};
+    for (auto& [role, r] : *m)
+      s.mapping[role] = r;
+  }
+  if (j.contains("tuning_set")) {
+    if (!j["tuning_set"].is_array()) return Error{path + ": tuning_set: must be an array"};
+    for (std::size_t i = 0; i < j["tuning_set"].size(); ++i) {
+      const json& e = j["tuning_set"][i];
+      const std::string at = index_path("tuning_set", i);
+      if (!e.is_object() || !e.contains("path") || !e["path"].is_string()) {
+        return Error{path + ": " + at + ": needs a string 'path'"};
+      }
+      DataRef d{e["path"].get<std::string>(), {}};
+      if (e.contains("mapping")) {
+        auto m = mapping_from_json(e["mapping"], key_path(at, "mapping"));
+        if (!m) return Error{path + ": " + m.error()};
+        d.mapping = *m;
+      }
+      s.tuning_set.push_back(std::move(d));
     }
   }
   if (j.contains("snapshots")) {
@@ -100,7 +119,7 @@ Expected<Session> parse_session(const std::string& text, const std::string& path
       }
       auto sv = values_from(e.value("values", json::object()),
                             path + ": snapshots." + e["name"].get<std::string>());
-      if (!sv) return Error{sv.error()};
+      if (!sv) return sv.err();
       s.snapshots.push_back({e["name"].get<std::string>(), *sv});
     }
   }
@@ -110,11 +129,9 @@ Expected<Session> parse_session(const std::string& text, const std::string& path
 }
 
 Expected<Session> load_session(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path + ": cannot open session"};
-  std::ostringstream os;
-  os << in.rdbuf();
-  return parse_session(os.str(), path);
+  auto doc = read_json_document(path, "session");
+  if (!doc) return doc.err();
+  return parse_session(doc->dump(), path);
 }
 
 Status save_session(const std::string& path, const Session& s) {
@@ -150,6 +167,14 @@ Expected<Dataset> apply_column_map(Dataset d, const ColumnMap& map) {
     d.names[static_cast<std::size_t>(i)] = role;
   }
   return d;
+}
+
+Mapping to_mapping(const ColumnMap& map) {
+  Mapping m;
+  for (const auto& [role, column] : map) {
+    if (!column.empty()) m[role].column = column;
+  }
+  return m;
 }
 
 std::string header_key(const Dataset& d) {

@@ -9,17 +9,19 @@
 
 #include "core/dataset.h"
 #include "core/expected.h"
+#include "core/mapping.h"
 #include "core/param_spec.h"
 
 namespace kfw {
 
 inline constexpr const char* kSessionFormat = "kfw-session";
-inline constexpr int kSessionVersion = 1;
+inline constexpr int kSessionVersion = 2;  // written; 1 and 2 are read
 
 // A pinned tuning, compared against the live one.
 struct Snapshot {
   std::string name;
   ParamValues values;
+  bool operator==(const Snapshot&) const = default;
 };
 
 // role (the scenario's column name) -> the file's column name
@@ -31,7 +33,8 @@ struct Session {
   ParamValues values;
   std::optional<std::string> data_path;
   std::string data_hash;  // FNV-1a 64 of the file's bytes, hex; empty for simulated data
-  ColumnMap columns;
+  Mapping mapping;        // how the dataset's columns become roles (version 1: "columns")
+  std::vector<DataRef> tuning_set;
   std::vector<Snapshot> snapshots;
   std::string window_state;  // opaque to the engine (the GUI's base64 geometry/state)
 };
@@ -46,6 +49,8 @@ Expected<std::string> file_hash(const std::string& path);
 
 // Renames the mapped file columns to their roles. Errors name a mapped column the file lacks.
 Expected<Dataset> apply_column_map(Dataset d, const ColumnMap& map);
+// A plain role -> column map as a mapping (no unit, scale or offset).
+Mapping to_mapping(const ColumnMap& map);
 // The header as one string ("t,gx,acc_roll,..."): the key a mapping is remembered under.
 std::string header_key(const Dataset& d);
 

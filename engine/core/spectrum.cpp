@@ -84,7 +84,7 @@ Expected<double> white_noise_variance(const std::vector<double>& x, double fs_hz
                                       std::size_t segment) {
   if (!(fraction > 0.0 && fraction < 1.0)) return Error{"PSD: fraction must be in (0, 1)"};
   auto psd = welch_psd(x, fs_hz, segment);
-  if (!psd) return Error{psd.error()};
+  if (!psd) return psd.err();
   const double f0 = fraction * fs_hz / 2.0;
   double sum = 0.0;
   std::size_t n = 0;

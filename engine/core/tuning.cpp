@@ -7,6 +7,9 @@
 #include <random>
 #include <thread>
 
+#include "core/grammar.h"
+#include "core/suggest.h"
+
 namespace kfw {
 
 namespace {
@@ -21,8 +24,7 @@ double metric_or_nan(const Metrics& m, const std::string& key) {
 Expected<Objective> objective_by_name(const std::string& name) {
   if (name == "nis") {
     return Objective([](const Metrics& m) {
-      const double nis = metric_or_nan(m, "nis_mean"), dof = metric_or_nan(m, "nis_dof");
-      const double l = std::log(nis / (std::isfinite(dof) ? dof : 1.0));
+      const double l = std::log(metric_or_nan(m, "nis_mean"));  // NIS / dof: target 1
       return l * l;
     });
   }
@@ -177,6 +179,13 @@ Expected<TuneResult> tune(const Scenario& s, const Dataset& d, const ParamValues
   return best;
 }
 
+std::size_t SweepResult::stopped() const {
+  std::size_t n = 0;
+  for (const auto& e : errors)
+    n += e.empty() ? 0 : 1;
+  return n;
+}
+
 std::vector<double> SweepAxis::values() const {
   std::vector<double> v;
   for (int i = 0; i < n; ++i) {
@@ -189,30 +198,34 @@ std::vector<double> SweepAxis::values() const {
 
 Expected<SweepAxis> parse_sweep_axis(const ParamTable& table, const std::string& text) {
   const auto eq = text.find('=');
-  if (eq == std::string::npos) return Error{"--param expects key=lo:hi:n, got '" + text + "'"};
+  if (eq == std::string::npos || eq == 0) {
+    return Error{"--param expects key=lo:hi:n[:log], got " + quote_token(text)};
+  }
   SweepAxis a;
   a.key = text.substr(0, eq);
   const ParamSpec* spec = table.find(a.key);
-  if (!spec) return Error{"--param: unknown parameter '" + a.key + "'"};
-  const std::string rest = text.substr(eq + 1);
-  const auto c1 = rest.find(':'), c2 = rest.find(':', c1 == std::string::npos ? 0 : c1 + 1);
-  double n = 0;
-  if (c1 == std::string::npos || c2 == std::string::npos ||
-      !parse_double(rest.substr(0, c1), a.lo) ||
-      !parse_double(rest.substr(c1 + 1, c2 - c1 - 1), a.hi) ||
-      !parse_double(rest.substr(c2 + 1), n) || n < 1 || n != std::round(n)) {
-    return Error{"--param " + a.key + ": expected lo:hi:n with n a whole number >= 1, got '" +
-                 rest + "'"};
+  if (!spec) {
+    std::vector<std::string> keys;
+    for (const auto& s : table.specs())
+      keys.push_back(s.key);
+    return Error{"--param: " + unknown_message("parameter", a.key, keys)};
   }
-  a.n = static_cast<int>(n);
-  a.log = spec->scale == Scale::kLog;
+  auto grid = parse_grid(std::string_view(text).substr(eq + 1), "--param " + a.key);
+  if (!grid) return grid.err();
+  a.lo = grid->lo;
+  a.hi = grid->hi;
+  a.n = static_cast<int>(grid->n);
+  // Without :log or :lin, the parameter's own scale decides (log for variances).
+  a.log = grid->spacing == Spacing::kLog ||
+          (grid->spacing == Spacing::kDefault && spec->scale == Scale::kLog);
   for (double v : {a.lo, a.hi}) {
     if (auto st = table.check(a.key, spec->scale == Scale::kInteger ? std::round(v) : v); !st) {
       return Error{"--param: " + st.error()};
     }
   }
-  if (a.log && (a.lo <= 0 || a.hi <= 0))
-    return Error{"--param " + a.key + ": log scale needs lo, hi > 0"};
+  if (a.log && (a.lo <= 0 || a.hi <= 0)) {
+    return Error{"--param " + a.key + ": log spacing needs lo, hi > 0 (add :lin for linear)"};
+  }
   return a;
 }
 
@@ -236,6 +249,7 @@ Expected<SweepResult> sweep(const Scenario& s, const Dataset& d, const ParamValu
   }
   out.points = grid;
   out.metrics.resize(grid.size());
+  out.errors.resize(grid.size());
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
     for (std::size_t i = next++; i < grid.size(); i = next++) {
@@ -244,7 +258,11 @@ Expected<SweepResult> sweep(const Scenario& s, const Dataset& d, const ParamValu
       for (std::size_t a = 0; a < axes.size(); ++a)
         v[axes[a].key] = grid[i][a];
       auto r = s.run(d, v);
-      if (r) out.metrics[i] = (*r)->metrics;
+      if (r) {
+        out.metrics[i] = (*r)->metrics;
+      } else {
+        out.errors[i] = r.error();
+      }
     }
   };
   std::vector<std::thread> pool;

@@ -58,6 +58,8 @@ struct SweepResult {
   std::vector<SweepAxis> axes;
   std::vector<std::vector<double>> points;  // one row per grid point: the axes' values
   std::vector<Metrics> metrics;             // one per grid point (empty when the run failed)
+  std::vector<std::string> errors;          // one per grid point: why its run stopped, or ""
+  std::size_t stopped() const;              // how many runs stopped
 };
 
 // Runs every grid point (row-major, the first axis slowest) on `threads` threads.
@@ -65,7 +67,8 @@ Expected<SweepResult> sweep(const Scenario& s, const Dataset& d, const ParamValu
                             const std::vector<SweepAxis>& axes, int threads = 2,
                             const std::atomic<bool>* cancel = nullptr);
 
-// Parses "key=lo:hi:n" (n >= 1), log spacing when the key's scale is log.
+// Parses "key=GRID" (grammar.h: lo:hi:n[:log|:lin]); without a suffix, log spacing when the
+// key's scale is log.
 Expected<SweepAxis> parse_sweep_axis(const ParamTable& table, const std::string& text);
 
 }  // namespace kfw

@@ -18,6 +18,8 @@ struct Workspace {
   std::shared_ptr<const Scenario> scenario;
   ParamValues values;                    // preset values with --set applied
   std::optional<std::string> data_path;  // --data, else the preset's; none = simulate
+  bool data_from_preset = false;         // the path is the preset's "data" key
+  Mapping mapping;                       // the preset's mapping (command-line options override)
 };
 
 // `preset` may be a path, or a name in presets/ ("helicopter"). Errors name the file or key.
@@ -26,6 +28,9 @@ Expected<Workspace> open_workspace(const std::string& preset,
                                    const std::vector<std::string>& assignments);
 // The file's dataset (checked against the scenario's columns), or a simulated one.
 Expected<Dataset> load_dataset(const Workspace& ws);
-Expected<Dataset> load_dataset_file(const Scenario& scenario, const std::string& path);
+// Reads a CSV through a mapping and checks it against the scenario's columns (the data policy
+// of dataset.h: only columns bound to a role are validated).
+Expected<Dataset> load_dataset_file(const Scenario& scenario, const std::string& path,
+                                    const Mapping& mapping = {});
 
 }  // namespace kfw

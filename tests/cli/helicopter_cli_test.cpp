@@ -71,9 +71,9 @@ TEST(HelicopterCli, BadInputExitsNonZeroWithOneLine) {
         Case{"run " + kPreset + " --set R=-3", "'R' = -3 is out of range"},
         Case{"run " + kPreset + " --set m=2.5", "must be a whole number"},
         Case{"run " + kPreset + " --data /no/such.csv", "/no/such.csv: cannot open"},
-        Case{"run " + kPreset + " --data " + bad_csv, ":4: time is not increasing"},
+        Case{"run " + kPreset + " --data " + bad_csv, ":4:1: time is not increasing"},
         Case{"run /no/preset.json", "cannot open preset"}, Case{"frobnicate", "unknown command"},
-        Case{"simulate helicopter", "needs --out"}}) {
+        Case{"simulate helicopter", "--out is required"}}) {
     auto o = cli(c.args);
     EXPECT_NE(o.code, 0) << c.args;
     EXPECT_NE(o.text.find(c.fragment), std::string::npos) << c.args << " → " << o.text;

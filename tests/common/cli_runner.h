@@ -14,8 +14,8 @@ struct CliOutput {
   std::string text;  // stdout + stderr
 };
 
-inline CliOutput cli(const std::string& args) {
-  const std::string cmd = std::string(KFW_CLI) + " " + args + " 2>&1";
+// Runs a shell command line and reads what it prints.
+inline CliOutput run_command(const std::string& cmd) {
   CliOutput o;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return o;
@@ -27,5 +27,13 @@ inline CliOutput cli(const std::string& args) {
   o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return o;
 }
+
+#ifdef KFW_CLI
+// kfw-cli ARGS; `redirect` picks what is read: stdout and stderr by default, "2>/dev/null"
+// stdout only.
+inline CliOutput cli(const std::string& args, const std::string& redirect = "2>&1") {
+  return run_command(std::string(KFW_CLI) + " " + args + " " + redirect);
+}
+#endif
 
 }  // namespace kfw::testing

@@ -91,7 +91,7 @@ TEST(HelicopterScenario, GammaTracksADriftingBias) {
   v["gamma"] = 0.006;
   auto r1 = s->run(*d, v);
   ASSERT_TRUE(r0.ok() && r1.ok());
-  EXPECT_LT((*r1)->metrics.at("bias_rmse"), (*r0)->metrics.at("bias_rmse"));
+  EXPECT_LT((*r1)->metrics.at("rmse.bias"), (*r0)->metrics.at("rmse.bias"));
 }
 
 TEST(HelicopterScenario, MissingAngleSamplesSkipTheUpdate) {

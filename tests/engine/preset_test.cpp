@@ -34,9 +34,9 @@ TEST(Preset, EveryShippedPresetLoads) {
 
 TEST(Preset, ErrorsNameLineKeyAndUnit) {
   expect_error("{\n  \"format\": \"kfw-preset\",\n  \"version\": 1,,\n}", "p.json:3:");
-  expect_error(R"({"format": "other", "version": 1})", "key 'format' is 'other'");
+  expect_error(R"({"format": "other", "version": 1})", "format: 'other', expected 'kfw-preset'");
   expect_error(R"({"format": "kfw-preset", "version": 9, "scenario": "helicopter"})",
-               "key 'version' is 9");
+               "p.json: version: 9; this build reads versions 1 and 2");
   expect_error(R"({"format": "kfw-preset", "version": 1, "scenario": "nope"})",
                "unknown scenario 'nope'");
   expect_error(std::string(kHead) + R"("parameters": {"Zz": 1}})",
@@ -48,6 +48,14 @@ TEST(Preset, ErrorsNameLineKeyAndUnit) {
   expect_error(std::string(kHead) + R"("parameters": {"R": {"value": 1, "min": 5, "max": 2}}})",
                "must be increasing");
   expect_error(std::string(kHead) + R"("parameters": {"R": {"value": "x"}}})", "must be a number");
+  expect_error(std::string(kHead) + R"("parameters": {"R": {"valeu": 1}}})",
+               "p.json: parameters.R.valeu: unknown key (did you mean 'value'?)");
+  expect_error(std::string(kHead) + R"("paramters": {}})",
+               "p.json: paramters: unknown key (did you mean 'parameters'?)");
+  expect_error(std::string(kHead) + R"("parameters": {"R": {"value": 1, "tunable": 1}}})",
+               "parameters.R.tunable: must be true or false");
+  expect_error(std::string(kHead) + R"("mapping": {"gyro": {"column": "g", "unit": "furlong"}}})",
+               "mapping.gyro.unit: unknown unit 'furlong'");
 }
 
 TEST(Preset, RoundTripKeepsValuesAndRanges) {

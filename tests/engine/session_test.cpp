@@ -14,7 +14,9 @@ TEST(Session, RoundTripKeepsEverything) {
   s.values = {{"Q", 256}, {"R", 4096}};
   s.data_path = "/data/log.csv";
   s.data_hash = "0123456789abcdef";
-  s.columns = {{"gyro", "gx"}, {"angle", "acc_roll"}};
+  s.mapping = to_mapping({{"gyro", "gx"}, {"angle", "acc_roll"}});
+  s.mapping["gyro"].unit = "rad/s";
+  s.tuning_set = {{"/data/a.csv", {}}, {"/data/b.csv", to_mapping({{"t", "time_s"}})}};
   s.snapshots = {{"loose", {{"Q", 1}, {"R", 2}}}, {"tight", {{"Q", 3}, {"R", 4}}}};
   s.window_state = "AAAA==";
   auto back = parse_session(session_to_json(s), "s.json");
@@ -23,7 +25,8 @@ TEST(Session, RoundTripKeepsEverything) {
   EXPECT_EQ(back->values, s.values);
   EXPECT_EQ(back->data_path, s.data_path);
   EXPECT_EQ(back->data_hash, s.data_hash);
-  EXPECT_EQ(back->columns, s.columns);
+  EXPECT_EQ(back->mapping, s.mapping);
+  EXPECT_EQ(back->tuning_set, s.tuning_set);
   ASSERT_EQ(back->snapshots.size(), 2u);
   EXPECT_EQ(back->snapshots[1].name, "tight");
   EXPECT_EQ(back->snapshots[1].values, s.snapshots[1].values);
@@ -31,9 +34,20 @@ TEST(Session, RoundTripKeepsEverything) {
 }
 
 TEST(Session, BadFilesAreErrorsNamingTheKey) {
-  EXPECT_NE(parse_session("{", "s.json").error().find("s.json: invalid JSON"), std::string::npos);
-  EXPECT_NE(parse_session(R"({"format": "x"})", "s.json").error().find("'format'"),
+  EXPECT_NE(parse_session("{", "s.json").error().find("s.json:1:"), std::string::npos);
+  EXPECT_NE(parse_session(R"({"format": "x"})", "s.json").error().find("format:"),
             std::string::npos);
+  // Version 1 wrote "columns": read as the mapping.
+  auto v1 = parse_session(
+      R"({"format": "kfw-session", "version": 1, "preset": "p", "scenario": "h", "columns": {"gyro": "gx"}})",
+      "s.json");
+  ASSERT_TRUE(v1.ok()) << v1.error();
+  EXPECT_EQ(v1->mapping.at("gyro").column, "gx");
+  EXPECT_NE(
+      parse_session(R"({"format": "kfw-session", "version": 1, "values": {"Q": 1e999}})", "s.json")
+          .error()
+          .find("s.json:1:"),
+      std::string::npos);
   const std::string head =
       R"({"format": "kfw-session", "version": 1, "preset": "p", "scenario": "h", )";
   EXPECT_NE(parse_session(head + R"("values": {"Q": "a"}})", "s.json").error().find("values.Q"),

@@ -47,7 +47,7 @@ TEST(Tuning, SweepOfGammaHasAnInteriorMinimum) {
   auto axis = parse_sweep_axis(s->params(), "gamma=0:0.05:11");
   ASSERT_TRUE(axis.ok()) << axis.error();
   auto r = sweep(*s, *d, v, {*axis}, 2);
-  ASSERT_TRUE(r.ok());
+  ASSERT_TRUE(r.ok()) << r.error();
   ASSERT_EQ(r->points.size(), 11u);
   std::size_t best = 0;
   for (std::size_t i = 0; i < 11; ++i) {

@@ -79,13 +79,13 @@ TEST_F(BallbeamWindow, DetectionCheckBoxRerunsLive) {
   QCPGraph* est = graphNamed(plotNamed(w, "position"), "estimate of x");
   ASSERT_NE(est, nullptr);
   const auto before = values(est);
-  const double rmse_on = w.result()->metrics.at("rmse_pos");
+  const double rmse_on = w.result()->metrics.at("rmse");
   check->setChecked(false);
   ASSERT_TRUE(w.waitForRun());
   EXPECT_EQ(w.values().at("detection"), 0.0);
   EXPECT_NE(values(est), before);
-  EXPECT_GT(w.result()->metrics.at("rmse_pos"), 5 * rmse_on);
-  EXPECT_EQ(w.result()->metrics.at("rmse_pos"), w.result()->metrics.at("rmse_pos_detect_off"));
+  EXPECT_GT(w.result()->metrics.at("rmse"), 5 * rmse_on);
+  EXPECT_EQ(w.result()->metrics.at("rmse"), w.result()->metrics.at("rmse_pos_detect_off"));
 }
 
 TEST_F(BallbeamWindow, FilterComboSwitchesToTheTimeVaryingKf) {

@@ -132,7 +132,7 @@ TEST_F(HelicopterWindow, MalformedCsvShowsErrorAndKeepsData) {
   }
   auto st = w.openDataset(bad);
   ASSERT_FALSE(st.ok());
-  EXPECT_NE(st.error().find("bad.csv:3: column 'gyro': 'abc' is not a number"), std::string::npos)
+  EXPECT_NE(st.error().find("bad.csv:3:6: column 'gyro': 'abc' is not a number"), std::string::npos)
       << st.error();
   auto* banner = w.findChild<QLabel*>("errorBanner");
   ASSERT_NE(banner, nullptr);

@@ -36,7 +36,7 @@ TEST(Snapshots, GhostAndMetricsColumnFollowThePinnedTuning) {
   ASSERT_EQ(table->columnCount(), 3);
   EXPECT_EQ(table->horizontalHeaderItem(2)->text(), "loose");
   for (int r = 0; r < table->rowCount(); ++r) {
-    if (table->item(r, 0)->text() != "rmse") continue;
+    if (table->item(r, 0)->data(Qt::UserRole).toString() != "rmse") continue;
     EXPECT_NEAR(table->item(r, 2)->text().toDouble(), rmse_pinned, 1e-4 * rmse_pinned);
     EXPECT_NE(table->item(r, 1)->text(), table->item(r, 2)->text());
   }

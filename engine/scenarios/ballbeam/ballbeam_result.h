@@ -26,6 +26,7 @@ struct BallbeamResult final : RunResult {
   std::vector<InnovationChannel> channels() const override;
   // NEES of [x, ẋ] against the simulated truth (closed loop).
   NeesSeries nees_series() const override;
+  std::vector<StateSeries> states() const override;
 };
 
 }  // namespace kfw::ballbeam

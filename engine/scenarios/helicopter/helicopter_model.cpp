@@ -43,7 +43,7 @@ Expected<SteadyGain> steady_gain_dare(int m, double Ts_s, double gamma, double N
   MatX R(1, 1);
   R(0, 0) = N_theta;
   auto ss = solve_dare(Fm, md.H, Qm, R);
-  if (!ss) return Error{ss.error()};
+  if (!ss) return ss.err();
   SteadyGain g;
   g.k1 = ss->K(0, 0);
   g.k2 = ss->K(1, 0);

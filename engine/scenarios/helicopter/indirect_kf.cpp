@@ -20,10 +20,19 @@ std::vector<InnovationChannel> HelicopterResult::channels() const {
   c.name = "angle";
   c.nis = nis;
   c.normalized.assign(nis.size(), kNoSample);
+  c.log_det_s.assign(nis.size(), kNoSample);
   for (std::size_t k = 0; k < nis.size(); ++k) {
-    if (std::isfinite(nis[k])) c.normalized[k] = innovation[k] / std::sqrt(S[k]);
+    if (!std::isfinite(nis[k])) continue;
+    c.normalized[k] = innovation[k] / std::sqrt(S[k]);
+    c.log_det_s[k] = std::log(S[k]);
   }
   return {c};
+}
+
+std::vector<StateSeries> HelicopterResult::states() const {
+  return {
+      {"theta", "θ (angle)", "deg", &theta, &P11, &truth},
+      {"bias", "b (gyro bias)", "deg/s", &bias, &P22, bias_truth.empty() ? nullptr : &bias_truth}};
 }
 
 NeesSeries HelicopterResult::nees_series() const {

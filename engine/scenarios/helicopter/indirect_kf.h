@@ -43,6 +43,7 @@ struct HelicopterResult final : RunResult {
   Dataset table() const override;
   std::vector<InnovationChannel> channels() const override;
   NeesSeries nees_series() const override;
+  std::vector<StateSeries> states() const override;
 };
 
 // Runs the filter; columns must hold t, gyro, angle (NaN = no sample) and optionally truth.

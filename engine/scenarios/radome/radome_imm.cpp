@@ -54,7 +54,7 @@ bool Sample::has_measurement() const {
 }
 
 Expected<RadomeImm> RadomeImm::create(const FilterParams& p, double T_s) {
-  if (auto st = check(p); !st) return Error{st.error()};
+  if (auto st = check(p); !st) return st.err();
   RadomeImm f;
   f.p_ = p;
   f.T_s_ = T_s;
@@ -67,10 +67,10 @@ Expected<RadomeImm> RadomeImm::create(const FilterParams& p, double T_s) {
   for (double g : grid_axis(p.grid_min, p.grid_max, p.n_theta))
     f.off_theta_.push_back(g - c);
   auto chain = MarkovChain::uniform(f.modes(), p.stay);
-  if (!chain) return Error{chain.error()};
+  if (!chain) return chain.err();
   f.chain_ = *chain;
   auto m = axis_model(p.tau_s, p.Q, T_s);
-  if (!m) return Error{m.error()};
+  if (!m) return m.err();
   f.axis_ = *m;
   f.model_dt_s_ = T_s;
   f.F9_ = full_F(f.axis_);
@@ -393,11 +393,12 @@ std::vector<int> RadomeResult::top_modes(int count) const {
 
 std::vector<InnovationChannel> RadomeResult::channels() const {
   std::vector<InnovationChannel> out;
-  out.push_back({"position (3-D)", 3.0, nis, {}});
+  out.push_back({"position", "position (3-D)", 3.0, nis, {}, {}});
   const char* names[3] = {"x", "y", "z"};
   for (int a = 0; a < 3; ++a) {
     InnovationChannel c;
     c.name = names[a];
+    c.label = std::string(names[a]) + " axis";
     c.nis.assign(t.size(), kNoSample);
     c.normalized.assign(t.size(), kNoSample);
     for (std::size_t k = 0; k < t.size() && k < innovation[a].size(); ++k) {
@@ -410,6 +411,13 @@ std::vector<InnovationChannel> RadomeResult::channels() const {
     out.push_back(std::move(c));
   }
   return out;
+}
+
+std::vector<StateSeries> RadomeResult::states() const {
+  const bool truth = x_true.size() == t.size();
+  return {{"x", "x (target position)", "m", &x_est, nullptr, truth ? &x_true : nullptr},
+          {"y", "y (target position)", "m", &y_est, nullptr, truth ? &y_true : nullptr},
+          {"z", "z (target position)", "m", &z_est, nullptr, truth ? &z_true : nullptr}};
 }
 
 Dataset RadomeResult::table() const {
@@ -526,7 +534,7 @@ Expected<RadomeResult> run_radome_imm(const Inputs& in, const FilterParams& p,
   if (first >= n) return Error{"radome: no row has range, angles and attitude all present"};
   const double T = t[1] - t[0];
   auto f = RadomeImm::create(p, T > 0 ? T : 1.0);
-  if (!f) return Error{f.error()};
+  if (!f) return f.err();
   RadomeImm& imm = *f;
 
   RadomeResult r;

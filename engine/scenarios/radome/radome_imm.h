@@ -141,6 +141,7 @@ struct RadomeResult final : RunResult {
   // The 3-D pseudo-measurement NIS (most probable mode) and each axis' y/√S.
   std::vector<InnovationChannel> channels() const override;
   NeesSeries nees_series() const override { return {nees_dof, nees}; }
+  std::vector<StateSeries> states() const override;
   // Fills `nees` from x/y/z_est, P_pos and x/y/z_true: e^T P^{-1} e per step.
   void compute_nees();
 };

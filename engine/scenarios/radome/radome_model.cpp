@@ -24,7 +24,7 @@ Expected<AxisModel> axis_model(double tau_s, double Qc, double T_s) {
   D(2, 0) = 1.0 / tau_s;
   const MatX Qm = MatX::Constant(1, 1, Qc);
   auto d = van_loan(A, B, D, Qm, T_s);
-  if (!d) return Error{d.error()};
+  if (!d) return d.err();
   AxisModel m;
   m.F = d->F;
   m.Gamma = d->Gamma.col(0);

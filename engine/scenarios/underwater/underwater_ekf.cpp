@@ -99,14 +99,17 @@ std::vector<InnovationChannel> UnderwaterResult::channels() const {
   auto channel = [&](std::string name, const std::vector<double>& innov,
                      const std::vector<double>& var, const std::vector<double>& used) {
     InnovationChannel c;
-    c.name = std::move(name);
+    c.name = metric_identifier(name);
+    c.label = std::move(name);
     c.nis.assign(t.size(), kNoSample);
     c.normalized.assign(t.size(), kNoSample);
+    c.log_det_s.assign(t.size(), kNoSample);
     for (std::size_t k = 0; k < t.size() && k < innov.size() && k < var.size(); ++k) {
       if (k < used.size() && used[k] != kUsed) continue;  // gated or invalid: not an update
       if (std::isfinite(innov[k]) && var[k] > 0) {
         c.nis[k] = innov[k] * innov[k] / var[k];
         c.normalized[k] = innov[k] / std::sqrt(var[k]);
+        c.log_det_s[k] = std::log(var[k]);
       }
     }
     out.push_back(std::move(c));
@@ -117,6 +120,13 @@ std::vector<InnovationChannel> UnderwaterResult::channels() const {
   }
   channel("depth", depth_innovation, depth_S, status[kDepth]);
   return out;
+}
+
+std::vector<StateSeries> UnderwaterResult::states() const {
+  auto truth = [&](const std::vector<double>& v) { return v.size() == t.size() ? &v : nullptr; };
+  return {{"x", "x (north)", "m", &x, &Pxx, truth(x_true)},
+          {"y", "y (east)", "m", &y, &Pyy, truth(y_true)},
+          {"z", "z (down)", "m", &z, &Pzz, truth(z_true)}};
 }
 
 NeesSeries UnderwaterResult::nees_series() const {

@@ -72,6 +72,7 @@ struct UnderwaterResult final : RunResult {
   // Each range and the depth: NIS and y/√S of the updates that passed the gate.
   std::vector<InnovationChannel> channels() const override;
   NeesSeries nees_series() const override;
+  std::vector<StateSeries> states() const override;
 };
 
 // Runs the EKF over a dataset with the columns of simulate() (truth optional). Errors name a

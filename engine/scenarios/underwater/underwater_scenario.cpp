@@ -169,9 +169,66 @@ void summarise(const Covariance<kErrorDims>& C, double& var, double& cov, double
   }
 }
 
+// The underwater metrics beyond the shared vocabulary.
+std::vector<MetricSpec> make_metric_specs() {
+  using G = MetricGroup;
+  using D = Direction;
+  return {
+      // The shared `rmse`, made specific: the distance error is a compound of x, y and z.
+      {"rmse", "RMSE of the position", "m",
+       "RMS of the distance between estimated and true position, every row with truth (seed "
+       "004, Table 13)",
+       G::kAccuracy, D::kLower},
+      {"pos_mean", "mean distance error", "m",
+       "mean distance between estimated and true position (seed 004, Table 13)", G::kAccuracy,
+       D::kLower},
+      {"pos_std", "std of the distance error", "m",
+       "standard deviation of the distance between estimated and true position", G::kAccuracy,
+       D::kLower},
+      {"pos_max", "largest distance error", "m",
+       "largest distance between estimated and true position", G::kAccuracy, D::kLower},
+      {"outliers_injected", "outliers injected", "",
+       "range samples the simulator offset by ±sim.outlier_size (from the outlier1..4 columns)",
+       G::kScenario, D::kLower},
+      {"outliers_detected", "outliers detected", "",
+       "injected outliers that the χ² gate rejected (seed 004, Table 14)", G::kScenario,
+       D::kHigher},
+      {"outliers_false_alarm", "false alarms", "", "good range samples that the χ² gate rejected",
+       G::kScenario, D::kLower},
+      {"ranges_used", "ranges used", "", "range samples that went into an update", G::kScenario,
+       D::kHigher},
+      {"ranges_rejected", "ranges rejected", "", "range samples that the χ² gate rejected",
+       G::kScenario, D::kLower},
+      {"ranges_invalid", "ranges invalid", "",
+       "range samples that could not be used (range ≤ 0, or S not positive definite)", G::kScenario,
+       D::kLower},
+      {"depth_used", "depth samples used", "", "depth samples that went into an update",
+       G::kScenario, D::kHigher},
+      {"steps", "steps", "", "number of rows (sensor times) in the run", G::kScenario, D::kNone},
+      {"stats_range_var_mean", "range-error variance (mean)", "m²",
+       "sample variance of the range errors at synchronous instants, mean over the four beacons "
+       "(seed 004, eq. 5–8)",
+       G::kScenario, D::kLower},
+      {"stats_range_cov_mean", "range–range covariance (mean)", "m²",
+       "sample covariance between the range errors of two beacons, mean over the pairs (seed "
+       "004, eq. 6–8: σ_c²)",
+       G::kScenario, D::kLower},
+      {"stats_depth_var", "depth-error variance", "m²",
+       "sample variance of the depth error at synchronous instants (seed 004, eq. 5)", G::kScenario,
+       D::kLower},
+      {"stats_instants", "synchronous instants", "",
+       "instants with every range and the depth, over which the statistics are taken", G::kScenario,
+       D::kHigher},
+  };
+}
+
 class UnderwaterScenario final : public Scenario {
  public:
   std::string name() const override { return "underwater"; }
+  std::vector<MetricSpec> metric_specs() const override {
+    static const std::vector<MetricSpec> specs = make_metric_specs();
+    return specs;
+  }
   std::string title() const override {
     return "Underwater vehicle: sensor simulator + EKF localization AS/SC/SI (seed 004)";
   }
@@ -209,7 +266,7 @@ class UnderwaterScenario final : public Scenario {
   }
 
   Expected<Dataset> simulate(const ParamValues& v) const override {
-    if (auto st = params().check(v); !st) return Error{st.error()};
+    if (auto st = params().check(v); !st) return st.err();
     const SimParams s = sim_params(v);
     double rows = s.duration_s / s.dt_sync_s;
     if (!s.synchronous) {
@@ -227,15 +284,18 @@ class UnderwaterScenario final : public Scenario {
     return underwater::simulate(s);
   }
 
-  Expected<std::shared_ptr<const RunResult>> run(const Dataset& d, const ParamValues& v,
-                                                 const RunControl& control) const override {
-    if (auto st = params().check(v); !st) return Error{st.error()};
+  Expected<std::shared_ptr<RunResult>> run_impl(const Dataset& d, const ParamValues& v,
+                                                const RunControl& control) const override {
+    if (auto st = params().check(v); !st) return st.err();
     auto res = run_ekf(d, filter_params(v), control);
-    if (!res) return Error{res.error()};
+    if (!res) return res.err();
     auto r = std::make_shared<UnderwaterResult>(std::move(*res));
     r->design = design_covariance(param(v, "sim.sigma_range"), param(v, "sim.sigma_corr"),
                                   param(v, "sim.sigma_depth"));
     Metrics& m = r->metrics;
+    const char* const kStats[] = {"stats_range_var_mean", "stats_range_cov_mean", "stats_depth_var",
+                                  "stats_instants"};
+    const std::string no_truth = "no truth position (x_true, y_true, z_true) in the data";
     if (d.has("x_true") && d.has("y_true") && d.has("z_true")) {
       auto st = error_stats(d);
       if (st) {
@@ -249,7 +309,12 @@ class UnderwaterScenario final : public Scenario {
         m["stats_instants"] = static_cast<double>(st->instants);
       } else {
         r->warnings.push_back("statistics: " + st.error());
+        for (const char* k : kStats)
+          r->undefined.emplace(k, "statistics: " + st.error());
       }
+    } else {
+      for (const char* k : kStats)
+        r->undefined.emplace(k, no_truth);
     }
     // Distance error over every row with truth (seed 004, Table 13).
     std::vector<double> e;
@@ -274,11 +339,19 @@ class UnderwaterScenario final : public Scenario {
     m["pos_mean"] = mean;
     m["pos_std"] = sd;
     m["pos_max"] = mx;
-    m["pos_rmse"] = rmse;
-    // Without the injected-outlier columns these are unknown, not zero (the CLI prints null).
+    m["rmse"] = rmse;
+    if (e.empty()) {
+      for (const char* k : {"rmse", "pos_mean", "pos_std", "pos_max"})
+        r->undefined.emplace(k, no_truth);
+    }
+    // Without the injected-outlier columns these are unknown, not zero.
     auto known = [&](std::size_t count) {
       return r->outliers_known ? static_cast<double>(count) : kNoSample;
     };
+    if (!r->outliers_known) {
+      for (const char* k : {"outliers_injected", "outliers_detected", "outliers_false_alarm"})
+        r->undefined.emplace(k, "no injected-outlier columns (outlier1..4) in the data");
+    }
     m["outliers_injected"] = known(r->outliers_injected);
     m["outliers_detected"] = known(r->outliers_detected);
     m["outliers_false_alarm"] = known(r->outliers_false_alarm);
@@ -287,8 +360,8 @@ class UnderwaterScenario final : public Scenario {
     m["ranges_invalid"] = static_cast<double>(r->ranges_invalid);
     m["depth_used"] = static_cast<double>(r->depth_used);
     m["steps"] = static_cast<double>(r->steps());
-    add_consistency_metrics(r->channels(), r->nees_series(), m);
-    return std::shared_ptr<const RunResult>(std::move(r));
+    add_consistency_metrics(r->channels(), r->nees_series(), m, r->undefined);
+    return std::shared_ptr<RunResult>(std::move(r));
   }
 
   std::vector<std::string> commands() const override { return {"stats"}; }
@@ -297,11 +370,11 @@ class UnderwaterScenario final : public Scenario {
   Expected<std::string> command(const std::string& cmd, const Dataset& d,
                                 const ParamValues& v) const override {
     if (cmd != "stats") return Scenario::command(cmd, d, v);
-    if (auto st = params().check(v); !st) return Error{st.error()};
+    if (auto st = params().check(v); !st) return st.err();
     auto st = error_stats(d);
-    if (!st) return Error{st.error()};
+    if (!st) return st.err();
     auto run_result = run_ekf(d, filter_params(v));
-    if (!run_result) return Error{run_result.error()};
+    if (!run_result) return run_result.err();
     nlohmann::json j;
     j["source"] = d.source;
     j["labels"] = kErrorLabels;

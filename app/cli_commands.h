@@ -1,0 +1,43 @@
+// The bodies of kfw-cli's commands. app/cli.cpp declares the commands and their options (CLI11)
+// and calls these with the parsed arguments.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "core/expected.h"
+
+namespace kfw {
+
+struct CliArgs {
+  std::string target;  // PRESET: a preset file, a name in presets/, a scenario, or FILE.csv
+  std::optional<std::string> data, out, metrics;
+  std::optional<long long> seed;    // checked by the table's sim.seed range
+  std::vector<std::string> sets;    // --set key=value
+  std::vector<std::string> params;  // tune --params key,key
+  std::vector<std::string> axes;    // sweep --param key=GRID
+  std::string objective = "rmse";
+  std::string metric;
+  bool markdown = false;  // metrics --markdown
+};
+
+// Each returns the process exit code (expected.h); errors go to `err` as one line.
+int cmd_simulate(const CliArgs& a, std::ostream& out, std::ostream& err);
+int cmd_run(const CliArgs& a, std::ostream& out, std::ostream& err);
+int cmd_gain(const CliArgs& a, std::ostream& out, std::ostream& err);
+int cmd_tune(const CliArgs& a, std::ostream& out, std::ostream& err);
+int cmd_sweep(const CliArgs& a, std::ostream& out, std::ostream& err);
+int cmd_params(const CliArgs& a, std::ostream& out, std::ostream& err);
+int cmd_preset(const CliArgs& a, std::ostream& out, std::ostream& err);
+int cmd_metrics(const CliArgs& a, std::ostream& out, std::ostream& err);
+int cmd_list(std::ostream& out);
+// A command a scenario offers (Scenario::commands()), e.g. `stats`.
+int cmd_scenario(const std::string& cmd, CliArgs a, std::ostream& out, std::ostream& err);
+
+// Writes "kfw-cli: MESSAGE" as one line (long tokens shortened) and returns the exit code.
+int fail(std::ostream& err, const Error& e);
+
+}  // namespace kfw

@@ -1,0 +1,30 @@
+// Reading JSON documents (presets, sessions, mappings) with messages that name the file, the
+// line and column, and the dotted key: "p.json:12:18: parameters.Q.value: number overflows a
+// double". Limits: 10 MB and 256 levels of nesting, refused before any parsing of values.
+#pragma once
+
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+
+#include "core/expected.h"
+
+namespace kfw {
+
+inline constexpr std::size_t kMaxJsonBytes = 10u * 1024u * 1024u;
+inline constexpr std::size_t kMaxJsonDepth = 256;
+
+// Parses `text` (from `path`). Errors: invalid syntax, a number that overflows a double, a file
+// over 10 MB, nesting deeper than 256 — each with line:column and the key path where known.
+Expected<nlohmann::json> parse_json_document(const std::string& text, const std::string& path);
+// Reads a file (refusing directories and files over 10 MB) and parses it.
+Expected<nlohmann::json> read_json_document(const std::string& path, const char* what);
+
+// "parameters.Q.value", "model.h[0]": a child key appended to a dotted path.
+std::string key_path(std::string_view parent, std::string_view key);
+std::string index_path(std::string_view parent, std::size_t index);
+// The JSON type of a value in words ("a string", "an object", ...), for messages.
+std::string json_type_name(const nlohmann::json& j);
+
+}  // namespace kfw

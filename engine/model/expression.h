@@ -1,0 +1,104 @@
+// Model expressions: checked and evaluated by muparser, differentiated by GiNaC. The language is
+// what both libraries read with the same meaning (presets/models/README.md, "Expressions"):
+// numbers, symbols, + - * / ^, unary minus, parentheses and the functions of
+// language_functions(). GiNaC is used only while a model is loaded; runs use muparser only.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/expected.h"
+
+namespace mu {
+class Parser;
+}
+
+namespace kfw::model {
+
+// What a symbol stands for; a mask of these says which symbols an expression may use.
+enum SymbolKind : unsigned {
+  kParamSymbol = 1u,  // a parameter (slider, --set key)
+  kDtSymbol = 2u,     // dt, the sample interval t[k] − t[k−1], s
+  kTimeSymbol = 4u,   // t, the time of the row, s
+  kStateSymbol = 8u,  // a state
+  kInputSymbol = 16u  // an input (a known signal, e.g. a gyro rate)
+};
+using KindMask = unsigned;
+inline constexpr KindMask kAllSymbols = 31u;
+
+// When an expression must be re-evaluated. Ordered: each class includes what comes before.
+enum class Dep {
+  kConst,  // a number
+  kParam,  // parameters only: once per run
+  kDt,     // parameters and dt: when dt changes
+  kStep,   // t or inputs: every step
+  kState,  // states: at every linearisation or sigma point
+};
+
+// The symbols of one model; an expression's symbol binds to vars[slot] when evaluated.
+struct Symbols {
+  std::vector<std::string> names;
+  std::vector<SymbolKind> kinds;
+  int add(const std::string& name, SymbolKind kind);
+  int find(std::string_view name) const;  // the slot, or -1
+  std::vector<int> slots(SymbolKind kind) const;
+};
+
+struct Expr {
+  std::string text;  // muparser source: the user's text, or a printed derivative
+  Dep dep = Dep::kConst;
+  double value = 0.0;  // the value when dep == kConst
+};
+
+// The functions of the expression language, with their arity.
+struct LanguageFunction {
+  std::string_view name;
+  int arity;
+};
+const std::vector<LanguageFunction>& language_functions();
+// Names that cannot name a state, input or parameter: t, dt, pi, the functions, GiNaC's own.
+bool is_reserved_name(std::string_view name);
+// [A-Za-z_][A-Za-z0-9_]*
+bool is_identifier(std::string_view name);
+
+// Compiles one expression: syntax, symbols (only the kinds in `allowed`; `allowed_what` says
+// which, for the message), a single value. Errors read "<key>: <what> at position P: "<text>""
+// with P counting characters from 1.
+Expected<Expr> compile_expr(const std::string& text, const std::string& key, const Symbols& symbols,
+                            KindMask allowed, std::string_view allowed_what);
+
+// ∂e/∂(symbol at slot) for each slot of `wrt`: exact, by GiNaC, printed for muparser.
+Expected<std::vector<Expr>> derivatives(const Expr& e, const std::string& key,
+                                        const Symbols& symbols, const std::vector<int>& wrt);
+
+// True when a and b are the same function of the symbols (GiNaC: normal(a − b) == 0).
+bool same_function(const Expr& a, const Expr& b, const Symbols& symbols);
+
+// Evaluates a set of expressions into target doubles in one muparser pass (a comma-separated
+// list, one byte-code program). Not copyable; one per run and thread.
+class ExprGroup {
+ public:
+  ExprGroup();
+  ~ExprGroup();
+  ExprGroup(ExprGroup&&) noexcept;
+  ExprGroup& operator=(ExprGroup&&) noexcept;
+
+  void add(const std::string& text, double* target);
+  bool empty() const { return targets_.empty(); }
+  std::size_t size() const { return targets_.size(); }
+  // Binds every symbol to vars[slot] and compiles; call once, after the adds.
+  Status bind(const Symbols& symbols, double* vars);
+  // Evaluates every expression and writes each result to its target.
+  void eval();
+  // Evaluates into `out` (size() values) without touching the targets.
+  void eval_into(double* out);
+
+ private:
+  std::unique_ptr<mu::Parser> parser_;
+  std::string source_;
+  std::vector<double*> targets_;
+};
+
+}  // namespace kfw::model

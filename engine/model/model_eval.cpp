@@ -1,0 +1,270 @@
+#include "model/model_eval.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "core/discretize.h"
+#include "core/statistics.h"
+
+namespace kfw::model {
+
+namespace {
+
+constexpr std::size_t kDtCacheSize = 64;
+
+std::string number(double v) {
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str();
+}
+
+// Sizes a matrix to its spec (empty specs give empty matrices).
+void shape(MatX& M, const MatrixSpec& s) {
+  M.setZero(s.rows, s.cols);
+}
+
+// Routes one entry to when it is evaluated: a constant is written now; the others join the
+// group of their class (state-dependent ones the given `state` group, or `step` when null).
+void place(const Expr& e, double* target, ExprGroup& param, ExprGroup& dt, ExprGroup& step,
+           ExprGroup* state) {
+  switch (e.dep) {
+    case Dep::kConst:
+      *target = e.value;
+      break;
+    case Dep::kParam:
+      param.add(e.text, target);
+      break;
+    case Dep::kDt:
+      dt.add(e.text, target);
+      break;
+    case Dep::kStep:
+      step.add(e.text, target);
+      break;
+    case Dep::kState:
+      (state ? *state : step).add(e.text, target);
+      break;
+  }
+}
+
+void place_matrix(const MatrixSpec& s, MatX& M, ExprGroup& param, ExprGroup& dt, ExprGroup& step,
+                  ExprGroup* state) {
+  for (int i = 0; i < s.rows; ++i) {
+    for (int j = 0; j < s.cols; ++j)
+      place(s.at(i, j), &M(i, j), param, dt, step, state);
+  }
+}
+
+Status check_psd(const MatX& M, const MatrixSpec& s, const std::string& path, bool definite) {
+  const double lo = min_eigenvalue(M);
+  if (!M.allFinite()) {
+    return Error{path + ": " + s.key + ": not finite at the parameters' values"};
+  }
+  if (definite ? !(lo > 0.0) : !is_psd(M)) {
+    return Error{path + ": " + s.key + ": not positive " +
+                 (definite ? "definite" : "semidefinite") +
+                 " at the parameters' values (smallest eigenvalue " + number(lo) + ")"};
+  }
+  return Ok{};
+}
+
+}  // namespace
+
+double min_eigenvalue(const MatX& M) {
+  if (M.size() == 0) return std::numeric_limits<double>::infinity();
+  if (!M.allFinite()) return std::numeric_limits<double>::quiet_NaN();
+  if (M.rows() == 1) return M(0, 0);
+  Eigen::SelfAdjointEigenSolver<MatX> es(M, Eigen::EigenvaluesOnly);
+  return es.eigenvalues().minCoeff();
+}
+
+bool is_psd(const MatX& M) {
+  if (!M.allFinite()) return false;
+  if (M.size() == 0) return true;
+  if (!M.isApprox(M.transpose(), 1e-9) && (M - M.transpose()).cwiseAbs().maxCoeff() > 1e-300) {
+    return false;
+  }
+  const double scale = M.diagonal().cwiseAbs().maxCoeff();
+  return min_eigenvalue(M) >= -1e-12 * scale;
+}
+
+ModelEval::ModelEval(const ModelSpec& spec)
+    : spec_(spec),
+      vars_(spec.symbols.names.size(), 0.0),
+      dt_(std::numeric_limits<double>::quiet_NaN()) {}
+
+Expected<std::unique_ptr<ModelEval>> ModelEval::create(const ModelSpec& spec,
+                                                       const ParamValues& values) {
+  std::unique_ptr<ModelEval> ev(new ModelEval(spec));
+  if (auto st = ev->bind(values); !st) return st.err();
+  return ev;
+}
+
+void ModelEval::set_inputs(const double* u) {
+  for (std::size_t i = 0; i < spec_.input_slots.size(); ++i)
+    vars_[static_cast<std::size_t>(spec_.input_slots[i])] = u[i];
+}
+
+void ModelEval::set_state(const double* x) {
+  for (std::size_t i = 0; i < spec_.state_slots.size(); ++i)
+    vars_[static_cast<std::size_t>(spec_.state_slots[i])] = x[i];
+}
+
+Status ModelEval::bind(const ParamValues& values) {
+  const ModelSpec& s = spec_;
+  const std::string& path = s.path;
+  for (int slot : s.param_slots) {
+    auto it = values.find(s.symbols.names[static_cast<std::size_t>(slot)]);
+    if (it == values.end()) {
+      return Error{path + ": parameter '" + s.symbols.names[static_cast<std::size_t>(slot)] +
+                   "' has no value"};
+    }
+    vars_[static_cast<std::size_t>(slot)] = it->second;
+  }
+  ExprGroup param;  // evaluated once, below
+  ExprGroup unused;
+  const int n = s.n();
+
+  x0.setZero(n);
+  for (int i = 0; i < n; ++i)
+    place(s.x0[static_cast<std::size_t>(i)].value, &x0(i), param, unused, unused, nullptr);
+  shape(P0, s.P0);
+  place_matrix(s.P0, P0, param, unused, unused, nullptr);
+
+  const ProcessSpec& pr = s.process;
+  if (pr.form == ProcessForm::kContinuous) {
+    shape(A, pr.A);
+    place_matrix(pr.A, A, param, unused, unused, nullptr);
+    if (!pr.Bc.empty()) {
+      shape(Bc, pr.Bc);
+      place_matrix(pr.Bc, Bc, param, unused, unused, nullptr);
+    }
+    if (!pr.G.empty()) {
+      shape(G, pr.G);
+      place_matrix(pr.G, G, param, unused, unused, nullptr);
+    } else {
+      G = MatX::Identity(n, n);
+    }
+    shape(Qc, pr.Qc);
+    place_matrix(pr.Qc, Qc, param, unused, unused, nullptr);
+    F.setZero(n, n);
+    Q.setZero(n, n);
+    if (!pr.Bc.empty()) B.setZero(n, pr.Bc.cols);
+    process_dt_ = true;
+  } else {
+    shape(F, pr.F);
+    shape(Q, pr.Q);
+    if (pr.form == ProcessForm::kLinear) {
+      if (!pr.B.empty()) {
+        shape(B, pr.B);
+        place_matrix(pr.B, B, param, p_dt_, p_step_, nullptr);
+      }
+      place_matrix(pr.F, F, param, p_dt_, p_step_, nullptr);
+    } else {
+      fx.setZero(n);
+      for (int i = 0; i < n; ++i)
+        place(pr.f[static_cast<std::size_t>(i)], &fx(i), param, p_dt_, p_step_, &f_state_);
+      place_matrix(pr.F, F, param, p_dt_, p_step_, &F_state_);
+    }
+    place_matrix(pr.Q, Q, param, p_dt_, p_step_, &Q_state_);
+    q_varies_ = pr.Q.dep() >= Dep::kStep;
+    process_dt_ = !p_dt_.empty();
+  }
+
+  channels_.resize(s.channels.size());
+  for (std::size_t c = 0; c < s.channels.size(); ++c) {
+    const ChannelSpec& cs = s.channels[c];
+    Channel& ch = channels_[c];
+    shape(ch.H, cs.H);
+    shape(ch.R, cs.R);
+    if (!cs.linear) {
+      ch.hx.setZero(cs.size());
+      for (int i = 0; i < cs.size(); ++i)
+        place(cs.h[static_cast<std::size_t>(i)], &ch.hx(i), param, ch.dt, ch.step, &ch.h);
+    }
+    place_matrix(cs.H, ch.H, param, ch.dt, ch.step, &ch.H_state);
+    place_matrix(cs.R, ch.R, param, ch.dt, ch.step, &ch.R_state);
+    ch.R_varies = cs.R.dep() >= Dep::kStep;
+    ch.every = cs.every;
+    if (!cs.every_param.empty()) {
+      const auto it = values.find(cs.every_param);
+      const double v = it == values.end() ? std::numeric_limits<double>::quiet_NaN() : it->second;
+      if (!(v >= 1.0) || v != std::round(v) || v > 1e9) {
+        return Error{path + ": model.measurements." + cs.name + ".every: parameter '" +
+                     cs.every_param + "' = " + number(v) + " must be a whole number ≥ 1"};
+      }
+      ch.every = static_cast<int>(v);
+    }
+    if (cs.gate > 0.0) ch.gate_nis = chi2_quantile(cs.gate, cs.size());
+  }
+
+  // Compile every group against the symbols, then evaluate the parameter-only entries once.
+  for (ExprGroup* g : {&param, &p_dt_, &p_step_, &F_state_, &f_state_, &Q_state_}) {
+    if (auto st = g->bind(s.symbols, vars_.data()); !st) return st;
+  }
+  for (auto& ch : channels_) {
+    for (ExprGroup* g : {&ch.dt, &ch.step, &ch.h, &ch.H_state, &ch.R_state}) {
+      if (auto st = g->bind(s.symbols, vars_.data()); !st) return st;
+    }
+  }
+  param.eval();
+
+  if (auto st = check_psd(P0, s.P0, path, false); !st) return st;
+  if (pr.form == ProcessForm::kContinuous) {
+    if (auto st = check_psd(Qc, pr.Qc, path, false); !st) return st;
+  } else if (pr.Q.dep() <= Dep::kParam) {
+    if (auto st = check_psd(Q, pr.Q, path, false); !st) return st;
+  }
+  for (std::size_t c = 0; c < s.channels.size(); ++c) {
+    if (s.channels[c].R.dep() <= Dep::kParam) {
+      if (auto st = check_psd(channels_[c].R, s.channels[c].R, path, false); !st) return st;
+    }
+  }
+  return Ok{};
+}
+
+Status ModelEval::set_dt(double dt) {
+  if (dt == dt_) return Ok{};
+  dt_ = dt;
+  vars_[static_cast<std::size_t>(spec_.dt_slot)] = dt;
+  for (auto& ch : channels_)
+    ch.dt.eval();
+  if (!process_dt_) return Ok{};
+  for (auto& e : cache_) {
+    if (e.dt == dt) {
+      F = e.F;
+      B = e.B;
+      Q = e.Q;
+      fx = e.fx;
+      return Ok{};
+    }
+  }
+  const ProcessSpec& pr = spec_.process;
+  if (pr.form == ProcessForm::kContinuous) {
+    auto d = van_loan(A, Bc, G, Qc, dt);
+    if (!d) return Error{spec_.path + ": model.process: " + d.error()};
+    F = d->F;
+    Q = d->Q;
+    if (B.size()) B = d->Gamma;
+  } else {
+    p_dt_.eval();
+  }
+  if (pr.form == ProcessForm::kContinuous || pr.Q.dep() == Dep::kDt) {
+    if (!is_psd(Q)) {
+      return Error{"model.process.Q is not positive semidefinite at dt = " + number(dt) +
+                   " (smallest eigenvalue " + number(min_eigenvalue(Q)) + ")"};
+    }
+  }
+  DtEntry e{dt, F, B, Q, fx};
+  if (cache_.size() < kDtCacheSize) {
+    cache_.push_back(std::move(e));
+  } else {
+    cache_[evict_] = std::move(e);
+    evict_ = (evict_ + 1) % kDtCacheSize;
+  }
+  return Ok{};
+}
+
+}  // namespace kfw::model

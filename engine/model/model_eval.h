@@ -1,0 +1,101 @@
+// The per-run values of a model's matrices. Entries that depend only on parameters are evaluated
+// once, here; those that depend on dt when dt changes (the process matrices from a small cache
+// keyed by dt, so an irregular clock that repeats its intervals costs a lookup); those that depend
+// on t or inputs once per step; those that depend on states at each linearisation or sigma point.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/expected.h"
+#include "core/param_spec.h"
+#include "core/types.h"
+#include "model/model_spec.h"
+
+namespace kfw::model {
+
+// Smallest eigenvalue of a symmetric matrix (NaN when it holds NaN).
+double min_eigenvalue(const MatX& M);
+// M is symmetric positive semidefinite to rounding (eigenvalues ≥ −1e-12 · scale).
+bool is_psd(const MatX& M);
+
+class ModelEval {
+ public:
+  // Binds the parameters, evaluates what depends on them only and checks P0, Q, R and Qc when
+  // they depend on parameters only (an Error, exit 2, naming the key). `every` parameters must
+  // hold whole numbers ≥ 1.
+  static Expected<std::unique_ptr<ModelEval>> create(const ModelSpec& spec,
+                                                     const ParamValues& values);
+  ModelEval(const ModelEval&) = delete;
+  ModelEval& operator=(const ModelEval&) = delete;
+
+  const ModelSpec& spec() const { return spec_; }
+  int n() const { return spec_.n(); }
+
+  void set_time(double t) { vars_[static_cast<std::size_t>(spec_.t_slot)] = t; }
+  void set_inputs(const double* u);
+  void set_state(const double* x);
+  // Makes dt current: re-evaluates what depends on it when it differs from the last value.
+  // Fails (message without the step) when the discretisation fails or Q is not PSD there.
+  Status set_dt(double dt);
+
+  // The process at the current symbols. step: entries of t and inputs (once per step);
+  // jacobian / f / noise: the entries that depend on states, at the state set by set_state.
+  void process_step() { p_step_.eval(); }
+  void process_jacobian() { F_state_.eval(); }
+  void process_f() { f_state_.eval(); }
+  void process_noise() { Q_state_.eval(); }
+  // Q depends on t, inputs or states: its definiteness is checked where it is evaluated.
+  bool process_noise_varies() const { return q_varies_; }
+
+  struct Channel {
+    MatX H;  // H, or ∂h/∂x at the state set
+    MatX R;
+    VecX hx;  // h(x) (nonlinear channels)
+    int every = 1;
+    double gate_nis = 0.0;  // reject when NIS exceeds this (0: no gate)
+    bool R_varies = false;  // R depends on t, inputs or states: checked where evaluated
+    ExprGroup dt, step, h, H_state, R_state;
+  };
+  Channel& channel(std::size_t c) { return channels_[c]; }
+  void channel_step(std::size_t c) { channels_[c].step.eval(); }
+  void channel_h(std::size_t c) { channels_[c].h.eval(); }
+  void channel_jacobian(std::size_t c) { channels_[c].H_state.eval(); }
+  void channel_noise(std::size_t c) { channels_[c].R_state.eval(); }
+
+  // Current process matrices: F (or ∂f/∂x), B (n × inputs, or empty), Q; fx = f(x).
+  MatX F, B, Q;
+  VecX fx;
+  // x0 (expressions; the caller replaces entries taken from a column) and P0.
+  VecX x0;
+  MatX P0;
+  // The continuous form, evaluated once (parameters only).
+  MatX A, Bc, G, Qc;
+
+  double dt() const { return dt_; }
+  // Every symbol's current value, by slot.
+  const std::vector<double>& vars() const { return vars_; }
+
+ private:
+  explicit ModelEval(const ModelSpec& spec);
+  Status bind(const ParamValues& values);
+
+  const ModelSpec& spec_;
+  std::vector<double> vars_;  // sized once: the muparser groups hold pointers into it
+  double dt_;
+  std::vector<Channel> channels_;
+  ExprGroup p_dt_, p_step_, F_state_, f_state_, Q_state_;
+  bool q_varies_ = false;
+  bool process_dt_ = false;  // the process matrices depend on dt
+
+  struct DtEntry {
+    double dt;
+    MatX F, B, Q;
+    VecX fx;
+  };
+  std::vector<DtEntry> cache_;
+  std::size_t evict_ = 0;
+};
+
+}  // namespace kfw::model

@@ -1,0 +1,268 @@
+#include "model/model_filter.h"
+
+#include <cmath>
+
+#include "model/model_filter_detail.h"
+
+namespace kfw::model {
+
+std::size_t ModelResult::cov_index(std::size_t i, std::size_t j) const {
+  if (i > j) std::swap(i, j);
+  const std::size_t n = x.size();
+  return i * (2 * n - i + 1) / 2 + (j - i);
+}
+
+Dataset ModelResult::table() const {
+  Dataset d;
+  d.source = "model run (" + filter + ")";
+  auto put = [&](std::string name, const std::vector<double>& v) {
+    d.names.push_back(std::move(name));
+    d.columns.push_back(v);
+  };
+  put("t", t);
+  const std::size_t n = x.size();
+  for (std::size_t i = 0; i < n; ++i)
+    put("x." + state_keys[i], x[i]);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i; j < n; ++j) {
+      put(i == j ? "P." + state_keys[i] : "P." + state_keys[i] + "." + state_keys[j],
+          P[cov_index(i, j)]);
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!truth[i].empty()) put("truth." + state_keys[i], truth[i]);
+  }
+  for (std::size_t r = 0; r < role_names.size(); ++r)
+    put(role_names[r], z[r]);
+  for (const auto& c : chans) {
+    for (std::size_t j = 0; j < c.roles.size(); ++j) {
+      put("y." + c.roles[j], c.y[j]);
+      put("S." + c.roles[j], c.S[j]);
+    }
+    put("nis." + c.name, c.nis);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = 0; j < c.roles.size(); ++j)
+        put("K." + state_keys[i] + "." + c.roles[j], c.K[i * c.roles.size() + j]);
+    }
+  }
+  if (nees_dof > 0) put("nees", nees);
+  return d;
+}
+
+std::vector<InnovationChannel> ModelResult::channels() const {
+  std::vector<InnovationChannel> out;
+  for (const auto& c : chans) {
+    InnovationChannel ic;
+    ic.name = c.name;
+    ic.label = c.label == c.name ? std::string() : c.label;
+    ic.dof = static_cast<double>(c.roles.size());
+    ic.nis = c.nis;
+    ic.log_det_s = c.log_det_s;
+    if (c.roles.size() == 1) {
+      ic.normalized.assign(c.nis.size(), kNoSample);
+      for (std::size_t k = 0; k < c.nis.size(); ++k) {
+        if (std::isfinite(c.nis[k])) ic.normalized[k] = c.y[0][k] / std::sqrt(c.S[0][k]);
+      }
+    }
+    out.push_back(std::move(ic));
+  }
+  return out;
+}
+
+NeesSeries ModelResult::nees_series() const {
+  if (nees_dof <= 0) return {};
+  return {nees_dof, nees};
+}
+
+std::vector<StateSeries> ModelResult::states() const {
+  std::vector<StateSeries> out;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    out.push_back({state_keys[i], state_labels[i], state_units[i], &x[i], &P[diag[i]],
+                   truth[i].empty() ? nullptr : &truth[i]});
+  }
+  return out;
+}
+
+Expected<FilterKind> filter_kind(const std::string& name) {
+  if (name == "kf") return FilterKind::kKf;
+  if (name == "ekf") return FilterKind::kEkf;
+  if (name == "ukf") return FilterKind::kUkf;
+  return Error{"unknown filter '" + name + "' (kf, ekf, ukf)"};
+}
+
+namespace {
+
+const char* kind_name(FilterKind k) {
+  switch (k) {
+    case FilterKind::kKf:
+      return "kf";
+    case FilterKind::kEkf:
+      return "ekf";
+    case FilterKind::kUkf:
+      return "ukf";
+  }
+  return "kf";
+}
+
+template <int N>
+Status dispatch(detail::Context& ctx, const VecX& x0, const MatX& P0) {
+  typename detail::Types<N>::VecN x = x0;
+  typename detail::Types<N>::MatN P = P0;
+  if (ctx.options.kind == FilterKind::kUkf) return detail::run_ukf<N>(ctx, x, P);
+  return detail::run_kf<N>(ctx, x, P);
+}
+
+}  // namespace
+
+Expected<std::shared_ptr<ModelResult>> run_model_filter(const ModelSpec& spec, const Dataset& d,
+                                                        const ParamValues& values,
+                                                        const FilterOptions& options,
+                                                        const RunControl& control) {
+  if (options.kind == FilterKind::kKf && !spec.linear()) {
+    return Error{spec.path + ": filter 'kf' needs a linear model (F or A, and H in every " +
+                 "channel); use ekf or ukf"};
+  }
+  const int n = spec.n();
+  if (options.kind == FilterKind::kUkf) {
+    const double lambda = options.alpha * options.alpha * (n + options.kappa) - n;
+    if (!(n + lambda > 0.0)) {
+      return Error{"ukf.alpha, ukf.kappa: n + λ = α²(n + κ) must be positive (n = " +
+                   std::to_string(n) + ")"};
+    }
+  }
+  if (d.rows() < 2) return Error{d.source + ": need at least two rows"};
+  detail::Data data;
+  data.rows = d.rows();
+  auto column = [&](const std::string& name,
+                    const std::string& what) -> Expected<const std::vector<double>*> {
+    if (!d.has(name)) return Error{d.source + ": missing column '" + name + "' (" + what + ")"};
+    return &d.col(name);
+  };
+  auto tc = column("t", "time");
+  if (!tc) return tc.err();
+  data.t = *tc;
+  for (const auto& in : spec.inputs) {
+    auto c = column(in.name, "input");
+    if (!c) return c.err();
+    data.u.push_back(*c);
+  }
+  for (const auto& ch : spec.channels) {
+    data.z.emplace_back();
+    for (const auto& r : ch.roles) {
+      auto c = column(r.name, "channel " + ch.name);
+      if (!c) return c.err();
+      data.z.back().push_back(*c);
+    }
+  }
+  for (const auto& col : spec.truth)
+    data.truth.push_back(!col.empty() && d.has(col) ? &d.col(col) : nullptr);
+
+  auto ev = ModelEval::create(spec, values);
+  if (!ev) return ev.err();
+
+  auto r = std::make_shared<ModelResult>();
+  const std::size_t rows = d.rows();
+  r->filter = kind_name(options.kind);
+  r->t = *data.t;
+  for (const auto& s : spec.states) {
+    r->state_keys.push_back(s.name);
+    r->state_labels.push_back(s.label);
+    r->state_units.push_back(s.unit);
+    r->x.emplace_back(rows, kNoSample);
+  }
+  const auto un = static_cast<std::size_t>(n);
+  r->P.assign(un * (un + 1) / 2, std::vector<double>(rows, kNoSample));
+  for (std::size_t i = 0; i < un; ++i)
+    r->diag.push_back(r->cov_index(i, i));
+  r->truth.resize(un);
+  detail::Context ctx{spec, **ev, data, *r, control, options, {}, {}, {}};
+  for (std::size_t i = 0; i < un; ++i) {
+    if (data.truth[i]) {
+      r->truth[i] = *data.truth[i];
+      ctx.truth_states.push_back(static_cast<int>(i));
+    }
+  }
+  r->nees_dof = static_cast<double>(ctx.truth_states.size());
+  if (r->nees_dof > 0) r->nees.assign(rows, kNoSample);
+  for (std::size_t c = 0; c < spec.channels.size(); ++c) {
+    const ChannelSpec& cs = spec.channels[c];
+    ChannelSeries s;
+    s.name = cs.name;
+    s.label = cs.label;
+    const auto m = static_cast<std::size_t>(cs.size());
+    for (std::size_t j = 0; j < m; ++j) {
+      s.roles.push_back(cs.roles[j].name);
+      s.units.push_back(cs.roles[j].unit);
+      r->role_names.push_back(cs.roles[j].name);
+      r->z.push_back(*data.z[c][j]);
+    }
+    s.y.assign(m, std::vector<double>(rows, kNoSample));
+    s.S.assign(m, std::vector<double>(rows, kNoSample));
+    s.K.assign(m * un, std::vector<double>(rows, kNoSample));
+    s.nis.assign(rows, kNoSample);
+    s.log_det_s.assign(rows, kNoSample);
+    r->chans.push_back(std::move(s));
+  }
+  ctx.u_held.assign(spec.inputs.size(), 0.0);
+  ctx.z_buf.assign(static_cast<std::size_t>(kMaxChannelSize), 0.0);
+
+  // x0: expressions, or the first finite sample of a column (as seed 000 starts from the first
+  // angle reading).
+  VecX x0 = (*ev)->x0;
+  for (std::size_t i = 0; i < un; ++i) {
+    const std::string& col = spec.x0[i].first_column;
+    if (col.empty() || !d.has(col)) continue;
+    for (double v : d.col(col)) {
+      if (std::isfinite(v)) {
+        x0(static_cast<Eigen::Index>(i)) = v;
+        break;
+      }
+    }
+  }
+  // dt at the first row (for channel entries that use it): the first interval.
+  if (auto st = (*ev)->set_dt((*data.t)[1] - (*data.t)[0]); !st) return ctx.fail(0, st.error());
+
+  Status st = Ok{};
+  switch (n) {
+    case 1:
+      st = dispatch<1>(ctx, x0, (*ev)->P0);
+      break;
+    case 2:
+      st = dispatch<2>(ctx, x0, (*ev)->P0);
+      break;
+    case 3:
+      st = dispatch<3>(ctx, x0, (*ev)->P0);
+      break;
+    case 4:
+      st = dispatch<4>(ctx, x0, (*ev)->P0);
+      break;
+    case 5:
+      st = dispatch<5>(ctx, x0, (*ev)->P0);
+      break;
+    case 6:
+      st = dispatch<6>(ctx, x0, (*ev)->P0);
+      break;
+    default:
+      st = dispatch<Eigen::Dynamic>(ctx, x0, (*ev)->P0);
+  }
+  if (!st) return st.err();
+
+  for (std::size_t i = 0; i < spec.inputs.size(); ++i) {
+    std::size_t missing = 0;
+    for (double v : *data.u[i])
+      missing += std::isfinite(v) ? 0 : 1;
+    if (missing) {
+      r->warnings.push_back(std::to_string(missing) + " samples of input '" + spec.inputs[i].name +
+                            "' missing: the previous value was held");
+    }
+  }
+  for (const auto& c : r->chans) {
+    if (c.skipped) {
+      r->warnings.push_back("channel '" + c.name + "': S not positive definite at " +
+                            std::to_string(c.skipped) + " updates (skipped)");
+    }
+  }
+  return r;
+}
+
+}  // namespace kfw::model

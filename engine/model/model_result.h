@@ -1,0 +1,46 @@
+// The per-step output of a model run: estimates, covariance, per-channel innovations, S, NIS and
+// gains, NEES against the mapped truth. Plots and metrics read it; nothing reaches back.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/scenario.h"
+
+namespace kfw::model {
+
+struct ChannelSeries {
+  std::string name, label;
+  std::vector<std::string> roles, units;
+  // [component][step]: the innovation y = z − ẑ (angles wrapped) and S's diagonal; NaN where the
+  // channel did not update (a gated update keeps y and S, its NIS is NaN).
+  std::vector<std::vector<double>> y, S;
+  std::vector<double> nis, log_det_s;               // per step; NaN where no update
+  std::vector<std::vector<double>> K;               // [state · m + component][step]
+  std::size_t updates = 0, gated = 0, skipped = 0;  // skipped: S not positive definite
+};
+
+struct ModelResult final : RunResult {
+  std::string filter;  // kf, ekf, ukf
+  std::vector<std::string> state_keys, state_labels, state_units;
+  std::vector<std::vector<double>> x;      // [state][step]: post-update, else the prediction
+  std::vector<std::vector<double>> P;      // [upper-triangle entry][step], row by row
+  std::vector<std::size_t> diag;           // P[diag[i]] is the variance of state i
+  std::vector<std::vector<double>> truth;  // [state][step]; empty where no truth column
+  std::vector<std::string> role_names;     // the measurement columns as read, for table()
+  std::vector<std::vector<double>> z;      // [role][step]
+  std::vector<ChannelSeries> chans;
+  std::vector<double> nees;  // over the states with truth; NaN where a truth value is missing
+  double nees_dof = 0.0;
+
+  // Index of P(i, j), i ≤ j, in P.
+  std::size_t cov_index(std::size_t i, std::size_t j) const;
+  std::size_t n() const { return x.size(); }
+
+  Dataset table() const override;
+  std::vector<InnovationChannel> channels() const override;
+  NeesSeries nees_series() const override;
+  std::vector<StateSeries> states() const override;
+};
+
+}  // namespace kfw::model

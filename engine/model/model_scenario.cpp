@@ -1,0 +1,360 @@
+#include "model/model_scenario.h"
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "core/consistency.h"
+#include "core/dare.h"
+#include "core/statistics.h"
+#include "model/model_eval.h"
+#include "model/model_filter.h"
+#include "model/model_filter_detail.h"
+#include "model/model_sim.h"
+#include "model/model_spec.h"
+
+namespace kfw {
+
+using nlohmann::json;
+
+namespace {
+
+Expected<Scale> scale_from(const std::string& s, const std::string& where) {
+  if (s == "linear") return Scale::kLinear;
+  if (s == "log") return Scale::kLog;
+  if (s == "integer") return Scale::kInteger;
+  if (s == "choice") return Scale::kChoice;
+  if (s == "toggle") return Scale::kToggle;
+  return Error{where + ".scale: '" + s + "' is not one of linear, log, integer, choice, toggle"};
+}
+
+std::string default_group(const std::string& key) {
+  if (key.rfind("sim.", 0) == 0) return "Simulator";
+  if (key.rfind("ukf.", 0) == 0 || key == "filter") return "Filter";
+  return "Model";
+}
+
+// The parameters every model scenario has; a preset may declare them to change value or range.
+std::vector<ParamSpec> standard_params(const std::vector<std::string>& filters,
+                                       const std::string& filter) {
+  const auto it = std::find(filters.begin(), filters.end(), filter);
+  const double fi = it == filters.end() ? 0.0 : static_cast<double>(it - filters.begin());
+  ParamSpec f{"filter",
+              "filter",
+              "",
+              0.0,
+              static_cast<double>(filters.size() - 1),
+              fi,
+              Scale::kChoice,
+              "Filter",
+              "kf: linear, Joseph form; ekf: exact symbolic Jacobians; ukf: scaled sigma points."};
+  f.choices = filters;
+  const std::string F = "Filter", S = "Simulator";
+  return {
+      f,
+      {"ukf.alpha", "UKF α, sigma-point spread", "", 1e-3, 1.0, 1.0, Scale::kLog, F,
+       "Scaled unscented transform: λ = α²(n + κ) − n."},
+      {"ukf.beta", "UKF β, prior knowledge (2: Gaussian)", "", 0.0, 4.0, 2.0, Scale::kLinear, F,
+       "Adds (1 − α² + β) to the central covariance weight.", 2},
+      {"ukf.kappa", "UKF κ, secondary scaling", "", -5.0, 10.0, 0.0, Scale::kLinear, F,
+       "n + κ scales the sigma points (n + λ must stay positive).", 2},
+      {"sim.seed", "seed", "", 0, 1e6, 1, Scale::kInteger, S, "Random seed of the simulator."},
+      {"sim.duration", "duration", "s", 0.01, 1e6, 60, Scale::kLinear, S, "Length of the run.", 1},
+      {"sim.dt", "sample interval", "s", 1e-6, 100, 0.01, Scale::kLog, S,
+       "Time step of the simulated data.", 4},
+  };
+}
+
+class ModelScenario final : public Scenario {
+ public:
+  ModelScenario(std::shared_ptr<const model::ModelSpec> spec, ParamTable table, std::string title)
+      : spec_(std::move(spec)), table_(std::move(table)), title_(std::move(title)) {}
+
+  std::string name() const override { return "model"; }
+  std::string title() const override { return title_; }
+  const ParamTable& params() const override { return table_; }
+  std::string primary_state() const override { return spec_->primary; }
+
+  std::vector<ColumnSpec> columns() const override {
+    std::vector<ColumnSpec> c{{"t", "s", "time", true}};
+    for (const auto& in : spec_->inputs)
+      c.push_back({in.name, in.unit, "input " + in.label, true});
+    for (const auto& ch : spec_->channels) {
+      for (const auto& r : ch.roles)
+        c.push_back({r.name, r.unit, "channel " + ch.label + "; empty = no sample", true});
+    }
+    std::set<std::string> seen;
+    for (const auto& x : c)
+      seen.insert(x.name);
+    for (std::size_t i = 0; i < spec_->truth.size(); ++i) {
+      const auto& col = spec_->truth[i];
+      if (!col.empty() && seen.insert(col).second) {
+        c.push_back({col, spec_->states[i].unit,
+                     "true " + spec_->states[i].label + "; empty where unknown", false});
+      }
+    }
+    for (const auto& x0 : spec_->x0) {
+      if (!x0.first_column.empty() && seen.insert(x0.first_column).second) {
+        c.push_back({x0.first_column, "", "initial state from its first sample", false});
+      }
+    }
+    return c;
+  }
+
+  std::vector<MetricSpec> metric_specs() const override {
+    std::vector<MetricSpec> out;
+    for (const auto& c : spec_->channels) {
+      if (c.gate > 0.0) {
+        out.push_back({"gated." + c.name, "updates gated out (" + c.label + ")", "",
+                       "measurements rejected by the χ² gate", MetricGroup::kConsistency,
+                       Direction::kLower});
+      }
+    }
+    return out;
+  }
+
+  Expected<Dataset> simulate(const ParamValues& v) const override {
+    if (auto st = params().check(v); !st) return st.err();
+    return model::simulate_model(*spec_, v, "model '" + title_ + "'");
+  }
+
+  Expected<Metrics> gain(const ParamValues& v, const Dataset* data) const override;
+
+ protected:
+  Expected<std::shared_ptr<RunResult>> run_impl(const Dataset& d, const ParamValues& v,
+                                                const RunControl& control) const override {
+    if (auto st = params().check(v); !st) return st.err();
+    if (auto st = require_columns(d, columns()); !st) return st.err();
+    model::FilterOptions o;
+    auto kind = model::filter_kind(table_.format("filter", param(v, "filter")));
+    if (!kind) return kind.err();
+    o.kind = *kind;
+    o.alpha = param(v, "ukf.alpha");
+    o.beta = param(v, "ukf.beta");
+    o.kappa = param(v, "ukf.kappa");
+    auto r = model::run_model_filter(*spec_, d, v, o, control);
+    if (!r) return r.err();
+    model::ModelResult& res = **r;
+    Metrics& m = res.metrics;
+    // An angle state's RMSE from the wrapped error (the shared rmse.<state> would not wrap).
+    for (std::size_t i = 0; i < res.n(); ++i) {
+      const model::Angle a = spec_->states[i].angle;
+      if (a == model::Angle::kNone || res.truth[i].empty()) continue;
+      std::vector<double> e(res.steps(), kNoSample), zero(res.steps(), 0.0);
+      for (std::size_t k = 0; k < res.steps(); ++k)
+        e[k] = model::detail::wrap(res.x[i][k] - res.truth[i][k], a);
+      m["rmse." + spec_->states[i].name] = rmse_finite(e, zero);
+    }
+    for (const auto& c : res.chans) {
+      for (const auto& cs : spec_->channels) {
+        if (cs.name == c.name && cs.gate > 0.0) m["gated." + c.name] = static_cast<double>(c.gated);
+      }
+    }
+    add_consistency_metrics(res.channels(), res.nees_series(), m, res.undefined);
+    return std::shared_ptr<RunResult>(std::move(*r));
+  }
+
+ private:
+  std::shared_ptr<const model::ModelSpec> spec_;
+  ParamTable table_;
+  std::string title_;
+};
+
+Expected<Metrics> ModelScenario::gain(const ParamValues& v, const Dataset* data) const {
+  if (auto st = params().check(v); !st) return st.err();
+  const model::ModelSpec& s = *spec_;
+  if (!s.time_invariant()) {
+    return Error{s.path + ": no steady-state gain: the model is not linear time-invariant (F, B, " +
+                 "Q, H and R must depend on parameters and dt only)"};
+  }
+  const double dt = data && data->rows() >= 2 ? data->median_dt() : param(v, "sim.dt");
+  auto ev = model::ModelEval::create(s, v);
+  if (!ev) return ev.err();
+  if (auto st = (*ev)->set_dt(dt); !st) return Error{s.path + ": " + st.error()};
+  // All channels at one rate m: the m-step model F^m, Σ_{i<m} F^i Q F^iᵀ between updates.
+  const int every = (*ev)->channel(0).every;
+  int rows = 0;
+  for (std::size_t c = 0; c < s.channels.size(); ++c) {
+    if ((*ev)->channel(c).every != every) {
+      return Error{s.path + ": no single steady state: the channels update at different rates"};
+    }
+    rows += s.channels[c].size();
+  }
+  const Eigen::Index n = s.n();
+  MatX H(rows, n), R = MatX::Zero(rows, rows);
+  std::vector<std::string> roles;
+  Eigen::Index r0 = 0;
+  for (std::size_t c = 0; c < s.channels.size(); ++c) {
+    const auto& ch = (*ev)->channel(c);
+    H.middleRows(r0, ch.H.rows()) = ch.H;
+    R.block(r0, r0, ch.R.rows(), ch.R.cols()) = ch.R;
+    r0 += ch.H.rows();
+    for (const auto& role : s.channels[c].roles)
+      roles.push_back(role.name);
+  }
+  const MatX& F = (*ev)->F;
+  MatX Fm = MatX::Identity(n, n), Qm = MatX::Zero(n, n);
+  for (int i = 0; i < every; ++i) {
+    Qm = (F * Qm * F.transpose()).eval() + (*ev)->Q;
+    Fm = (F * Fm).eval();
+  }
+  auto ss = solve_dare(Fm, H, Qm, R);
+  if (!ss) return Error{s.path + ": " + ss.error()};
+  Metrics g;
+  g["dt"] = dt;
+  g["every"] = every;
+  g["dare_iterations"] = ss->iterations;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const std::string& si = s.states[static_cast<std::size_t>(i)].name;
+    for (Eigen::Index j = 0; j < rows; ++j)
+      g["K." + si + "." + roles[static_cast<std::size_t>(j)]] = ss->K(i, j);
+    for (Eigen::Index j = i; j < n; ++j) {
+      const std::string suffix =
+          i == j ? si : si + "." + s.states[static_cast<std::size_t>(j)].name;
+      g["P_pred." + suffix] = ss->P_pred(i, j);
+      g["P_post." + suffix] = ss->P_post(i, j);
+    }
+  }
+  return g;
+}
+
+}  // namespace
+
+Expected<ParamTable> parse_param_table(const json& params, const std::string& path) {
+  std::vector<ParamSpec> specs;
+  if (params.is_null()) return ParamTable(specs);
+  if (!params.is_object()) return Error{path + ": parameters: expected an object"};
+  for (auto it = params.begin(); it != params.end(); ++it) {
+    const std::string where = path + ": parameters." + it.key();
+    const json& e = it.value();
+    if (!e.is_object()) return Error{where + ": expected {\"value\", \"min\", \"max\", ...}"};
+    ParamSpec s;
+    s.key = it.key();
+    auto str = [&](const char* k, std::string& out) -> Status {
+      if (!e.contains(k)) return Ok{};
+      if (!e[k].is_string()) return Error{where + "." + k + ": expected a string"};
+      out = e[k].get<std::string>();
+      return Ok{};
+    };
+    std::string scale = "linear";
+    for (auto [k, out] :
+         {std::pair{"unit", &s.unit}, std::pair{"label", &s.label}, std::pair{"group", &s.group},
+          std::pair{"description", &s.description}, std::pair{"scale", &scale}}) {
+      if (auto st = str(k, *out); !st) return st.err();
+    }
+    if (s.label.empty()) s.label = s.key;
+    if (s.group.empty()) s.group = default_group(s.key);
+    auto sc = scale_from(scale, where);
+    if (!sc) return sc.err();
+    s.scale = *sc;
+    if (e.contains("decimals")) {
+      if (!e["decimals"].is_number_integer())
+        return Error{where + ".decimals: expected an integer"};
+      s.decimals = e["decimals"].get<int>();
+    }
+    if (e.contains("choices")) {
+      if (!e["choices"].is_array()) return Error{where + ".choices: expected a list of labels"};
+      for (const auto& c : e["choices"]) {
+        if (!c.is_string()) return Error{where + ".choices: expected a list of labels"};
+        s.choices.push_back(c.get<std::string>());
+      }
+    }
+    if (s.scale == Scale::kChoice) {
+      if (s.choices.empty()) return Error{where + ": a choice needs \"choices\""};
+      s.min = 0;
+      s.max = static_cast<double>(s.choices.size() - 1);
+    } else if (s.scale == Scale::kToggle) {
+      s.min = 0;
+      s.max = 1;
+    } else {
+      for (auto [k, out] : {std::pair{"min", &s.min}, std::pair{"max", &s.max}}) {
+        if (!e.contains(k) || !e[k].is_number())
+          return Error{where + "." + k + ": expected a number"};
+        *out = e[k].get<double>();
+      }
+      if (!(s.min <= s.max) || !std::isfinite(s.min) || !std::isfinite(s.max)) {
+        return Error{where + ": min must not exceed max"};
+      }
+      if (s.scale == Scale::kLog && !(s.min > 0.0)) {
+        return Error{where + ": a log scale needs min > 0"};
+      }
+    }
+    if (!e.contains("value")) return Error{where + ": missing 'value'"};
+    const json& v = e["value"];
+    if (v.is_string() && s.scale == Scale::kChoice) {
+      auto c = std::find(s.choices.begin(), s.choices.end(), v.get<std::string>());
+      if (c == s.choices.end()) {
+        return Error{where + ".value: '" + v.get<std::string>() + "' is not one of the choices"};
+      }
+      s.def = static_cast<double>(c - s.choices.begin());
+    } else if (v.is_number()) {
+      s.def = v.get<double>();
+    } else {
+      return Error{where + ".value: must be a number"};
+    }
+    specs.push_back(s);
+    ParamTable one({s});
+    if (auto st = one.check(s.key, s.def); !st) return Error{path + ": " + st.error()};
+  }
+  return ParamTable(std::move(specs));
+}
+
+Expected<std::unique_ptr<Scenario>> make_model_scenario(const json& preset,
+                                                        const std::string& path) {
+  if (!preset.is_object()) return Error{path + ": a preset must be a JSON object"};
+  if (preset.value("scenario", std::string()) != "model") {
+    return Error{path + ": scenario: expected \"model\""};
+  }
+  std::string title = "model";
+  if (auto it = preset.find("title"); it != preset.end() && it->is_string()) title = *it;
+  // `filter` is declared by the model's linearity (kf only for linear models): read apart.
+  json params = preset.value("parameters", json());
+  json filter_entry;
+  if (params.is_object() && params.contains("filter")) {
+    filter_entry = params["filter"];
+    params.erase("filter");
+  }
+  auto declared = parse_param_table(params, path);
+  if (!declared) return declared.err();
+  if (!preset.contains("model")) return Error{path + ": missing key 'model'"};
+  auto spec = model::parse_model(preset["model"], *declared, path);
+  if (!spec) return spec.err();
+
+  const auto filters = model::filter_choices(*spec);
+  std::string filter = spec->filter;
+  if (!filter_entry.is_null()) {
+    const json v = filter_entry.is_object() ? filter_entry.value("value", json()) : filter_entry;
+    if (v.is_string()) {
+      filter = v.get<std::string>();
+    } else if (v.is_number_integer() && v.get<int>() >= 0 &&
+               static_cast<std::size_t>(v.get<int>()) < filters.size()) {
+      filter = filters[static_cast<std::size_t>(v.get<int>())];
+    } else {
+      return Error{path + ": parameters.filter.value: expected a filter name (kf, ekf, ukf)"};
+    }
+    if (std::find(filters.begin(), filters.end(), filter) == filters.end()) {
+      return Error{path + ": parameters.filter.value: '" + filter +
+                   "' is not a filter for this model (" + (spec->linear() ? "kf, " : "") +
+                   "ekf, ukf" + (spec->linear() ? "" : "; kf needs F and H") + ")"};
+    }
+  }
+  std::vector<ParamSpec> specs = declared->specs();
+  std::vector<ParamSpec> all;
+  for (auto& s : standard_params(filters, filter)) {
+    if (s.key == "filter" || !declared->find(s.key)) all.push_back(s);
+  }
+  // Declared parameters first (the model's own), then the standard ones.
+  specs.insert(specs.end(), all.begin(), all.end());
+  ParamTable table(std::move(specs));
+  auto shared = std::make_shared<const model::ModelSpec>(std::move(*spec));
+  // P0, Q, R and Qc that depend on parameters only must be PSD at the preset's values.
+  auto ev = model::ModelEval::create(*shared, table.defaults());
+  if (!ev) return ev.err();
+  return std::unique_ptr<Scenario>(
+      std::make_unique<ModelScenario>(std::move(shared), std::move(table), std::move(title)));
+}
+
+}  // namespace kfw

@@ -1,0 +1,116 @@
+// A state-space model declared in a preset's "model" block (version 1), parsed and validated:
+// every expression compiled and classified, every size checked, Jacobians derived. The format is
+// documented in presets/models/README.md. Immutable once built; runs share it.
+#pragma once
+
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+#include <vector>
+
+#include "core/expected.h"
+#include "core/param_spec.h"
+#include "model/expression.h"
+
+namespace kfw::model {
+
+inline constexpr int kModelVersion = 1;
+inline constexpr int kMaxChannelSize = 8;  // components of one measurement channel
+
+// An angle wraps to (−π, π] (rad) or (−180, 180] (deg); innovations and UKF means follow.
+enum class Angle { kNone, kRad, kDeg };
+
+// A matrix of expressions, row-major, with the key that names it in messages.
+struct MatrixSpec {
+  std::string key;  // "model.process.F"
+  int rows = 0, cols = 0;
+  std::vector<Expr> e;
+  const Expr& at(int i, int j) const { return e[static_cast<std::size_t>(i * cols + j)]; }
+  Dep dep() const;  // the latest class of any entry
+  bool empty() const { return e.empty(); }
+};
+
+struct StateSpec {
+  std::string name, unit, label;
+  Angle angle = Angle::kNone;
+};
+
+// A known signal u: its column (same name) in data; in simulation, the `sim` expression of t.
+struct InputSpec {
+  std::string name, unit, label;
+  Expr sim;
+};
+
+// One component of a measurement channel: a role that binds to the column of the same name.
+struct RoleSpec {
+  std::string name, unit;
+  Angle angle = Angle::kNone;
+};
+
+struct ChannelSpec {
+  std::string name, label;
+  std::vector<RoleSpec> roles;
+  bool linear = true;
+  std::vector<Expr> h;  // nonlinear: z = h(x, u, t) + v
+  MatrixSpec H;         // linear: z = H x + v; nonlinear: ∂h/∂x (symbolic)
+  MatrixSpec R;
+  int every = 1;            // update on rows k with k % every == 0 ...
+  std::string every_param;  // ... or every = this parameter's value
+  double gate = 0.0;        // χ² gate probability; 0: no gate
+  int size() const { return static_cast<int>(roles.size()); }
+};
+
+enum class ProcessForm {
+  kLinear,      // x_k = F x_{k−1} + B u_{k−1} + w, w ~ N(0, Q)
+  kContinuous,  // ẋ = A x + B u + G w, E[w wᵀ] = Qc δ: discretised exactly (Van Loan) per dt
+  kNonlinear,   // x_k = f(x_{k−1}, u_{k−1}, dt, t) + w
+};
+
+struct ProcessSpec {
+  ProcessForm form = ProcessForm::kLinear;
+  MatrixSpec F;  // linear: F; nonlinear: ∂f/∂x (symbolic); continuous: empty
+  MatrixSpec B;  // linear: n × inputs (may be empty)
+  MatrixSpec Q;  // linear and nonlinear
+  std::vector<Expr> f;
+  MatrixSpec A, Bc, G, Qc;  // continuous (parameters only)
+};
+
+// x0[i]: an expression of the parameters, or the first finite sample of a column (then `value`
+// is used when the column has none, and in simulation).
+struct InitialSpec {
+  Expr value;
+  std::string first_column;
+};
+
+struct ModelSpec {
+  std::string path;
+  Symbols symbols;
+  int dt_slot = -1, t_slot = -1;
+  std::vector<int> param_slots;  // the parameters usable in expressions, by slot
+  std::vector<int> state_slots, input_slots;
+  std::vector<StateSpec> states;
+  std::vector<InputSpec> inputs;
+  ProcessSpec process;
+  std::vector<ChannelSpec> channels;  // in the order of their names
+  std::vector<InitialSpec> x0;
+  MatrixSpec P0;
+  std::vector<std::string> truth;  // per state: its truth column, or empty
+  std::string primary;
+  std::string filter;  // the default filter: kf, ekf or ukf
+
+  int n() const { return static_cast<int>(states.size()); }
+  // F or A and H in every channel: the KF applies, and a steady state may exist.
+  bool linear() const;
+  // Linear, and F, B, Q, H, R depend on nothing but parameters and dt: the DARE applies.
+  bool time_invariant() const;
+  int state_index(const std::string& name) const;  // -1 when unknown
+};
+
+// Parses the "model" block. `params` is the scenario's parameter table (keys that are identifiers
+// are symbols of the expressions). Errors read "PATH: model.KEY...: what".
+Expected<ModelSpec> parse_model(const nlohmann::json& model, const ParamTable& params,
+                                const std::string& path);
+
+// The filters a model can run: kf (linear only), ekf, ukf.
+std::vector<std::string> filter_choices(const ModelSpec& spec);
+
+}  // namespace kfw::model

@@ -1,0 +1,350 @@
+// MainWindow, the document side: datasets and their mappings, sessions, presets, undo/redo,
+// snapshots and the metrics table. Everything here goes through the engine's Document.
+#include <QColor>
+#include <QCryptographicHash>
+#include <QFileInfo>
+#include <QSettings>
+#include <QSplitter>
+#include <QTableWidget>
+#include <algorithm>
+#include <cmath>
+
+#include "column_map_dialog.h"
+#include "core/workspace.h"
+#include "main_window.h"
+#include "param_panel.h"
+#include "run_controller.h"
+
+namespace kfw {
+
+namespace {
+QString q(const std::string& s) {
+  return QString::fromStdString(s);
+}
+}  // namespace
+
+namespace {
+QString mapKey(const Dataset& d) {
+  return "columnMaps/" +
+         QCryptographicHash::hash(QByteArray::fromStdString(header_key(d)), QCryptographicHash::Md5)
+             .toHex();
+}
+}  // namespace
+
+Expected<Dataset> MainWindow::readMapped(const QString& path, const Mapping* map, Mapping& used) {
+  const std::string file = path.toStdString();
+  if (map) {
+    used = *map;
+    auto d = load_dataset_file(*scenario_, file, *map);
+    if (d && !map->empty()) {
+      // Remembered for this header: the same header opens with this mapping next time.
+      if (auto raw = read_csv(file)) {
+        QStringList pairs;
+        for (const auto& [role, r] : *map) {
+          if (!r.column.empty()) pairs << QString::fromStdString(role + "=" + r.column);
+        }
+        QSettings("kfw", "kfw").setValue(mapKey(*raw), pairs.join(';'));
+      }
+    }
+    return d;
+  }
+  used = doc_->preset().mapping;
+  auto direct = load_dataset_file(*scenario_, file, used);
+  if (direct) return direct;
+  auto raw = read_csv(file);
+  if (!raw) return raw;
+  if (require_columns(*raw, scenario_->columns())) return direct;  // its own error, not names
+  // Remembered for this header (QSettings), else ask (GUI only).
+  ColumnMap m;
+  QSettings settings("kfw", "kfw");
+  const QString stored = settings.value(mapKey(*raw)).toString();
+  for (const QString& pair : stored.split(';', Qt::SkipEmptyParts)) {
+    const auto kv = pair.split('=');
+    if (kv.size() == 2) m[kv[0].toStdString()] = kv[1].toStdString();
+  }
+  if (m.empty() && interactive_) {
+    ColumnMap current;
+    if (doc_->data()) {
+      for (const auto& [role, r] : doc_->data()->mapping)
+        current[role] = r.column;
+    }
+    ColumnMapDialog dialog(scenario_->columns(), *raw, current, this);
+    if (dialog.exec() != QDialog::Accepted) return Error{file + ": column mapping cancelled"};
+    m = dialog.mapping();
+  }
+  if (m.empty()) return direct;
+  used = to_mapping(m);
+  auto mapped = load_dataset_file(*scenario_, file, used);
+  if (!mapped) return mapped;
+  QStringList pairs;
+  for (const auto& [role, col] : m)
+    pairs << QString::fromStdString(role + "=" + col);
+  settings.setValue(mapKey(*raw), pairs.join(';'));
+  return mapped;
+}
+
+Status MainWindow::openDataset(const QString& path) {
+  return openFile(path, nullptr);
+}
+
+Status MainWindow::openDatasetMapped(const QString& path, const ColumnMap& map) {
+  const Mapping m = to_mapping(map);
+  return openFile(path, &m);
+}
+
+Status MainWindow::openDatasetMapped(const QString& path, const Mapping& map) {
+  return openFile(path, &map);
+}
+
+Status MainWindow::openFile(const QString& path, const Mapping* map) {
+  if (!scenario_) return Error{"load a preset first"};
+  Mapping used;
+  auto ds = readMapped(path, map, used);
+  if (!ds) {
+    showError(q(ds.error()));
+    return ds.err();
+  }
+  file_data_ = std::make_shared<const Dataset>(std::move(*ds));
+  loaded_data_ = DataRef{path.toStdString(), used};
+  doc_->set_data(loaded_data_);
+  runner_->setFileDataset(file_data_);
+  clearError();
+  updateDataLabel();
+  updateUndoActions();
+  requestRun();
+  return Ok{};
+}
+
+void MainWindow::pinSnapshot(const QString& name) {
+  if (!result_ || !scenario_) return;
+  Snapshot snap{name.toStdString(), values()};
+  doc_->add_snapshot(snap);
+  snapshots_.push_back({snap, result_, runner_->dataset()});
+  updateUndoActions();
+  refreshSnapshots();
+}
+
+void MainWindow::clearSnapshots() {
+  if (doc_) doc_->clear_snapshots();
+  snapshots_.clear();
+  updateUndoActions();
+  refreshSnapshots();
+}
+
+bool MainWindow::undo() {
+  if (!doc_ || !doc_->undo()) return false;
+  syncFromDocument();
+  return true;
+}
+
+bool MainWindow::redo() {
+  if (!doc_ || !doc_->redo()) return false;
+  syncFromDocument();
+  return true;
+}
+
+void MainWindow::syncFromDocument() {
+  if (!doc_) return;
+  panel_->setValues(doc_->values());
+  if (doc_->data() != loaded_data_) {
+    if (!doc_->data()) {
+      file_data_.reset();
+    } else {
+      auto ds = load_dataset_file(*scenario_, doc_->data()->path, doc_->data()->mapping);
+      if (ds) {
+        file_data_ = std::make_shared<const Dataset>(std::move(*ds));
+      } else {
+        showError(q(ds.error()));
+      }
+    }
+    loaded_data_ = doc_->data();
+    runner_->setFileDataset(file_data_);
+    updateDataLabel();
+  }
+  // Keep the runs of snapshots that are still there; re-run the ones that came back.
+  std::vector<Pinned> next;
+  for (const auto& snap : doc_->snapshots()) {
+    Pinned p{snap, nullptr, nullptr};
+    for (const auto& old : snapshots_) {
+      if (old.snap == snap) p = old;
+    }
+    next.push_back(std::move(p));
+  }
+  snapshots_ = std::move(next);
+  refreshSnapshots();
+  updateUndoActions();
+  requestRun();
+}
+
+void MainWindow::updateUndoActions() {
+  if (!undo_action_) return;
+  const bool has = static_cast<bool>(doc_);
+  undo_action_->setEnabled(has && doc_->can_undo());
+  redo_action_->setEnabled(has && doc_->can_redo());
+  undo_action_->setText(has && doc_->can_undo() ? "&Undo " + q(doc_->undo_label()) : "&Undo");
+  redo_action_->setText(has && doc_->can_redo() ? "&Redo " + q(doc_->redo_label()) : "&Redo");
+}
+
+// Re-runs stale snapshots on the current dataset (synchronously: a few ms each), then redraws
+// the ghosts and the metrics columns.
+void MainWindow::refreshSnapshots() {
+  const auto current = runner_->dataset();
+  for (auto& p : snapshots_) {
+    if (current && p.data != current) {
+      auto r = scenario_->run(*current, p.snap.values);
+      p.result = r ? *r : nullptr;
+      p.data = current;
+    }
+  }
+  ScenarioView::Snapshots ghosts;
+  for (const auto& p : snapshots_) {
+    if (p.result) ghosts.append({q(p.snap.name), p.result});
+  }
+  if (view_) view_->setSnapshots(ghosts);
+  fillMetrics();
+}
+
+// Grouped (accuracy, consistency, gains, scenario), each row the metric's label and unit, its
+// description as a tooltip, undefined metrics as "—" with the reason.
+void MainWindow::fillMetrics() {
+  const int cols = 2 + static_cast<int>(snapshots_.size());
+  metrics_->setColumnCount(cols);
+  QStringList headers{"metric", "live"};
+  for (const auto& p : snapshots_)
+    headers << q(p.snap.name);
+  metrics_->setHorizontalHeaderLabels(headers);
+  if (!result_) {
+    metrics_->setRowCount(0);
+    return;
+  }
+  struct Row {
+    MetricSpec spec;
+    int group_order;
+  };
+  std::vector<Row> rows;
+  auto add = [&](const std::string& key) {
+    MetricSpec spec = describe_metric(*scenario_, key, result_.get());
+    rows.push_back({spec, static_cast<int>(spec.group)});
+  };
+  for (const auto& [k, x] : result_->metrics)
+    add(k);
+  for (const auto& [k, why] : result_->undefined)
+    add(k);
+  std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
+    if (a.group_order != b.group_order) return a.group_order < b.group_order;
+    if ((a.spec.key == "rmse") != (b.spec.key == "rmse")) return a.spec.key == "rmse";
+    return a.spec.key < b.spec.key;
+  });
+  metrics_->setRowCount(static_cast<int>(rows.size()));
+  auto cell = [](const RunResult* r, const MetricSpec& spec) {
+    auto* item = new QTableWidgetItem;
+    if (!r) {
+      item->setText("–");
+      return item;
+    }
+    auto it = r->metrics.find(spec.key);
+    if (it != r->metrics.end()) {
+      item->setText(QString::number(it->second, 'g', 6));
+      const std::string verdict = judge(spec, it->second);
+      if (verdict == "bad") item->setForeground(QColor(170, 30, 20));
+      if (!verdict.empty()) item->setToolTip(q(verdict));
+    } else {
+      item->setText("—");
+      auto u = r->undefined.find(spec.key);
+      item->setToolTip(u == r->undefined.end() ? "not reported" : "undefined: " + q(u->second));
+    }
+    return item;
+  };
+  for (int row = 0; row < static_cast<int>(rows.size()); ++row) {
+    const MetricSpec& spec = rows[static_cast<std::size_t>(row)].spec;
+    QString label = q(spec.label);
+    if (!spec.unit.empty()) label += " (" + q(spec.unit) + ")";
+    auto* name = new QTableWidgetItem(label);
+    name->setData(Qt::UserRole, q(spec.key));
+    QString sense = QString(direction_name(spec.direction)) + " is better";
+    if (spec.direction == Direction::kTarget)
+      sense = "target " + QString::number(spec.target, 'g', 4);
+    if (spec.direction == Direction::kNone) sense = "informational";
+    QString tip = "<b>" + q(spec.key) + "</b> · " + group_name(spec.group) + " · " + sense;
+    if (!spec.description.empty()) tip += "<br>" + q(spec.description).toHtmlEscaped();
+    name->setToolTip(tip);
+    metrics_->setItem(row, 0, name);
+    metrics_->setItem(row, 1, cell(result_.get(), spec));
+    for (std::size_t j = 0; j < snapshots_.size(); ++j) {
+      metrics_->setItem(row, 2 + static_cast<int>(j), cell(snapshots_[j].result.get(), spec));
+    }
+  }
+}
+
+Status MainWindow::saveSession(const QString& path) const {
+  if (!doc_) return Error{"nothing to save"};
+  // Window layout: geometry, then each splitter's state, base64, ':'-separated; opaque to the
+  // engine, kept in the document's view state.
+  QByteArrayList parts{saveGeometry().toBase64()};
+  for (const char* name : {"mainSplit", "leftSplit"}) {
+    if (auto* sp = findChild<QSplitter*>(name)) parts << sp->saveState().toBase64();
+  }
+  Session s = doc_->to_session();
+  s.window_state = parts.join(':').toStdString();
+  if (auto st = save_session(path.toStdString(), s); !st) return st;
+  doc_->mark_saved();
+  return Ok{};
+}
+
+Status MainWindow::loadSession(const QString& path) {
+  auto s = load_session(path.toStdString());
+  if (!s) return s.err();
+  auto doc = Document::from_session(*s, path.toStdString());
+  if (!doc) return doc.err();
+  QString warning;
+  if (s->data_path) {
+    auto h = file_hash(*s->data_path);
+    if (h && !s->data_hash.empty() && *h != s->data_hash) {
+      warning = q(*s->data_path) + " changed since the session was saved (hash differs)";
+    }
+  }
+  doc->mark_saved();
+  if (auto st = adoptDocument(std::move(*doc)); !st) return st;
+  waitForRun();
+  refreshSnapshots();
+  const QByteArrayList parts = QByteArray::fromStdString(s->window_state).split(':');
+  if (!parts.isEmpty() && !parts[0].isEmpty()) restoreGeometry(QByteArray::fromBase64(parts[0]));
+  const char* splits[] = {"mainSplit", "leftSplit"};
+  for (int i = 1; i < parts.size() && i <= 2; ++i) {
+    if (auto* sp = findChild<QSplitter*>(splits[i - 1])) {
+      sp->restoreState(QByteArray::fromBase64(parts[i]));
+    }
+  }
+  if (!warning.isEmpty()) showError(warning);
+  return Ok{};
+}
+
+void MainWindow::useSimulatedData() {
+  if (!file_data_) return;
+  file_data_.reset();
+  loaded_data_.reset();
+  doc_->set_data(std::nullopt);
+  updateUndoActions();
+  runner_->setFileDataset(nullptr);
+  updateDataLabel();
+  requestRun();
+}
+
+void MainWindow::setParam(const std::string& key, double value) {
+  if (panel_) panel_->setValue(key, value);
+}
+
+Status MainWindow::savePreset(const QString& path) const {
+  if (!doc_) return Error{"nothing to save"};
+  Preset p = doc_->preset();
+  p.values = values();
+  if (doc_->data()) {
+    p.data_path = doc_->data()->path;
+    p.mapping = doc_->data()->mapping;
+  } else {
+    p.data_path.reset();
+  }
+  return save_preset(path.toStdString(), p);
+}
+
+}  // namespace kfw

@@ -139,6 +139,11 @@ void declare(Cli& cli) {
       ->type_name("NAME")
       ->required();
   add_path(c, "--out", a.out, "FILE.csv", "write every grid point and its metric");
+  c->add_option("--max-points", a.max_points,
+                "refuse a grid larger than this (default 1000000): a typo in n is caught "
+                "before hours of work")
+      ->type_name("N")
+      ->check(CLI::PositiveNumber);
   c->footer(
       "A grid is lo:hi:n, with :log or :lin for the spacing (kfw-cli help grammar);\n"
       "without either, log-scale parameters are spaced in log10.");

@@ -244,6 +244,16 @@ int cmd_sweep(const CliArgs& a, std::ostream& out, std::ostream& err) {
     if (!ax) return fail(err, ax.err());
     axes.push_back(*ax);
   }
+  // Refused at once, before any run: the product of the axes' sizes, without overflow.
+  std::size_t points = 1;
+  for (const auto& ax : axes) {
+    const auto n = static_cast<std::size_t>(ax.n);
+    if (points > a.max_points / std::max<std::size_t>(n, 1)) {
+      return fail(err, Error{"--param: the grid has more than " + std::to_string(a.max_points) +
+                             " points; raise --max-points to run it"});
+    }
+    points *= n;
+  }
   OutputSet outs = outputs_for(*ws);
   if (a.out) {
     if (auto st = outs.add(*a.out, "--out"); !st) return fail(err, st.err());
@@ -439,6 +449,14 @@ int cmd_list(std::ostream& out) {
     if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
   }
   std::sort(names.begin(), names.end());
+  for (const auto& n : names)
+    out << " " << n;
+  names.clear();
+  for (const auto& e : std::filesystem::directory_iterator(preset_dir() + "/models", ec)) {
+    if (e.path().extension() == ".json") names.push_back("models/" + e.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  out << "\nmodels (" << preset_dir() << "/models):";
   for (const auto& n : names)
     out << " " << n;
   out << "\n";

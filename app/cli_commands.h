@@ -12,6 +12,9 @@
 
 namespace kfw {
 
+// A sweep larger than this needs --max-points (README "Limits").
+inline constexpr std::size_t kDefaultMaxPoints = 1000000;
+
 struct CliArgs {
   std::string target;  // PRESET: a preset file, a name in presets/, a scenario, or FILE.csv
   std::optional<std::string> data, out, metrics;
@@ -21,7 +24,8 @@ struct CliArgs {
   std::vector<std::string> axes;    // sweep --param key=GRID
   std::string objective = "rmse";
   std::string metric;
-  bool markdown = false;  // metrics --markdown
+  bool markdown = false;                       // metrics --markdown
+  std::size_t max_points = kDefaultMaxPoints;  // sweep --max-points
 };
 
 // Each returns the process exit code (expected.h); errors go to `err` as one line.

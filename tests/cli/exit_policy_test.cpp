@@ -3,6 +3,7 @@
 // a result), 2 invalid input or output path (nothing written), 1 the work failed.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -153,6 +154,20 @@ TEST_F(ExitPolicy, ManyRunsFailOnlyWhenNoneSucceeded) {
                 " --param Q=1:100:3 --metric rmse");
   EXPECT_EQ(ok.code, 0) << ok.text;
   EXPECT_NE(ok.text.find("\"stopped\": []"), std::string::npos) << ok.text;
+}
+
+TEST_F(ExitPolicy, AHugeGridIsRefusedAtOnce) {
+  const std::string preset = std::string(KFW_SOURCE_DIR) + "/presets/helicopter.json";
+  const auto start = std::chrono::steady_clock::now();
+  auto r = cli("sweep " + preset + " --param Q=1:100:100000000 --metric rmse");
+  EXPECT_EQ(r.code, 2) << r.text;
+  EXPECT_NE(r.text.find("1000000"), std::string::npos) << r.text;
+  auto both = cli("sweep " + preset + " --param Q=1:100:2000 --param R=1:100:2000 --metric rmse");
+  EXPECT_EQ(both.code, 2) << both.text;
+  EXPECT_NE(both.text.find("--max-points"), std::string::npos) << both.text;
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+  auto raised = cli("sweep " + preset + " --param Q=1:100:3 --metric rmse --max-points 2");
+  EXPECT_EQ(raised.code, 2) << raised.text;
 }
 
 TEST_F(ExitPolicy, MetricsAreDeclaredOnceAndListed) {

@@ -19,7 +19,10 @@ using testing::cli;
 class ExitPolicy : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fs::path(::testing::TempDir()) / "kfw_exit_policy";
+    // One folder per test: ctest runs the tests in parallel processes.
+    dir = fs::path(::testing::TempDir()) /
+          ("kfw_exit_policy_" +
+           std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir);
     fs::create_directories(dir);
   }

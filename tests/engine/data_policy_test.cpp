@@ -19,9 +19,12 @@ std::string write(const std::string& name, const std::string& text) {
   return path;
 }
 
+// Each test writes its own file: ctest runs the tests of this binary in parallel processes.
 Expected<Dataset> load(const std::string& text, const Mapping& m = {}) {
   auto s = make_scenario("helicopter");
-  return load_dataset_file(**s, write("policy.csv", text), m);
+  const std::string name =
+      std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_policy.csv";
+  return load_dataset_file(**s, write(name, text), m);
 }
 
 struct Case {

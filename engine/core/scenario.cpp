@@ -158,13 +158,16 @@ MetricSpec describe_metric(const Scenario& s, std::string_view key, const RunRes
     }
     const std::string_view name = key.substr(lt);
     std::string label(name);
-    if (r) {
+    // Only the kind of series the pattern names is asked for: channels() copies every
+    // channel's per-step arrays, and the metrics table calls this on every re-run.
+    if (r && spec.key.find("<state>") != std::string::npos) {
       for (const auto& st : r->states()) {
         if (st.key == name) {
           if (!st.label.empty()) label = st.label;
-          if (spec.key == "rmse.<state>") out.unit = st.unit;
+          out.unit = st.unit;
         }
       }
+    } else if (r) {
       for (const auto& c : r->channels()) {
         if (c.name == name) {
           label = c.display();

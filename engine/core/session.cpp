@@ -57,10 +57,9 @@ std::string session_to_json(const Session& s) {
   return j.dump(2) + "\n";
 }
 
-Expected<Session> parse_session(const std::string& text, const std::string& path) {
-  auto doc = parse_json_document(text, path);
-  if (!doc) return doc.err();
-  const json& j = *doc;
+namespace {
+
+Expected<Session> session_from_json(const json& j, const std::string& path) {
   if (!j.is_object()) return Error{path + ": a session must be a JSON object"};
   if (!j.contains("format") || j["format"] != kSessionFormat) {
     return Error{path + ": format: must be '" + std::string(kSessionFormat) + "'"};
@@ -128,10 +127,18 @@ Expected<Session> parse_session(const std::string& text, const std::string& path
   return s;
 }
 
+}  // namespace
+
+Expected<Session> parse_session(const std::string& text, const std::string& path) {
+  auto doc = parse_json_document(text, path);
+  if (!doc) return doc.err();
+  return session_from_json(*doc, path);
+}
+
 Expected<Session> load_session(const std::string& path) {
   auto doc = read_json_document(path, "session");
   if (!doc) return doc.err();
-  return parse_session(doc->dump(), path);
+  return session_from_json(*doc, path);
 }
 
 Status save_session(const std::string& path, const Session& s) {

@@ -41,9 +41,7 @@ Expected<Dataset> load_dataset_file(const Scenario& scenario, const std::string&
   for (const auto& c : columns)
     units[c.name] = c.unit;
   units["t"] = "s";
-  Mapping m = mapping;
-  if (opt.time_column != "t" && !m.count("t")) m["t"].column = opt.time_column;
-  auto mapped = apply_mapping(std::move(*d), m, units);
+  auto mapped = apply_mapping(std::move(*d), mapping, units);
   if (!mapped) return mapped;
   if (auto st = require_columns(*mapped, columns); !st) return st.err();
   if (auto st = require_some_value(*mapped, columns); !st) return st.err();

@@ -107,6 +107,12 @@ void declare(Cli& cli) {
   add_target(c, a);
   add_data(c, a);
   add_sets(c, a);
+  add_path(c, "--curve", a.curve, "KEY",
+           "the gain curve: the steady-state gains over KEY's declared range (JSON)");
+  c->add_option("--points", a.curve_points, "points of the gain curve")
+      ->type_name("N")
+      ->check(CLI::Range(2, 100000))
+      ->capture_default_str();
 
   c = app.add_subcommand("tune", "search the parameters that minimise an objective");
   add_target(c, a);

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/dataset.h"
+#include "core/gain_curve.h"
 #include "core/metrics.h"
 #include "core/output.h"
 #include "core/suggest.h"
@@ -150,6 +151,39 @@ int cmd_run(const CliArgs& a, std::ostream& out, std::ostream& err) {
   return kExitOk;
 }
 
+namespace {
+
+// gain --curve KEY: {"parameter", "log", "x": [...], "gains": {"K.x.z": [...]}, "at": {...}}.
+int print_gain_curve(const Scenario& s, const ParamValues& values, const std::string& key,
+                     std::size_t points, const Dataset* data, std::ostream& out,
+                     std::ostream& err) {
+  const auto keys = gain_curve_parameters(s);
+  if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
+    return fail(err,
+                Error{"--curve: " + unknown_message("continuous filter parameter", key, keys)});
+  }
+  auto c = gain_curve(s, values, key, points, data);
+  if (!c) return fail(err, c.err());
+  nlohmann::ordered_json j;
+  j["parameter"] = key;
+  j["log"] = c->log;
+  j["x"] = c->x;
+  nlohmann::ordered_json gains = nlohmann::ordered_json::object(), at = gains;
+  for (std::size_t e = 0; e < c->entries.size(); ++e) {
+    nlohmann::ordered_json v = nlohmann::ordered_json::array();
+    for (double y : c->values[e])
+      v.push_back(std::isfinite(y) ? nlohmann::ordered_json(y) : nlohmann::ordered_json());
+    gains[c->entries[e]] = v;
+    at[c->entries[e]] = c->at[e];
+  }
+  j["gains"] = gains;
+  j["at"] = {{"value", c->at_x}, {"gains", at}};
+  out << j.dump(2) << "\n";
+  return kExitOk;
+}
+
+}  // namespace
+
 int cmd_gain(const CliArgs& a, std::ostream& out, std::ostream& err) {
   auto ws = open_any(a.target, a.data, a.sets);
   if (!ws) return fail(err, ws.err());
@@ -159,6 +193,9 @@ int cmd_gain(const CliArgs& a, std::ostream& out, std::ostream& err) {
     if (!d) return fail(err, d.err());
     data = std::move(*d);
   }
+  if (a.curve)
+    return print_gain_curve(*ws->scenario, ws->values, *a.curve, a.curve_points,
+                            data ? &*data : nullptr, out, err);
   auto g = ws->scenario->gain(ws->values, data ? &*data : nullptr);
   if (!g) return fail(err, g.err());
   out << metrics_to_json(*g, {}) << "\n";

@@ -26,6 +26,8 @@ struct CliArgs {
   std::string metric;
   bool markdown = false;                       // metrics --markdown
   std::size_t max_points = kDefaultMaxPoints;  // sweep --max-points
+  std::optional<std::string> curve;            // gain --curve KEY
+  std::size_t curve_points = 100;              // gain --points N
 };
 
 // Each returns the process exit code (expected.h); errors go to `err` as one line.

@@ -251,9 +251,14 @@ void MainWindow::buildMenus() {
 void MainWindow::refreshPresetList() {
   const QSignalBlocker b(presets_);
   presets_->clear();
+  // The built-in scenarios' presets, then the model library (presets/models/) beside them.
   const QDir dir(q(preset_dir()));
   for (const QFileInfo& f : dir.entryInfoList({"*.json"}, QDir::Files, QDir::Name)) {
     presets_->addItem(f.completeBaseName(), f.absoluteFilePath());
+  }
+  const QDir models(dir.filePath("models"));
+  for (const QFileInfo& f : models.entryInfoList({"*.json"}, QDir::Files, QDir::Name)) {
+    presets_->addItem("models/" + f.completeBaseName(), f.absoluteFilePath());
   }
   const Preset& current = preset();
   if (!current.path.empty()) {
@@ -338,6 +343,7 @@ void MainWindow::rebuildScenarioUi() {
     updateUndoActions();
     requestRun();
   });
+  view_->setScenario(scenario_);
   controls_ = view_->createControls(nullptr);
   if (controls_) left_->insertWidget(left_->count() - 1, controls_);
   connect(view_.get(), &ScenarioView::parameterEdited, this,
@@ -425,6 +431,7 @@ void MainWindow::applyResult(std::shared_ptr<const RunResult> r, const ParamValu
   apply.start();
   const std::size_t cursor_before = transport_->cursor();
   transport_->setTimes(r->t);
+  view_->setDataset(runner_->dataset());
   view_->setResult(r, v);      // draws up to the view's cursor
   consistency_->setResult(r);  // drawn when its tab is shown
   if (transport_->cursor() != cursor_before) view_->setCursor(transport_->cursor());
@@ -497,9 +504,15 @@ std::string MainWindow::primaryParameter() const {
 QList<PlotPanel> MainWindow::exportedPlots() const {
   QList<PlotPanel> all = plots_;
   if (result_ && !result_->channels().empty()) {
+    // Only the consistency plots that have something to show: NEES needs truth, whiteness a
+    // scalar channel.
     const bool nees = count_finite(result_->nees_series().nees) > 0;
+    bool scalar = false;
+    for (const auto& c : result_->channels())
+      scalar = scalar || !c.normalized.empty();
     for (const auto& p : consistency_->plots()) {
-      if (p.name != "consistency_nees" || nees) all << p;
+      if ((p.name != "consistency_nees" || nees) && (p.name != "consistency_whiteness" || scalar))
+        all << p;
     }
   }
   return all;

@@ -30,6 +30,11 @@ class ScenarioView : public QObject {
   using QObject::QObject;
   ~ScenarioView() override = default;
 
+  // The scenario this view draws, before createPlots (a view whose plots depend on the model,
+  // or that asks the engine for more than a result holds, keeps it).
+  virtual void setScenario(std::shared_ptr<const Scenario> scenario) { Q_UNUSED(scenario); }
+  // The dataset of the next setResult (file or simulated).
+  virtual void setDataset(std::shared_ptr<const Dataset> data) { Q_UNUSED(data); }
   // Creates the plots once, as children of `parent`; the main window lays them out.
   virtual QList<PlotPanel> createPlots(QWidget* parent) = 0;
   // Optional controls shown under the parameter panel (an IMM grid editor, ...).

@@ -77,6 +77,7 @@ class ModelScenario final : public Scenario {
   std::string title() const override { return title_; }
   const ParamTable& params() const override { return table_; }
   std::string primary_state() const override { return spec_->primary; }
+  const std::shared_ptr<const model::ModelSpec>& spec() const { return spec_; }
 
   std::vector<ColumnSpec> columns() const override {
     std::vector<ColumnSpec> c{{"t", "s", "time", true}};
@@ -222,6 +223,22 @@ Expected<Metrics> ModelScenario::gain(const ParamValues& v, const Dataset* data)
 }
 
 }  // namespace
+
+std::optional<ModelLayout> model_layout_of(const Scenario& s) {
+  const auto* m = dynamic_cast<const ModelScenario*>(&s);
+  if (!m) return std::nullopt;
+  ModelLayout l;
+  for (const auto& st : m->spec()->states)
+    l.states.push_back({st.name, st.label.empty() ? st.name : st.label, st.unit});
+  for (const auto& c : m->spec()->channels) {
+    ModelLayout::Channel ch{c.name, c.label.empty() ? c.name : c.label, {}};
+    for (const auto& r : c.roles)
+      ch.roles.push_back({r.name, r.unit, r.angle != model::Angle::kNone});
+    l.channels.push_back(std::move(ch));
+  }
+  l.time_invariant = m->spec()->time_invariant();
+  return l;
+}
 
 Expected<ParamTable> parse_param_table(const json& params, const std::string& path) {
   std::vector<ParamSpec> specs;

@@ -7,11 +7,32 @@
 
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "core/scenario.h"
 
 namespace kfw {
+
+// What a view needs to lay out a model's plots before the first run: its states and its
+// measurement channels with their roles (plain data; the model itself stays in the engine).
+struct ModelLayout {
+  struct State {
+    std::string name, label, unit;
+  };
+  struct Role {
+    std::string name, unit;
+    bool angle = false;  // wrapped to (−π, π] or (−180, 180]: a line through it would jump
+  };
+  struct Channel {
+    std::string name, label;
+    std::vector<Role> roles;
+  };
+  std::vector<State> states;
+  std::vector<Channel> channels;
+  bool time_invariant = false;  // linear, F B Q H R of parameters and dt only: a steady state
+};
 
 // Builds a Scenario from a whole preset JSON whose "scenario" is "model": the preset's
 // "parameters" block (full specs: value, min, max, unit, scale, label, optional group) becomes the
@@ -19,6 +40,9 @@ namespace kfw {
 // Errors (exit 2) read "PATH: KEY: what", with the position in an expression where there is one.
 Expected<std::unique_ptr<Scenario>> make_model_scenario(const nlohmann::json& preset,
                                                         const std::string& path);
+
+// The layout of the model a scenario was built from; empty when `s` is not a model scenario.
+std::optional<ModelLayout> model_layout_of(const Scenario& s);
 
 // The parameter table of a "parameters" block in full form (each entry an object with value,
 // min, max, and optionally unit, scale, label, group, description, decimals, choices).

@@ -15,6 +15,7 @@
 #include <cmath>
 
 #include "core/statistics.h"
+#include "plot_blocks.h"
 #include "plot_kit.h"
 #include "scenario_view.h"
 #include "scenarios/radome/radome_imm.h"
@@ -252,13 +253,7 @@ class RadomeView final : public ScenarioView {
     }
     innov_cursor_ = addCursor(innov_);
 
-    nis_ = makePlot(parent, "NIS with 95 % χ²(3) bounds", "time (s)", "NIS (–)");
-    setLog(nis_->yAxis);
-    nis_y_ = addGraph(nis_, "NIS (most probable mode)", color::kEstimate, Style::kDots);
-    nis_lo_ = addGraph(nis_, "χ²(3) 2.5 % / 97.5 %", color::kBound, Style::kDashed);
-    nis_hi_ = addGraph(nis_, "", color::kBound, Style::kDashed);
-    nis_hi_->removeFromLegend();
-    nis_cursor_ = addCursor(nis_);
+    nis_ = std::make_unique<NisPlot>(parent, "NIS of the most probable mode, 95 % χ²(3) bounds");
 
     return {{"slope_psi", "Slope R_ψ", slope_[0].plot},
             {"slope_theta", "Slope R_θ", slope_[1].plot},
@@ -267,7 +262,7 @@ class RadomeView final : public ScenarioView {
             {"mode_heatmap", "Mode probabilities (grid)", heat_},
             {"mode_top", "Top modes", top_},
             {"innovation", "Innovation", innov_},
-            {"nis", "NIS", nis_}};
+            {"nis", "NIS", nis_->plot()}};
   }
 
   void setResult(std::shared_ptr<const RunResult> result, const ParamValues& values) override {
@@ -339,8 +334,7 @@ class RadomeView final : public ScenarioView {
       }
     }
     heat_map_->data()->setSize(r->n_psi, r->n_theta);
-    nis_lo_value_ = chi2_quantile(0.025, 3.0);
-    nis_hi_value_ = chi2_quantile(0.975, 3.0);
+    nis_->setData(&r->t, &r->nis, 3.0);
     drawUpTo(cursor_);
   }
 
@@ -457,25 +451,21 @@ class RadomeView final : public ScenarioView {
       plot::setBand(innov_band_[ax], r.t, zero_, two_sqrt_S_[ax], n);
       setSeries(innov_y_[ax], r.t, r.innovation[static_cast<std::size_t>(ax)], n);
     }
-    setSeries(nis_y_, r.t, r.nis, n);
-    const std::vector<double> span{t0, tc};
-    setSeries(nis_lo_, span, {nis_lo_value_, nis_lo_value_}, 2);
-    setSeries(nis_hi_, span, {nis_hi_value_, nis_hi_value_}, 2);
+    nis_->draw(plot::frameAt(r.t, index));
     drawHeatMap(n - 1);
     if (editor_) editor_->showGrid(r, n - 1, tc);
 
-    QCustomPlot* timed[] = {slope_[0].plot, slope_[1].plot, alpha_, los_, top_, innov_, nis_};
+    QCustomPlot* timed[] = {slope_[0].plot, slope_[1].plot, alpha_, los_, top_, innov_};
     for (QCustomPlot* p : {slope_[0].plot, slope_[1].plot, top_})
       plot::rescale(p, t0, t1);
     // The filter's start-up (first pseudo-measurement, P0) would set these ranges and flatten the
     // steady part: scale them from the settled data on.
-    for (QCustomPlot* p : {alpha_, los_, innov_, nis_})
+    for (QCustomPlot* p : {alpha_, los_, innov_})
       plot::rescale(p, t0, t1, plot::settleTime(t0, t1));
     // Room above μ = 1 for the legend, which would otherwise hide the winning mode.
     top_->yAxis->setRange(-0.02, 1.32);
     QCPItemStraightLine* cursors[] = {slope_[0].cursor, slope_[1].cursor, alpha_cursor_,
-                                      los_cursor_,      top_cursor_,      innov_cursor_,
-                                      nis_cursor_};
+                                      los_cursor_,      top_cursor_,      innov_cursor_};
     for (auto* c : cursors)
       plot::setCursorAt(c, tc, !all);
     for (QCustomPlot* p : timed)
@@ -497,10 +487,10 @@ class RadomeView final : public ScenarioView {
   std::vector<double> env_lo_[2], env_hi_[2], los_err_[2], los_est_err_[2], two_sqrt_S_[3], zero_;
   std::vector<int> top_ids_;
   std::vector<std::vector<double>> top_mu_;
-  double nis_lo_value_ = 0.0, nis_hi_value_ = 0.0;
 
   QCustomPlot *alpha_ = nullptr, *los_ = nullptr, *heat_ = nullptr, *top_ = nullptr,
-              *innov_ = nullptr, *nis_ = nullptr;
+              *innov_ = nullptr;
+  std::unique_ptr<plot::NisPlot> nis_;
   QCPGraph *alpha_meas_ = nullptr, *alpha_true_ = nullptr, *alpha_est_ = nullptr;
   QCPGraph *los_psi_ = nullptr, *los_theta_ = nullptr, *los_est_psi_ = nullptr,
            *los_est_theta_ = nullptr;
@@ -512,9 +502,8 @@ class RadomeView final : public ScenarioView {
   std::vector<QCPGraph*> top_graphs_;
   plot::Band innov_band_[3];
   QCPGraph* innov_y_[3] = {nullptr, nullptr, nullptr};
-  QCPGraph *nis_y_ = nullptr, *nis_lo_ = nullptr, *nis_hi_ = nullptr;
   QCPItemStraightLine *alpha_cursor_ = nullptr, *los_cursor_ = nullptr, *top_cursor_ = nullptr,
-                      *innov_cursor_ = nullptr, *nis_cursor_ = nullptr;
+                      *innov_cursor_ = nullptr;
 };
 
 }  // namespace

@@ -1,0 +1,301 @@
+// Plots of any model declared in a preset file (scenario "model"), laid out from the model: per
+// state the estimate ± 2σ with truth; per measurement component the measured and predicted value
+// and the innovation ± 2√S; per channel the NIS with χ² bounds; the gains over time with the DARE
+// steady state; and the steady-state gains versus a parameter chosen under the sliders. Nothing
+// here knows a particular model.
+#include <qcustomplot.h>
+
+#include <QComboBox>
+#include <QFormLayout>
+#include <QGroupBox>
+#include <QSignalBlocker>
+#include <cmath>
+#include <optional>
+
+#include "core/gain_curve.h"
+#include "gain_curve_plot.h"
+#include "model/model_result.h"
+#include "model/model_scenario.h"
+#include "plot_blocks.h"
+#include "plot_kit.h"
+#include "scenario_view.h"
+
+namespace kfw {
+
+namespace {
+
+using model::ModelResult;
+
+QString q(const std::string& s) {
+  return QString::fromStdString(s);
+}
+
+QString withUnit(const QString& name, const std::string& unit) {
+  return unit.empty() ? QString("%1 (–)").arg(name) : QString("%1 (%2)").arg(name, q(unit));
+}
+
+class ModelView final : public ScenarioView {
+ public:
+  void setScenario(std::shared_ptr<const Scenario> scenario) override {
+    scenario_ = std::move(scenario);
+    if (scenario_) layout_ = model_layout_of(*scenario_);
+    // A gain curve only where a steady state exists: a linear time-invariant model.
+    const bool lti = layout_ && layout_->time_invariant;
+    curve_keys_ = lti ? gain_curve_parameters(*scenario_) : std::vector<std::string>{};
+    curve_key_.clear();  // chosen from the first result's values (setResult)
+  }
+  void setDataset(std::shared_ptr<const Dataset> data) override { data_ = std::move(data); }
+
+  QWidget* createControls(QWidget* parent) override {
+    if (curve_keys_.empty()) return nullptr;
+    auto* box = new QGroupBox("Gain curve", parent);
+    auto* form = new QFormLayout(box);
+    auto* combo = new QComboBox(box);
+    combo->setObjectName("gainCurveParameter");
+    combo->setToolTip("The parameter along the steady-state gain curve (the other values stay)");
+    for (const auto& k : curve_keys_) {
+      const ParamSpec* p = scenario_->params().find(k);
+      combo->addItem(q(p && !p->label.empty() ? p->label : k), q(k));
+    }
+    combo_ = combo;
+    form->addRow("versus", combo);
+    connect(combo, &QComboBox::currentIndexChanged, this, [this, combo](int i) {
+      curve_key_ = combo->itemData(i).toString().toStdString();
+      drawCurve();
+    });
+    return box;
+  }
+
+  QList<PlotPanel> createPlots(QWidget* parent) override {
+    QList<PlotPanel> out;
+    if (!layout_) return out;
+    for (const auto& s : layout_->states) {
+      const QString label = q(s.label);
+      states_.push_back(std::make_unique<plot::EstimatePlot>(
+          parent, QString("%1: truth and estimate ± 2σ").arg(label), withUnit(label, s.unit),
+          "estimate of " + q(s.name)));
+      out.push_back({q("state." + s.name), label, states_.back()->plot()});
+    }
+    for (const auto& c : layout_->channels) {
+      const QString cl = q(c.label);
+      for (const auto& r : c.roles) {
+        Component comp;
+        comp.measured =
+            plot::makePlot(parent, QString("%1: measured and predicted %2").arg(cl, q(r.name)),
+                           "time (s)", withUnit(q(r.name), r.unit));
+        comp.z = plot::addGraph(comp.measured, "measured " + q(r.name), plot::color::kSensor,
+                                plot::Style::kDots);
+        // An angle's prediction as dots: a line would jump across the ±π wrap.
+        comp.zhat =
+            plot::addGraph(comp.measured, "predicted ẑ (before the update)", plot::color::kEstimate,
+                           r.angle ? plot::Style::kDots : plot::Style::kLine);
+        comp.cursor = plot::addCursor(comp.measured);
+        comp.innovation = std::make_unique<plot::InnovationPlot>(
+            parent, QString("%1: innovation of %2 with ± 2√S").arg(cl, q(r.name)),
+            withUnit("innovation", r.unit), "innovation: measured − predicted");
+        out.push_back(
+            {q("measured." + c.name + "." + r.name), "measured " + q(r.name), comp.measured});
+        out.push_back({q("innovation." + c.name + "." + r.name), "innovation " + q(r.name),
+                       comp.innovation->plot()});
+        components_.push_back(std::move(comp));
+      }
+      nis_.push_back(std::make_unique<plot::NisPlot>(
+          parent, QString("%1: NIS with 95 % χ²(%2) bounds").arg(cl).arg(c.roles.size())));
+      out.push_back({q("nis." + c.name), "NIS " + cl, nis_.back()->plot()});
+    }
+    const bool lti = layout_->time_invariant;
+    gain_ = plot::makePlot(parent,
+                           lti ? "Gains over time (dashed: DARE steady state)" : "Gains over time",
+                           "time (s)", "gain (–)");
+    gain_cursor_ = plot::addCursor(gain_);
+    out.push_back({"gain", "Gains over time", gain_});
+    if (lti) {
+      curve_ = std::make_unique<plot::GainCurvePlot>(parent);
+      out.push_back({"gain_curve", "Gain curve", curve_->plot()});
+    }
+    return out;
+  }
+
+  void setResult(std::shared_ptr<const RunResult> result, const ParamValues& values) override {
+    auto r = std::dynamic_pointer_cast<const ModelResult>(result);
+    if (!r || !layout_ || r->n() != states_.size()) return;
+    result_ = r;
+    values_ = values;
+    for (std::size_t i = 0; i < states_.size(); ++i) {
+      states_[i]->setData(&r->t, &r->x[i], &r->P[r->diag[i]],
+                          r->truth[i].empty() ? nullptr : &r->truth[i]);
+    }
+    // Components in channel order: z rows and channel components line up.
+    std::size_t row = 0;
+    for (std::size_t c = 0; c < r->chans.size() && c < nis_.size(); ++c) {
+      const auto& ch = r->chans[c];
+      for (std::size_t j = 0; j < ch.y.size() && row < components_.size(); ++j, ++row) {
+        Component& comp = components_[row];
+        comp.z_row = row;
+        const auto& z = r->z[row];
+        comp.zhat_y.assign(z.size(), kNoSample);
+        for (std::size_t k = 0; k < z.size(); ++k)
+          comp.zhat_y[k] = z[k] - ch.y[j][k];  // NaN where the channel did not update
+        comp.innovation->setData(&r->t, &ch.y[j], &ch.S[j]);
+      }
+      nis_[c]->setData(&r->t, &ch.nis, static_cast<double>(ch.y.size()));
+    }
+    rebuildGainGraphs();
+    if (curve_key_.empty() && !curve_keys_.empty()) {
+      curve_key_ = default_gain_curve_parameter(*scenario_, values_, data_.get());
+      if (curve_key_.empty()) curve_key_ = curve_keys_.front();
+      if (combo_) {
+        const QSignalBlocker block(combo_);
+        combo_->setCurrentIndex(combo_->findData(q(curve_key_)));
+      }
+    }
+    computeCurve();
+    drawCurve();
+    drawUpTo(cursor_);
+  }
+
+  void setSnapshots(const Snapshots& snapshots) override {
+    ghosts_.clear();
+    std::vector<QList<plot::GhostSeries>> per_state(states_.size());
+    for (const auto& [name, result] : snapshots) {
+      auto r = std::dynamic_pointer_cast<const ModelResult>(result);
+      if (!r || r->n() != states_.size()) continue;
+      ghosts_.push_back(r);
+      for (std::size_t i = 0; i < states_.size(); ++i)
+        per_state[i].push_back({q(layout_->states[i].name) + " " + name, &r->t, &r->x[i]});
+    }
+    for (std::size_t i = 0; i < states_.size(); ++i)
+      states_[i]->setGhosts(per_state[i]);
+    if (result_) drawUpTo(cursor_);
+  }
+
+  void setCursor(std::size_t index) override {
+    cursor_ = index;
+    if (result_) drawUpTo(index);
+  }
+
+ private:
+  struct Component {
+    QCustomPlot* measured = nullptr;
+    QCPGraph *z = nullptr, *zhat = nullptr;
+    QCPItemStraightLine* cursor = nullptr;
+    std::unique_ptr<plot::InnovationPlot> innovation;
+    std::size_t z_row = 0;
+    std::vector<double> zhat_y;
+  };
+  struct GainGraph {
+    const std::vector<double>* k = nullptr;
+    QCPGraph* live = nullptr;
+    QCPGraph* steady = nullptr;  // null when there is no DARE value for the entry
+    double steady_value = 0.0;
+  };
+
+  // One step line per gain entry, K[state, role], and its DARE value dashed in the same colour.
+  void rebuildGainGraphs() {
+    gain_->clearGraphs();
+    gains_.clear();
+    const ModelResult& r = *result_;
+    auto steady = curve_ ? scenario_->gain(values_, data_.get()) : Expected<Metrics>(Error{""});
+    int colour = 0;
+    for (const auto& ch : r.chans) {
+      const std::size_t m = ch.y.size();
+      for (std::size_t i = 0; i < r.n(); ++i) {
+        for (std::size_t j = 0; j < m; ++j) {
+          const std::string entry = "K." + r.state_keys[i] + "." + ch.roles[j];
+          const QColor c = plot::color::cycle(colour++);
+          GainGraph g;
+          g.k = &ch.K[i * m + j];
+          g.live = plot::addGraph(gain_, plot::gainEntryLabel(entry), c, plot::Style::kStep);
+          if (steady) {
+            if (auto it = steady->find(entry); it != steady->end()) {
+              g.steady = plot::addGraph(gain_, "", c, plot::Style::kDashed);
+              g.steady->removeFromLegend();
+              g.steady_value = it->second;
+            }
+          }
+          gains_.push_back(g);
+        }
+      }
+    }
+  }
+
+  void computeCurve() {
+    curve_result_.reset();
+    curve_error_.clear();
+    if (curve_key_.empty()) {
+      curve_error_ = "the model has no continuous parameter";
+      return;
+    }
+    auto c = gain_curve(*scenario_, values_, curve_key_, 100, data_.get());
+    if (c) {
+      curve_result_ = std::make_shared<GainCurve>(std::move(*c));
+    } else {
+      curve_error_ = c.error();
+    }
+  }
+
+  void drawCurve() {
+    if (!result_ || !curve_) return;
+    if (!curve_result_ || curve_result_->key != curve_key_) computeCurve();
+    if (!curve_result_) {
+      curve_->setMessage(q(curve_error_));
+      return;
+    }
+    const ParamSpec* p = scenario_->params().find(curve_key_);
+    curve_->setCurve(*curve_result_, q(p && !p->label.empty() ? p->label : curve_key_),
+                     q(p ? p->unit : std::string()));
+  }
+
+  void drawUpTo(std::size_t index) {
+    const ModelResult& r = *result_;
+    const plot::Frame f = plot::frameAt(r.t, index);
+    for (auto& s : states_)
+      s->draw(f);
+    for (auto& comp : components_) {
+      if (comp.z_row >= r.z.size()) continue;
+      plot::setSeries(comp.z, r.t, r.z[comp.z_row], f.n);
+      plot::setSeries(comp.zhat, r.t, comp.zhat_y, f.n);
+      plot::rescale(comp.measured, f.t0, f.t1, f.settle());
+      plot::setCursorAt(comp.cursor, f.tc, !f.all);
+      plot::replot(comp.measured);
+      comp.innovation->draw(f);
+    }
+    for (auto& n : nis_)
+      n->draw(f);
+    for (const auto& g : gains_) {
+      plot::setSeries(g.live, r.t, *g.k, f.n);
+      if (g.steady) plot::setLevel(g.steady, f, g.steady_value);
+    }
+    plot::rescale(gain_, f.t0, f.t1, f.settle());
+    plot::setCursorAt(gain_cursor_, f.tc, !f.all);
+    plot::replot(gain_);
+  }
+
+  std::shared_ptr<const Scenario> scenario_;
+  std::optional<ModelLayout> layout_;
+  std::shared_ptr<const Dataset> data_;
+  std::shared_ptr<const ModelResult> result_;
+  std::vector<std::shared_ptr<const ModelResult>> ghosts_;
+  ParamValues values_;
+  std::size_t cursor_ = plot::kAll;
+  std::vector<std::unique_ptr<plot::EstimatePlot>> states_;
+  std::vector<Component> components_;
+  std::vector<std::unique_ptr<plot::NisPlot>> nis_;
+  QCustomPlot* gain_ = nullptr;
+  QCPItemStraightLine* gain_cursor_ = nullptr;
+  std::vector<GainGraph> gains_;
+  std::unique_ptr<plot::GainCurvePlot> curve_;
+  std::vector<std::string> curve_keys_;
+  std::string curve_key_;
+  QComboBox* combo_ = nullptr;
+  std::shared_ptr<GainCurve> curve_result_;
+  std::string curve_error_;
+};
+
+}  // namespace
+
+void register_view_model(ViewRegistry& registry) {
+  registry.add("model", [] { return std::make_unique<ModelView>(); });
+}
+
+}  // namespace kfw

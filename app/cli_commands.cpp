@@ -33,33 +33,6 @@ std::vector<std::string> target_names() {
   return names;
 }
 
-// A scenario name or a preset (path or name in presets/) both open a workspace.
-Expected<Workspace> open_any(const std::string& name, const std::optional<std::string>& data,
-                             const std::vector<std::string>& sets) {
-  std::error_code ec;
-  const bool looks_like_file =
-      name.find('/') != std::string::npos || std::filesystem::path(name).extension() == ".json";
-  if (!looks_like_file && !std::filesystem::is_regular_file(resolve_preset_path(name), ec)) {
-    auto p = default_preset(name);
-    if (!p) {
-      return Error{"no preset or scenario " + quote_token(name) +
-                   did_you_mean(name, target_names())};
-    }
-    Workspace ws;
-    ws.preset = *p;
-    auto s = make_scenario(name);
-    if (!s) return s.err();
-    ws.scenario = std::shared_ptr<const Scenario>(std::move(*s));
-    ws.values = ws.preset.values;
-    for (const auto& as : sets) {
-      if (auto st = ws.scenario->params().apply_assignment(as, ws.values); !st) return st.err();
-    }
-    ws.data_path = data;
-    return ws;
-  }
-  return open_workspace(name, data, sets);
-}
-
 // The files a command on this workspace reads: an output may not be one of them.
 OutputSet outputs_for(const Workspace& ws) {
   OutputSet o;
@@ -98,6 +71,33 @@ void print_warnings(const RunResult& r, std::ostream& err) {
 
 }  // namespace
 
+// A scenario name or a preset (path or name in presets/) both open a workspace.
+Expected<Workspace> open_any(const std::string& name, const std::optional<std::string>& data,
+                             const std::vector<std::string>& sets) {
+  std::error_code ec;
+  const bool looks_like_file =
+      name.find('/') != std::string::npos || std::filesystem::path(name).extension() == ".json";
+  if (!looks_like_file && !std::filesystem::is_regular_file(resolve_preset_path(name), ec)) {
+    auto p = default_preset(name);
+    if (!p) {
+      return Error{"no preset or scenario " + quote_token(name) +
+                   did_you_mean(name, target_names())};
+    }
+    Workspace ws;
+    ws.preset = *p;
+    auto s = make_scenario(name);
+    if (!s) return s.err();
+    ws.scenario = std::shared_ptr<const Scenario>(std::move(*s));
+    ws.values = ws.preset.values;
+    for (const auto& as : sets) {
+      if (auto st = ws.scenario->params().apply_assignment(as, ws.values); !st) return st.err();
+    }
+    ws.data_path = data;
+    return ws;
+  }
+  return open_workspace(name, data, sets);
+}
+
 int fail(std::ostream& err, const Error& e) {
   err << "kfw-cli: " << one_line(e.message) << "\n";
   return e.exit_code;
@@ -121,6 +121,11 @@ int cmd_simulate(const CliArgs& a, std::ostream& out, std::ostream& err) {
 }
 
 int cmd_run(const CliArgs& a, std::ostream& out, std::ostream& err) {
+  if (a.seeds) return cmd_run_seeds(a, out, err);
+  if (a.shard || a.out_dir || a.table) {
+    const char* opt = a.shard ? "--shard" : a.out_dir ? "--out-dir" : "--table";
+    return fail(err, Error{std::string(opt) + ": needs --seeds"});
+  }
   auto ws = open_any(a.target, a.data, a.sets);
   if (!ws) return fail(err, ws.err());
   OutputSet outs = outputs_for(*ws);

@@ -152,6 +152,8 @@ void declare(Cli& cli) {
       ->type_name("NAME")
       ->required();
   add_path(c, "--out", a.out, "FILE.csv", "write every grid point and its metric");
+  add_path(c, "--seeds", a.seeds, "SET",
+           "score each point by the metric's mean over these simulator seeds");
   c->add_option("--max-points", a.max_points,
                 "refuse a grid larger than this (default 1000000): a typo in n is caught "
                 "before hours of work")

@@ -8,6 +8,7 @@
 
 #include "core/dataset.h"
 #include "core/metrics.h"
+#include "core/monte_carlo.h"
 #include "core/output.h"
 #include "core/suggest.h"
 #include "core/tuning.h"
@@ -243,6 +244,12 @@ int cmd_tune(const CliArgs& a, std::ostream& out, std::ostream& err) {
 int cmd_sweep(const CliArgs& a, std::ostream& out, std::ostream& err) {
   auto ws = open_any(a.target, a.data, a.sets);
   if (!ws) return fail(err, ws.err());
+  std::optional<std::vector<long long>> seeds;
+  if (a.seeds) {
+    auto set = seeds_for(a, *ws);
+    if (!set) return fail(err, set.err());
+    seeds = std::move(*set);
+  }
   std::vector<SweepAxis> axes;
   for (const auto& t : a.axes) {
     auto ax = parse_sweep_axis(ws->scenario->params(), t);
@@ -282,7 +289,9 @@ int cmd_sweep(const CliArgs& a, std::ostream& out, std::ostream& err) {
     }
   }
   const MetricSpec spec = describe_metric(*ws->scenario, metric, base);
-  auto r = sweep(*ws->scenario, *d, ws->values, axes, 2);
+  // With --seeds each point is scored by the metric's mean over the seeds.
+  auto r = seeds ? sweep_over_seeds(*ws->scenario, ws->values, axes, *seeds)
+                 : sweep(*ws->scenario, *d, ws->values, axes, 2);
   if (!r) return fail(err, r.err());
   const std::size_t none = r->points.size();
   std::size_t best = none;
@@ -340,6 +349,7 @@ int cmd_sweep(const CliArgs& a, std::ostream& out, std::ostream& err) {
   if (spec.direction == Direction::kTarget) j["target"] = spec.target;
   j["points"] = r->points.size();
   j["points_defined"] = defined;
+  if (seeds) j["seeds"] = seeds->size();
   j["best"] = value_at(best);
   for (std::size_t k = 0; k < axes.size(); ++k)
     j["best_at"][axes[k].key] = r->points[best][k];

@@ -54,6 +54,10 @@ int cmd_scenario(const std::string& cmd, CliArgs a, std::ostream& out, std::ostr
 Expected<Workspace> open_any(const std::string& name, const std::optional<std::string>& data,
                              const std::vector<std::string>& sets);
 
+// The --seeds set, refused with --data or a preset whose data come from a file (--seeds
+// simulates each seed).
+Expected<std::vector<long long>> seeds_for(const CliArgs& a, const Workspace& ws);
+
 // Writes "kfw-cli: MESSAGE" as one line (long tokens shortened) and returns the exit code.
 int fail(std::ostream& err, const Error& e);
 

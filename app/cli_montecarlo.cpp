@@ -69,8 +69,21 @@ const std::map<std::string, MergeHandler>& merge_handlers() {
 
 }  // namespace
 
-int cmd_run_seeds(const CliArgs& a, std::ostream& out, std::ostream& err) {
+Expected<std::vector<long long>> seeds_for(const CliArgs& a, const Workspace& ws) {
   auto seeds = parse_int_set(*a.seeds, "--seeds");
+  if (!seeds) return seeds.err();
+  if (a.data) return Error{"--seeds simulates each seed; it cannot be used with --data"};
+  if (ws.data_path) {
+    return Error{ws.preset.path + ": data: the preset's data come from " + *ws.data_path +
+                 "; --seeds simulates (use a preset without \"data\")"};
+  }
+  return seeds;
+}
+
+int cmd_run_seeds(const CliArgs& a, std::ostream& out, std::ostream& err) {
+  auto ws = open_any(a.target, a.data, a.sets);
+  if (!ws) return fail(err, ws.err());
+  auto seeds = seeds_for(a, *ws);
   if (!seeds) return fail(err, seeds.err());
   Shard shard;
   if (a.shard) {
@@ -78,15 +91,6 @@ int cmd_run_seeds(const CliArgs& a, std::ostream& out, std::ostream& err) {
     if (!s) return fail(err, s.err());
     shard = *s;
     if (!a.out) return fail(err, Error{"--shard: needs --out PART.json (kfw-cli merge joins them)"});
-  }
-  if (a.data) {
-    return fail(err, Error{"--seeds simulates each seed; it cannot be used with --data"});
-  }
-  auto ws = open_any(a.target, std::nullopt, a.sets);
-  if (!ws) return fail(err, ws.err());
-  if (ws->data_path) {
-    return fail(err, Error{ws->preset.path + ": data: the preset's data come from " +
-                           *ws->data_path + "; --seeds simulates (use a preset without \"data\")"});
   }
   OutputSet outs;
   outs.add_input(ws->preset.path);

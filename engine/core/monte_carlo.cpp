@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <thread>
+#include <tuple>
 
 #include "core/statistics.h"
 
@@ -261,6 +262,54 @@ MonteCarloSummary summarize_monte_carlo(const MonteCarloPart& part, double alpha
   for (const auto& n : part.nis)
     s.nis.push_back(consistency(n, alpha));
   return s;
+}
+
+Expected<Metrics> mean_metrics_over_seeds(const Scenario& s, const ParamValues& values,
+                                          const std::vector<long long>& seeds,
+                                          const MonteCarloOptions& options) {
+  auto part = run_monte_carlo(s, values, seeds, {}, options);
+  if (!part) return part.err();
+  const MonteCarloSummary sum = summarize_monte_carlo(*part);
+  if (sum.completed == 0 && !sum.stopped.empty()) {
+    return failure("seed " + std::to_string(sum.stopped.front().seed) + ": " +
+                   sum.stopped.front().error);
+  }
+  Metrics m;
+  for (const auto& [k, v] : sum.metrics)
+    m[k] = v.mean;
+  return m;
+}
+
+Expected<SweepResult> sweep_over_seeds(const Scenario& s, const ParamValues& base,
+                                       const std::vector<SweepAxis>& axes,
+                                       const std::vector<long long>& seeds,
+                                       const MonteCarloOptions& options) {
+  SweepResult r;
+  r.axes = axes;
+  std::vector<std::vector<double>> values;
+  std::size_t points = 1;
+  for (const auto& ax : axes) {
+    values.push_back(ax.values());
+    points *= values.back().size();
+  }
+  for (std::size_t i = 0; i < points; ++i) {
+    // Row-major: the last axis fastest.
+    std::vector<double> point(axes.size());
+    ParamValues v = base;
+    std::size_t rest = i;
+    for (std::size_t k = axes.size(); k-- > 0;) {
+      point[k] = values[k][rest % values[k].size()];
+      rest /= values[k].size();
+      v[axes[k].key] = point[k];
+    }
+    auto m = mean_metrics_over_seeds(s, v, seeds, options);
+    if (!m && m.exit_code() != kExitFailed) return m.err();
+    if (options.cancel && options.cancel->load()) return failure("cancelled");
+    r.points.push_back(std::move(point));
+    r.metrics.push_back(m ? *m : Metrics{});
+    r.errors.push_back(m ? std::string() : m.error());
+  }
+  return r;
 }
 
 }  // namespace kfw

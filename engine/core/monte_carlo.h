@@ -24,6 +24,7 @@
 #include "core/grammar.h"
 #include "core/metrics.h"
 #include "core/scenario.h"
+#include "core/tuning.h"
 
 namespace kfw {
 
@@ -119,6 +120,20 @@ MonteCarloSummary summarize_monte_carlo(const MonteCarloPart& part, double alpha
 // are refused with a message naming the part (`names[i]`, e.g. its file).
 Expected<MonteCarloPart> merge_montecarlo_parts(const std::vector<MonteCarloPart>& parts,
                                                 const std::vector<std::string>& names = {});
+
+// Each metric's mean over the seeds where it is defined (the seeds' typical result): what
+// `sweep --seeds` scores a grid point by, and what a tuner can score an evaluation by. A metric
+// undefined in every seed is absent; when every run stopped, the failure of the first.
+Expected<Metrics> mean_metrics_over_seeds(const Scenario& s, const ParamValues& values,
+                                          const std::vector<long long>& seeds,
+                                          const MonteCarloOptions& options = {});
+
+// A grid sweep (row-major, the first axis slowest) whose points are scored by
+// mean_metrics_over_seeds; a point where every seed stopped carries the first error.
+Expected<SweepResult> sweep_over_seeds(const Scenario& s, const ParamValues& base,
+                                       const std::vector<SweepAxis>& axes,
+                                       const std::vector<long long>& seeds,
+                                       const MonteCarloOptions& options = {});
 
 // A part as JSON ({"kind": "montecarlo", "version": 1, ...}; doubles round-trip exactly).
 nlohmann::ordered_json part_to_json(const MonteCarloPart& part);

@@ -28,6 +28,9 @@ struct FilterParams {
   double var_angle = 1e-6;  // R: ν_ψ, ν_θ variance, rad²
   double var_range = 1.0;   // ν_R variance assumed by the filter, m²
   double Kp = 0.0;          // mode-parameter renewal gain (eq. 4); 0 = plain IMM
+  // Renewal keeps each mode probability with its slope value (radome_renewal.h), else with its
+  // grid index.
+  bool renewal_keeps_slope = true;
   double grid_min = -0.05, grid_max = 0.05;
   int n_psi = 7, n_theta = 7;
   double stay = 0.99;  // Markov p^{jj}

@@ -17,6 +17,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // The per-step series a part sums, taken from a run (the run itself need not be kept).
 struct SeedSeries {
   std::vector<double> t;
+  std::string state, label, unit;          // the primary state with truth (empty: none)
+  std::vector<double> error, variance;     // x̂ − x and P of that state
   NeesSeries nees;
   std::vector<InnovationChannel> channels;
 };
@@ -53,6 +55,20 @@ Expected<SeedOutcome> run_seed(const Scenario& s, ParamValues v, long long seed,
   out.warnings = (*r)->warnings;
   if (keep) out.result = *r;
   outcome.series.t = (*r)->t;
+  const std::string primary = s.primary_state();
+  for (const StateSeries& st : (*r)->states()) {
+    if (!st.truth || !st.estimate || (!primary.empty() && st.key != primary)) continue;
+    SeedSeries& ss = outcome.series;
+    ss.state = st.key;
+    ss.label = st.label;
+    ss.unit = st.unit;
+    const std::size_t n = std::min(st.estimate->size(), st.truth->size());
+    ss.error.resize(n);
+    for (std::size_t k = 0; k < n; ++k)
+      ss.error[k] = (*st.estimate)[k] - (*st.truth)[k];
+    if (st.variance) ss.variance = *st.variance;
+    break;
+  }
   outcome.series.nees = (*r)->nees_series();
   outcome.series.channels = (*r)->channels();
   for (auto& c : outcome.series.channels) {
@@ -76,6 +92,17 @@ void accumulate(MonteCarloPart& part, const SeedSeries& r) {
   if (!nees.nees.empty() && count_finite(nees.nees) > 0) {
     if (!part.nees) part.nees = StepSums{"nees", "NEES", nees.dof, {}, {}, {}};
     part.nees->add(nees.nees);
+  }
+  if (!r.state.empty()) {
+    if (!part.error) {
+      part.error = StepSums{r.state, r.label, 1.0, {}, {}, {}};
+      part.variance = StepSums{r.state, r.label, 1.0, {}, {}, {}};
+      part.error_unit = r.unit;
+    }
+    if (part.error->name == r.state) {
+      part.error->add(r.error);
+      part.variance->add(r.variance);
+    }
   }
   for (const auto& ch : r.channels) {
     if (ch.nis.empty()) continue;
@@ -259,6 +286,31 @@ MonteCarloSummary summarize_monte_carlo(const MonteCarloPart& part, double alpha
     s.metrics[k] = m;
   }
   if (part.nees) s.nees = consistency(*part.nees, alpha);
+  if (part.error && part.variance) {
+    ErrorBand b;
+    b.state = part.error->name;
+    b.label = part.error->label;
+    b.unit = part.error_unit;
+    const StepSums& e = *part.error;
+    const std::size_t steps = e.sum.size();
+    b.mean.assign(steps, kNaN);
+    b.sd.assign(steps, kNaN);
+    b.filter_sigma.assign(steps, kNaN);
+    for (std::size_t k = 0; k < steps; ++k) {
+      const auto n = static_cast<double>(e.count[k]);
+      if (e.count[k] == 0) continue;
+      b.mean[k] = e.sum[k] / n;
+      if (e.count[k] > 1) {
+        const double var = (e.sum_sq[k] - n * b.mean[k] * b.mean[k]) / (n - 1.0);
+        b.sd[k] = std::sqrt(std::max(0.0, var));
+      }
+      const StepSums& p = *part.variance;
+      if (k < p.count.size() && p.count[k] > 0) {
+        b.filter_sigma[k] = std::sqrt(std::max(0.0, p.sum[k] / static_cast<double>(p.count[k])));
+      }
+    }
+    s.error = std::move(b);
+  }
   for (const auto& n : part.nis)
     s.nis.push_back(consistency(n, alpha));
   return s;

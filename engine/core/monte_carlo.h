@@ -66,6 +66,9 @@ struct MonteCarloPart {
   std::vector<double> t;         // step times of the longest run
   std::optional<StepSums> nees;  // when the runs have truth
   std::vector<StepSums> nis;     // one per innovation channel
+  // The primary state's error x̂ − x and the filter's variance P, per step (when it has truth).
+  std::optional<StepSums> error, variance;
+  std::string error_unit;
 };
 
 struct MetricSummary {
@@ -84,6 +87,13 @@ struct ConsistencySummary {
   double inside = 0.0;                  // fraction of steps whose average is inside its bounds
 };
 
+// The error over the seeds against what the filter claims: the mean and sd of x̂_k − x_k over
+// the runs, and the filter's σ_k = √(mean P_k). A consistent filter has sd ≈ σ.
+struct ErrorBand {
+  std::string state, label, unit;
+  std::vector<double> mean, sd, filter_sigma;  // per step; NaN where no run has a value
+};
+
 struct MonteCarloSummary {
   std::string scenario;
   std::size_t seeds = 0, completed = 0;
@@ -93,6 +103,7 @@ struct MonteCarloSummary {
   std::vector<double> t;
   std::optional<ConsistencySummary> nees;
   std::vector<ConsistencySummary> nis;
+  std::optional<ErrorBand> error;
 };
 
 struct MonteCarloOptions {

@@ -88,6 +88,11 @@ nlohmann::ordered_json part_to_json(const MonteCarloPart& p) {
   for (const auto& s : p.nis)
     nis.push_back(sums_to_json(s));
   j["nis"] = std::move(nis);
+  if (p.error && p.variance) {
+    j["error"] = sums_to_json(*p.error);
+    j["variance"] = sums_to_json(*p.variance);
+    j["error_unit"] = p.error_unit;
+  }
   return j;
 }
 
@@ -129,6 +134,15 @@ Expected<MonteCarloPart> part_from_json(const nlohmann::json& j, const std::stri
     auto s = sums_from_json(*n, where + ": nees");
     if (!s) return s.err();
     p.nees = std::move(*s);
+  }
+  if (j.contains("error") && j.contains("variance")) {
+    auto e = sums_from_json(j["error"], where + ": error");
+    if (!e) return e.err();
+    auto v = sums_from_json(j["variance"], where + ": variance");
+    if (!v) return v.err();
+    p.error = std::move(*e);
+    p.variance = std::move(*v);
+    p.error_unit = j.value("error_unit", std::string());
   }
   if (auto n = j.find("nis"); n != j.end()) {
     if (!n->is_array()) return Error{where + ": nis: must be an array"};
@@ -177,6 +191,15 @@ Expected<MonteCarloPart> merge_montecarlo_parts(const std::vector<MonteCarloPart
         out.nees = *p.nees;
       } else if (auto st = out.nees->merge(*p.nees); !st) {
         return Error{name(i) + ": nees: " + st.error()};
+      }
+    }
+    for (auto [mine, theirs] : {std::pair{&out.error, &p.error}, std::pair{&out.variance, &p.variance}}) {
+      if (!*theirs) continue;
+      if (!*mine) {
+        *mine = **theirs;
+        out.error_unit = p.error_unit;
+      } else if (auto st = (*mine)->merge(**theirs); !st) {
+        return Error{name(i) + ": error: " + st.error()};
       }
     }
     for (const auto& s : p.nis) {
@@ -242,6 +265,11 @@ nlohmann::ordered_json summary_to_json(const MonteCarloSummary& s, bool steps) {
       st["anis." + c.name] = c.average;
       st["anis." + c.name + "_lo"] = c.lo_k;
       st["anis." + c.name + "_hi"] = c.hi_k;
+    }
+    if (s.error) {
+      st["error_mean." + s.error->state] = s.error->mean;
+      st["error_sd." + s.error->state] = s.error->sd;
+      st["filter_sigma." + s.error->state] = s.error->filter_sigma;
     }
     j["steps"] = std::move(st);
   }

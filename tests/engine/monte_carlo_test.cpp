@@ -159,6 +159,12 @@ TEST(MonteCarlo, MatchedLinearModelPassesTheConsistencyTestAndAMismatchedOneFail
   EXPECT_GE(m.nis[0].time_average, m.nis[0].lo);
   EXPECT_LE(m.nis[0].time_average, m.nis[0].hi);
   EXPECT_GE(m.nis[0].inside, 0.90);
+  // The error band over the seeds matches the filter's σ (x, the primary state).
+  ASSERT_TRUE(m.error.has_value());
+  EXPECT_EQ(m.error->state, "x");
+  const std::size_t last = m.error->sd.size() - 1;
+  EXPECT_NEAR(m.error->sd[last] / m.error->filter_sigma[last], 1.0, 0.3);
+  EXPECT_LT(std::abs(m.error->mean[last]), 3.0 * m.error->filter_sigma[last] / std::sqrt(50.0));
 
   // The filter believes σ_a = 0.5 while the truth moves with σ_a = 3: ANEES far above its bounds.
   StepSums nees{"nees", "NEES", 2.0, {}, {}, {}};

@@ -56,7 +56,7 @@ struct LoopParams {
       12.0;  // motor amplifier limit |V| ≤ V_max (the PID integral stops while saturated)
   // The beam's mechanical stops |θ| ≤ θ_max (not in seed 003; assumed): the beam rests on a stop
   // (θ̇ = 0) until the motor drives it back.
-  double theta_max_rad = 0.5;
+  double theta_max_rad = 0.785;
   Plant plant;
   Controller ctrl;
   SensorModel sensor;

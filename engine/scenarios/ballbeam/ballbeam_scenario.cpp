@@ -78,9 +78,9 @@ ParamTable make_table() {
        "anywhere along the beam."},
       {"sim.V_max", "motor voltage limit", "V", 1, 1000, 12, Scale::kLog, S,
        "Amplifier saturation |V| ≤ V_max (not in seed 003; 12 V chosen for a small DC motor)."},
-      {"sim.theta_max", "beam angle stop θ_max", "rad", 0.05, 1.5, 0.5, Scale::kLinear, S,
-       "Mechanical stops |θ| ≤ θ_max (not in seed 003; 0.5 rad ≈ 29° assumed). The model "
-       "ẍ = a3 θ assumes small angles; beyond 0.25 rad the run warns.",
+      {"sim.theta_max", "beam angle stop θ_max", "rad", 0.05, 1.5, 0.785, Scale::kLinear, S,
+       "Mechanical stops |θ| ≤ θ_max (not in seed 003; 45° assumed). The model ẍ = a3 θ "
+       "assumes small angles; beyond 0.25 rad the run warns.",
        3},
   });
 }
@@ -295,9 +295,9 @@ class BallbeamScenario final : public Scenario {
       r->t_loop.resize(n_loop);
       for (std::size_t k = 0; k < n_loop; ++k)
         r->t_loop[k] = static_cast<double>(k) * lp->Ts_s;
-      auto padded = [&](std::vector<double> v) {
-        v.resize(n_loop, kNoSample);
-        return v;
+      auto padded = [&](std::vector<double> x) {
+        x.resize(n_loop, kNoSample);
+        return x;
       };
       r->x_noise_free = padded(t_clean.x_true);
       r->x_detect_on = padded(t_on.x_true);

@@ -1,13 +1,12 @@
 // Mode-parameter renewal (seed 001, eq. 4) and what it does to the mode probabilities.
 //
-// Eq. 4 moves the whole grid by ΔR̄_k = Kp (R̂_{k−1} − mean R̄_{k−1}); the paper does not say what
-// becomes of the mode probabilities μ^j. Kept on the mode index (`keep_index`), they follow the
-// grid: the estimate R̂ = Σ μ^j R̄^j jumps by ΔR̄ with it, the next renewal sees the same gap, and
-// the grid runs away from the estimate until the likelihoods catch up (±0.13–0.27 for truth B).
-// Kept on the slope value (`keep_slope`, the default), the probability mass at each old slope is
-// shared between the two new grid points around it (linear interpolation; mass beyond an edge goes
-// to that edge), so the renewal moves the grid and not the estimate: the grid centre approaches
-// R̂ at the rate Kp and the grid stays about its half-width around the estimate (Figs. 7–9).
+// Eq. 4 moves the whole grid by ΔR̄_k = Kp (R̂_{k−1} − mean R̄_{k−1}); the paper says neither what
+// becomes of the mode probabilities μ^j nor at what rate Kp applies. Three readings
+// (Renewal in radome_imm.h): `index` keeps μ on the mode index, so the estimate R̂ = Σ μ^j R̄^j
+// jumps with the grid and the next renewal sees the same gap; `slope` shares the mass at each
+// old slope between the two moved grid points around it (linear interpolation; mass beyond an
+// edge goes to that edge), so the renewal moves the grid and not the estimate; `rate` applies Kp
+// per second (ΔR̄ = Kp·Ts·(R̂ − R̄)) with μ by index. README "Scenario radome" compares them.
 #pragma once
 
 #include <vector>

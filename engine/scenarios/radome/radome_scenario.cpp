@@ -54,10 +54,19 @@ ParamTable make_table() {
        {"axis", "full"}},
       {"Kp", "Kp, mode-parameter renewal gain", "", 0.0, 1.0, 0.0, Scale::kLinear, G,
        "ΔR̄_k = Kp (R̂_{k−1} − mean R̄_{k−1}) moves the grid (seed 001, eq. 4); 0 = plain IMM.", 3},
-      {"renewal.keep_slope", "renewal keeps μ with its slope", "", 0, 1, 1, Scale::kToggle, G,
-       "On: a renewal shares each mode probability between the moved grid's neighbours of its "
-       "slope, so the grid moves and the estimate does not (README: the reading of eq. 4). Off: "
-       "μ stays with the grid index and the estimate jumps with the grid."},
+      {"renewal.mode",
+       "renewal: what μ and Kp mean",
+       "",
+       0,
+       2,
+       0,
+       Scale::kChoice,
+       G,
+       "index: eq. 4 every sample, μ stays with the grid index; slope: μ shared between the moved "
+       "grid's neighbours of its slope; rate: Kp per second (ΔR̄ = Kp·Ts·(R̂ − R̄)), μ by index. "
+       "README: the reading of eq. 4.",
+       0,
+       {"index", "slope", "rate"}},
       {"grid.min", "grid minimum slope", "", -0.5, 0.5, -0.05, Scale::kLinear, G,
        "Smallest slope of the initial grid, both axes (seed 001, eq. 6: −0.05).", 3},
       {"grid.max", "grid maximum slope", "", -0.5, 0.5, 0.05, Scale::kLinear, G,
@@ -231,7 +240,7 @@ class RadomeScenario final : public Scenario {
     fp.structure = param(v, "imm.structure") >= 0.5 ? radome::Structure::kFull
                                                     : radome::Structure::kAxisBlocks;
     fp.Kp = param(v, "Kp");
-    fp.renewal_keeps_slope = param(v, "renewal.keep_slope") != 0;
+    fp.renewal = static_cast<radome::Renewal>(param(v, "renewal.mode"));
     fp.grid_min = param(v, "grid.min");
     fp.grid_max = param(v, "grid.max");
     fp.n_psi = static_cast<int>(param(v, "grid.n_psi"));

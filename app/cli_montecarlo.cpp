@@ -38,12 +38,12 @@ Status report(const MonteCarloSummary& s, const CliArgs& a, OutputSet& outs, std
 // A run with no completed seed has nothing to summarise (exit 1, the first error named).
 Status require_completed(const MonteCarloSummary& s) {
   if (s.completed > 0 || s.stopped.empty()) return Ok{};
-  return failure("every run stopped (first: seed " + std::to_string(s.stopped.front().seed) +
-                 ": " + s.stopped.front().error + ")");
+  return failure("every run stopped (first: seed " + std::to_string(s.stopped.front().seed) + ": " +
+                 s.stopped.front().error + ")");
 }
 
-Status merge_montecarlo(const std::vector<nlohmann::json>& docs, const CliArgs& a,
-                        OutputSet& outs, std::ostream& out, std::ostream& err) {
+Status merge_montecarlo(const std::vector<nlohmann::json>& docs, const CliArgs& a, OutputSet& outs,
+                        std::ostream& out, std::ostream& err) {
   std::vector<MonteCarloPart> parts;
   for (std::size_t i = 0; i < docs.size(); ++i) {
     auto p = part_from_json(docs[i], a.parts[i]);
@@ -90,7 +90,8 @@ int cmd_run_seeds(const CliArgs& a, std::ostream& out, std::ostream& err) {
     auto s = parse_shard(*a.shard, "--shard");
     if (!s) return fail(err, s.err());
     shard = *s;
-    if (!a.out) return fail(err, Error{"--shard: needs --out PART.json (kfw-cli merge joins them)"});
+    if (!a.out)
+      return fail(err, Error{"--shard: needs --out PART.json (kfw-cli merge joins them)"});
   }
   OutputSet outs;
   outs.add_input(ws->preset.path);
@@ -110,8 +111,7 @@ int cmd_run_seeds(const CliArgs& a, std::ostream& out, std::ostream& err) {
       if (!in_shard(i, shard)) continue;
       const long long seed = (*seeds)[i];
       const std::string path =
-          (std::filesystem::path(*a.out_dir) / ("seed_" + std::to_string(seed) + ".csv"))
-              .string();
+          (std::filesystem::path(*a.out_dir) / ("seed_" + std::to_string(seed) + ".csv")).string();
       if (auto st = outs.add(path, "--out-dir"); !st) return fail(err, st.err());
       per_seed.emplace_back(seed, path);
     }
@@ -165,8 +165,9 @@ int cmd_merge(const CliArgs& a, std::ostream& out, std::ostream& err) {
     if (!doc) return fail(err, doc.err());
     const std::string k = doc->is_object() ? doc->value("kind", std::string()) : std::string();
     if (!merge_handlers().count(k)) {
-      return fail(err, Error{path + ": kind: " +
-                             (k.empty() ? std::string("missing") : unknown_message("kind", k, kinds))});
+      return fail(err,
+                  Error{path + ": kind: " +
+                        (k.empty() ? std::string("missing") : unknown_message("kind", k, kinds))});
     }
     if (!kind.empty() && k != kind) {
       return fail(err, Error{path + ": kind '" + k + "' differs from " + a.parts.front() + "'s '" +

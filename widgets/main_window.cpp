@@ -31,10 +31,10 @@
 #include "consistency_panel.h"
 #include "core/statistics.h"
 #include "core/workspace.h"
+#include "monte_carlo_dialog.h"
 #include "param_panel.h"
 #include "plot_export.h"
 #include "run_controller.h"
-#include "monte_carlo_dialog.h"
 #include "sweep_dialog.h"
 #include "transport_bar.h"
 #include "tune_dialog.h"
@@ -238,8 +238,9 @@ void MainWindow::buildMenus() {
   tools->addAction("&Monte Carlo over seeds…", this, [this] {
     if (!scenario_) return;
     if (file_data_) {  // seeds simulate; the Simulator group is off for data from a file
-      QMessageBox::information(this, "Monte Carlo", "Monte Carlo simulates each seed: use "
-                                                    "simulated data (File → Use simulated data).");
+      QMessageBox::information(this, "Monte Carlo",
+                               "Monte Carlo simulates each seed: use "
+                               "simulated data (File → Use simulated data).");
       return;
     }
     auto* d = new MonteCarloDialog(scenario_, values(), this);

@@ -1,5 +1,6 @@
 #include "monte_carlo_dialog.h"
 
+#include <qcustomplot.h>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QProgressBar>
@@ -9,7 +10,6 @@
 #include <QVBoxLayout>
 #include <QtConcurrent>
 #include <cmath>
-#include <qcustomplot.h>
 
 #include "plot_kit.h"
 
@@ -61,8 +61,8 @@ MonteCarloDialog::MonteCarloDialog(std::shared_ptr<const Scenario> scenario,
   status_->setObjectName("montecarlo.status");
   status_->setWordWrap(true);
   lay->addWidget(status_);
-  error_plot_ = plot::makePlot(this, "Error over the seeds vs the filter's ±2σ", "time (s)",
-                               "error");
+  error_plot_ =
+      plot::makePlot(this, "Error over the seeds vs the filter's ±2σ", "time (s)", "error");
   consistency_plot_ =
       plot::makePlot(this, "ANEES / ANIS over the seeds, 95 % bounds", "time (s)", "average");
   lay->addWidget(error_plot_, 1);
@@ -120,13 +120,13 @@ void MonteCarloDialog::start() {
   cancel_->setEnabled(true);
   status_->setText(QString("running %1 seeds on every core…").arg(seeds.size()));
   poll_->start();
-  watcher_.setFuture(QtConcurrent::run([s = scenario_, v = values_, seeds, stop = stop_,
-                                        done = done_] {
-    MonteCarloOptions opt;
-    opt.cancel = stop.get();
-    opt.progress = [done](std::size_t n, std::size_t) { done->store(n); };
-    return run_monte_carlo(*s, v, seeds, {}, opt);
-  }));
+  watcher_.setFuture(
+      QtConcurrent::run([s = scenario_, v = values_, seeds, stop = stop_, done = done_] {
+        MonteCarloOptions opt;
+        opt.cancel = stop.get();
+        opt.progress = [done](std::size_t n, std::size_t) { done->store(n); };
+        return run_monte_carlo(*s, v, seeds, {}, opt);
+      }));
 }
 
 void MonteCarloDialog::showSummary(const MonteCarloSummary& s) {
@@ -173,8 +173,8 @@ void MonteCarloDialog::showSummary(const MonteCarloSummary& s) {
     plot::setBandLimits(band, s.t, lo, hi, plot::kAll);
     plot::setSeries(plot::addGraph(error_plot_, "mean error", plot::color::kTruth), s.t, e.mean,
                     plot::kAll);
-    QCPGraph* up = plot::addGraph(error_plot_, "filter ±2σ", plot::color::kSecond,
-                                  plot::Style::kDashed, 1.4);
+    QCPGraph* up =
+        plot::addGraph(error_plot_, "filter ±2σ", plot::color::kSecond, plot::Style::kDashed, 1.4);
     plot::setSeries(up, s.t, f_hi, plot::kAll);
     QCPGraph* down =
         plot::addGraph(error_plot_, "", plot::color::kSecond, plot::Style::kDashed, 1.4);
@@ -190,8 +190,8 @@ void MonteCarloDialog::showSummary(const MonteCarloSummary& s) {
   auto series = [&](const QString& name, const ConsistencySummary& c) {
     const QColor col = plot::color::cycle(i++);
     plot::setSeries(plot::addGraph(consistency_plot_, name, col), s.t, c.average, plot::kAll);
-    QCPGraph* lo = plot::addGraph(consistency_plot_, name + " 95 % bounds", col,
-                                  plot::Style::kDashed);
+    QCPGraph* lo =
+        plot::addGraph(consistency_plot_, name + " 95 % bounds", col, plot::Style::kDashed);
     plot::setSeries(lo, s.t, c.lo_k, plot::kAll);
     QCPGraph* hi = plot::addGraph(consistency_plot_, "", col, plot::Style::kDashed);
     plot::setSeries(hi, s.t, c.hi_k, plot::kAll);

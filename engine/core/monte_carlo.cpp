@@ -17,8 +17,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // The per-step series a part sums, taken from a run (the run itself need not be kept).
 struct SeedSeries {
   std::vector<double> t;
-  std::string state, label, unit;          // the primary state with truth (empty: none)
-  std::vector<double> error, variance;     // x̂ − x and P of that state
+  std::string state, label, unit;       // the primary state with truth (empty: none)
+  std::vector<double> error, variance;  // x̂ − x and P of that state
   NeesSeries nees;
   std::vector<InnovationChannel> channels;
 };
@@ -229,7 +229,8 @@ Expected<MonteCarloPart> run_monte_carlo(const Scenario& s, const ParamValues& b
   };
   unsigned threads = options.threads > 0 ? static_cast<unsigned>(options.threads)
                                          : std::max(1u, std::thread::hardware_concurrency());
-  threads = std::min<unsigned>(threads, static_cast<unsigned>(std::max<std::size_t>(mine.size(), 1)));
+  threads =
+      std::min<unsigned>(threads, static_cast<unsigned>(std::max<std::size_t>(mine.size(), 1)));
   {
     std::vector<std::jthread> pool;
     for (unsigned k = 1; k < threads; ++k)

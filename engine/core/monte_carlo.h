@@ -80,11 +80,11 @@ struct MetricSummary {
 struct ConsistencySummary {
   std::string name, label;
   double dof = 1.0;
-  std::size_t runs = 0;                 // the most runs behind one step (N)
-  double lo = 0.0, hi = 0.0;            // the bounds for N runs
+  std::size_t runs = 0;                     // the most runs behind one step (N)
+  double lo = 0.0, hi = 0.0;                // the bounds for N runs
   std::vector<double> average, lo_k, hi_k;  // per step; NaN where no run has a value
-  double time_average = 0.0;            // mean of the per-step averages
-  double inside = 0.0;                  // fraction of steps whose average is inside its bounds
+  double time_average = 0.0;                // mean of the per-step averages
+  double inside = 0.0;                      // fraction of steps whose average is inside its bounds
 };
 
 // The error over the seeds against what the filter claims: the mean and sd of x̂_k − x_k over

@@ -15,7 +15,7 @@ using OJson = nlohmann::ordered_json;
 using Json = nlohmann::json;
 
 OJson sums_to_json(const StepSums& s) {
-  return OJson{{"name", s.name}, {"label", s.label}, {"dof", s.dof},
+  return OJson{{"name", s.name}, {"label", s.label},   {"dof", s.dof},
                {"sum", s.sum},   {"sum_sq", s.sum_sq}, {"count", s.count}};
 }
 
@@ -118,8 +118,9 @@ Expected<MonteCarloPart> part_from_json(const nlohmann::json& j, const std::stri
       run.seed = r.at("seed").get<long long>();
       if (r.contains("error")) {
         run.error = r.at("error").get<std::string>();
-        if (run.error.empty()) return Error{where + ": runs: seed " + std::to_string(run.seed) +
-                                            ": error: must not be empty"};
+        if (run.error.empty())
+          return Error{where + ": runs: seed " + std::to_string(run.seed) +
+                       ": error: must not be empty"};
       } else {
         run.metrics = r.at("metrics").get<Metrics>();
         run.undefined = r.value("undefined", UndefinedMetrics{});
@@ -174,7 +175,8 @@ Expected<MonteCarloPart> merge_montecarlo_parts(const std::vector<MonteCarloPart
       return Error{name(i) + ": scenario '" + p.scenario + "' differs from " + name(0) + "'s '" +
                    first.scenario + "'"};
     }
-    if (p.seeds != first.seeds) return Error{name(i) + ": its seed set differs from " + name(0) + "'s"};
+    if (p.seeds != first.seeds)
+      return Error{name(i) + ": its seed set differs from " + name(0) + "'s"};
     if (p.shard.count != first.shard.count) {
       return Error{name(i) + ": shard " + shard_text(p.shard) + " is not one of " +
                    std::to_string(first.shard.count) + " shards (" + name(0) + ": " +
@@ -193,7 +195,8 @@ Expected<MonteCarloPart> merge_montecarlo_parts(const std::vector<MonteCarloPart
         return Error{name(i) + ": nees: " + st.error()};
       }
     }
-    for (auto [mine, theirs] : {std::pair{&out.error, &p.error}, std::pair{&out.variance, &p.variance}}) {
+    for (auto [mine, theirs] :
+         {std::pair{&out.error, &p.error}, std::pair{&out.variance, &p.variance}}) {
       if (!*theirs) continue;
       if (!*mine) {
         *mine = **theirs;
@@ -291,7 +294,8 @@ std::string summary_table(const MonteCarloSummary& s) {
     width = std::max(width, k.size());
   os << std::left << std::setw(static_cast<int>(width) + 2) << "metric" << std::right
      << std::setw(5) << "n" << std::setw(14) << "mean" << std::setw(14) << "sd" << std::setw(14)
-     << "min" << std::setw(14) << "max" << "\n";
+     << "min" << std::setw(14) << "max"
+     << "\n";
   for (const auto& [k, m] : s.metrics) {
     os << std::left << std::setw(static_cast<int>(width) + 2) << k << std::right << std::setw(5)
        << m.n << std::setw(14) << fixed(m.mean) << std::setw(14) << fixed(m.sd) << std::setw(14)

@@ -76,20 +76,20 @@ TEST(MonteCarloCli, SeedsAreRefusedWithDataFilesAndBadSets) {
 
 TEST(MonteCarloCli, MergedShardsEqualTheUnshardedRun) {
   const fs::path dir = temp_dir("merge");
-  const Output whole = cli("run " + kCv + " --seeds 1..7" + kShort + " --metrics " +
-                               (dir / "whole.json").string(),
-                           "2>/dev/null");
+  const Output whole =
+      cli("run " + kCv + " --seeds 1..7" + kShort + " --metrics " + (dir / "whole.json").string(),
+          "2>/dev/null");
   ASSERT_EQ(whole.status, 0) << whole.text;
   std::string parts;
   for (int i = 1; i <= 3; ++i) {
     const std::string part = (dir / ("part_" + std::to_string(i) + ".json")).string();
-    const Output o = cli("run " + kCv + " --seeds 1..7" + kShort + " --shard " +
-                         std::to_string(i) + "/3 --out " + part);
+    const Output o = cli("run " + kCv + " --seeds 1..7" + kShort + " --shard " + std::to_string(i) +
+                         "/3 --out " + part);
     ASSERT_EQ(o.status, 0) << o.text;
     parts += " " + part;
   }
-  const Output m = cli("merge" + parts + " --metrics " + (dir / "merged.json").string(),
-                       "2>/dev/null");
+  const Output m =
+      cli("merge" + parts + " --metrics " + (dir / "merged.json").string(), "2>/dev/null");
   ASSERT_EQ(m.status, 0) << m.text;
   auto read = [&](const std::string& name) {
     std::ifstream in(dir / name);

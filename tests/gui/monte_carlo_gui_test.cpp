@@ -42,7 +42,8 @@ TEST(MonteCarloDialog, PlotsTheErrorBandAndTheAveragesWithBounds) {
   // ANEES and ANIS of the one channel, each with its two bounds.
   ASSERT_EQ(d.consistencyPlot()->graphCount(), 6);
   EXPECT_EQ(d.consistencyPlot()->graph(0)->data()->size(), 51);
-  EXPECT_NEAR(d.consistencyPlot()->graph(1)->data()->at(10)->value, 24.433 / 20, 1e-4);  // χ²₀.₀₂₅(40)/20
+  EXPECT_NEAR(d.consistencyPlot()->graph(1)->data()->at(10)->value, 24.433 / 20,
+              1e-4);  // χ²₀.₀₂₅(40)/20
 }
 
 TEST(MonteCarloDialog, CancelStopsTheRun) {

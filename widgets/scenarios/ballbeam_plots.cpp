@@ -162,9 +162,9 @@ class BallbeamView final : public ScenarioView {
       auto r = std::dynamic_pointer_cast<const BallbeamResult>(result);
       if (!r) continue;
       const QColor c = plot::color::ghost(i++);
-      const QString run = !r->closed_loop                     ? "truth"
-                          : r->detection_on                   ? "detection on"
-                                                              : "detection off";
+      const QString run = !r->closed_loop   ? "truth"
+                          : r->detection_on ? "detection on"
+                                            : "detection off";
       ghosts_.push_back({r, plot::addGraph(pos_, "estimate of x, " + name, c),
                          plot::addGraph(step_, name + " (" + run + ")", c)});
     }

@@ -21,8 +21,8 @@ MatX share_matrix(const std::vector<double>& off, double d) {
       W(i, n - 1) = 1.0;
       continue;
     }
-    const auto hi = static_cast<Eigen::Index>(
-        std::upper_bound(off.begin(), off.end(), x) - off.begin());
+    const auto hi =
+        static_cast<Eigen::Index>(std::upper_bound(off.begin(), off.end(), x) - off.begin());
     const Eigen::Index lo = hi - 1;
     const double span = off[static_cast<std::size_t>(hi)] - off[static_cast<std::size_t>(lo)];
     const double f = span > 0.0 ? (x - off[static_cast<std::size_t>(lo)]) / span : 0.0;

@@ -185,6 +185,42 @@ TEST(MonteCarlo, MatchedLinearModelPassesTheConsistencyTestAndAMismatchedOneFail
   EXPECT_LT(b.nees->inside, 0.5);
 }
 
+// The issue's acceptance: helicopter, matched (bias walk off, x0 from the prior), 50 seeds.
+TEST(MonteCarlo, HelicopterMatchedPassesAndTheBiasWalkFails) {
+  auto p = parse_preset(
+      R"({"format": "kfw-preset", "version": 2, "scenario": "helicopter",
+          "sim": {"x0_from_prior": true}})",
+      "h.json");
+  ASSERT_TRUE(p.ok()) << p.error();
+  ParamValues v = p->values;
+  v["sim.duration"] = 20.0;  // 1 001 steps
+  v["sim.bias_walk"] = 0.0;
+  v["gamma"] = 0.0;
+  auto part = run_monte_carlo(*p->instance, v, seeds(1, 50));
+  ASSERT_TRUE(part.ok()) << part.error();
+  const MonteCarloSummary m = summarize_monte_carlo(*part);
+  ASSERT_TRUE(m.nees.has_value());
+  ASSERT_EQ(m.nis.size(), 1u);
+  EXPECT_EQ(m.nees->dof, 2.0);
+  EXPECT_NEAR(m.nees->lo, 1.484, 5e-4);
+  EXPECT_NEAR(m.nees->hi, 2.591, 5e-4);
+  EXPECT_NEAR(m.nis[0].lo, 0.647, 5e-4);
+  EXPECT_NEAR(m.nis[0].hi, 1.428, 5e-4);
+  EXPECT_GE(m.nees->time_average, m.nees->lo);
+  EXPECT_LE(m.nees->time_average, m.nees->hi);
+  EXPECT_GE(m.nees->inside, 0.90);
+  EXPECT_GE(m.nis[0].time_average, m.nis[0].lo);
+  EXPECT_LE(m.nis[0].time_average, m.nis[0].hi);
+  EXPECT_GE(m.nis[0].inside, 0.90);
+
+  v["sim.bias_walk"] = 0.5;  // the truth's bias wanders, the filter's does not
+  auto walk = run_monte_carlo(*p->instance, v, seeds(1, 50));
+  ASSERT_TRUE(walk.ok()) << walk.error();
+  const MonteCarloSummary w = summarize_monte_carlo(*walk);
+  EXPECT_GT(w.nees->time_average, w.nees->hi);
+  EXPECT_LT(w.nees->inside, 0.5);
+}
+
 // A scenario whose runs stop for every third seed and whose metric `even` exists for even seeds.
 struct FakeResult : RunResult {
   Dataset table() const override { return {}; }
@@ -254,7 +290,7 @@ TEST(MonteCarlo, StoppedSeedsAreListedAndUndefinedMetricsCountedWhereDefined) {
   EXPECT_NE(out.error().find("--seeds"), std::string::npos) << out.error();
 }
 
-TEST(MonteCarlo, X0FromPriorIsRefusedWhereTheScenarioCannotDrawIt) {
+TEST(MonteCarlo, X0FromPriorIsRefusedWhereTheScenarioCannotDrawIt) {  // radome: not offered
   auto p = parse_preset(
       R"({"format": "kfw-preset", "version": 2, "scenario": "radome", "sim": {"x0_from_prior": true}})",
       "r.json");

@@ -7,6 +7,7 @@
 
 #include <QCoreApplication>
 #include <QDeadlineTimer>
+#include <cstdlib>
 
 #include "core/preset.h"
 #include "monte_carlo_dialog.h"
@@ -44,6 +45,12 @@ TEST(MonteCarloDialog, PlotsTheErrorBandAndTheAveragesWithBounds) {
   EXPECT_EQ(d.consistencyPlot()->graph(0)->data()->size(), 51);
   EXPECT_NEAR(d.consistencyPlot()->graph(1)->data()->at(10)->value, 24.433 / 20,
               1e-4);  // χ²₀.₀₂₅(40)/20
+  // KFW_TEST_SHOT_DIR=DIR keeps a picture of the dialog for a human to look at.
+  if (const char* dir = std::getenv("KFW_TEST_SHOT_DIR")) {
+    d.show();
+    QCoreApplication::processEvents();
+    d.grab().save(QString(dir) + "/monte_carlo_dialog.png");
+  }
 }
 
 TEST(MonteCarloDialog, CancelStopsTheRun) {

@@ -198,10 +198,10 @@ class BallbeamView final : public ScenarioView {
     setSeries(step_setpoint_, r.t, tr.setpoint, n);
     // The variants run on the whole loop's grid (a ball that fell ends early).
     const auto& grid = r.t_loop.empty() ? r.t : r.t_loop;
-    const std::size_t gn = all ? grid.size() : n;
-    setSeries(step_clean_, grid, r.x_noise_free, gn);
-    setSeries(step_on_, grid, r.x_detect_on, gn);
-    setSeries(step_off_, grid, r.x_detect_off, gn);
+    const std::size_t grid_n = all ? grid.size() : n;
+    setSeries(step_clean_, grid, r.x_noise_free, grid_n);
+    setSeries(step_on_, grid, r.x_detect_on, grid_n);
+    setSeries(step_off_, grid, r.x_detect_off, grid_n);
     const double fell = tr.left_beam_at_s;
     for (auto* m : {pos_fell_, step_fell_})
       plot::setCursorAt(m, fell, std::isfinite(fell));

@@ -100,8 +100,21 @@ void declare(Cli& cli) {
   add_target(c, a);
   add_data(c, a);
   add_sets(c, a);
-  add_path(c, "--out", a.out, "FILE.csv", "write the per-step estimates");
-  add_path(c, "--metrics", a.metrics, "FILE.json", "write the metrics too");
+  add_path(c, "--out", a.out, "FILE.csv", "write the per-step estimates (--seeds: the part, JSON)");
+  add_path(c, "--metrics", a.metrics, "FILE.json",
+           "write the metrics too (--seeds: with ANEES/ANIS at every step)");
+  add_path(c, "--seeds", a.seeds, "SET",
+           "Monte Carlo: simulate and filter each seed (1..50, 3,7,9); mean, sd, min, max");
+  add_path(c, "--shard", a.shard, "i/N", "with --seeds: run seeds i, i+N, ... into --out");
+  add_path(c, "--out-dir", a.out_dir, "DIR", "with --seeds: one estimates file per seed");
+  c->add_flag("--table", a.table, "with --seeds: a readable table instead of JSON");
+
+  c = app.add_subcommand("merge", "merge the parts of a sharded run (run --seeds --shard)");
+  c->add_option("PART", a.parts, "the part files (JSON, one per shard)")
+      ->type_name("PART.json")
+      ->required();
+  add_path(c, "--metrics", a.metrics, "FILE.json", "write the merged result (JSON) too");
+  c->add_flag("--table", a.table, "a readable table instead of JSON");
 
   c = app.add_subcommand("gain", "print the steady-state gains (closed form and DARE)");
   add_target(c, a);
@@ -145,6 +158,8 @@ void declare(Cli& cli) {
       ->type_name("NAME")
       ->required();
   add_path(c, "--out", a.out, "FILE.csv", "write every grid point and its metric");
+  add_path(c, "--seeds", a.seeds, "SET",
+           "score each point by the metric's mean over these simulator seeds");
   c->add_option("--max-points", a.max_points,
                 "refuse a grid larger than this (default 1000000): a typo in n is caught "
                 "before hours of work")
@@ -281,6 +296,7 @@ int dispatch(const Cli& cli, std::ostream& out, std::ostream& err) {
   if (cmd == "metrics") return cmd_metrics(a, out, err);
   if (cmd == "preset") return cmd_preset(a, out, err);
   if (cmd == "list") return cmd_list(out);
+  if (cmd == "merge") return cmd_merge(a, out, err);
   return cmd_scenario(cmd, a, out, err);
 }
 

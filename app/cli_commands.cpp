@@ -9,6 +9,7 @@
 #include "core/dataset.h"
 #include "core/gain_curve.h"
 #include "core/metrics.h"
+#include "core/monte_carlo.h"
 #include "core/output.h"
 #include "core/suggest.h"
 #include "core/tuning.h"
@@ -32,33 +33,6 @@ std::vector<std::string> target_names() {
     if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
   }
   return names;
-}
-
-// A scenario name or a preset (path or name in presets/) both open a workspace.
-Expected<Workspace> open_any(const std::string& name, const std::optional<std::string>& data,
-                             const std::vector<std::string>& sets) {
-  std::error_code ec;
-  const bool looks_like_file =
-      name.find('/') != std::string::npos || std::filesystem::path(name).extension() == ".json";
-  if (!looks_like_file && !std::filesystem::is_regular_file(resolve_preset_path(name), ec)) {
-    auto p = default_preset(name);
-    if (!p) {
-      return Error{"no preset or scenario " + quote_token(name) +
-                   did_you_mean(name, target_names())};
-    }
-    Workspace ws;
-    ws.preset = *p;
-    auto s = make_scenario(name);
-    if (!s) return s.err();
-    ws.scenario = std::shared_ptr<const Scenario>(std::move(*s));
-    ws.values = ws.preset.values;
-    for (const auto& as : sets) {
-      if (auto st = ws.scenario->params().apply_assignment(as, ws.values); !st) return st.err();
-    }
-    ws.data_path = data;
-    return ws;
-  }
-  return open_workspace(name, data, sets);
 }
 
 // The files a command on this workspace reads: an output may not be one of them.
@@ -99,6 +73,33 @@ void print_warnings(const RunResult& r, std::ostream& err) {
 
 }  // namespace
 
+// A scenario name or a preset (path or name in presets/) both open a workspace.
+Expected<Workspace> open_any(const std::string& name, const std::optional<std::string>& data,
+                             const std::vector<std::string>& sets) {
+  std::error_code ec;
+  const bool looks_like_file =
+      name.find('/') != std::string::npos || std::filesystem::path(name).extension() == ".json";
+  if (!looks_like_file && !std::filesystem::is_regular_file(resolve_preset_path(name), ec)) {
+    auto p = default_preset(name);
+    if (!p) {
+      return Error{"no preset or scenario " + quote_token(name) +
+                   did_you_mean(name, target_names())};
+    }
+    Workspace ws;
+    ws.preset = *p;
+    auto s = make_scenario(name);
+    if (!s) return s.err();
+    ws.scenario = std::shared_ptr<const Scenario>(std::move(*s));
+    ws.values = ws.preset.values;
+    for (const auto& as : sets) {
+      if (auto st = ws.scenario->params().apply_assignment(as, ws.values); !st) return st.err();
+    }
+    ws.data_path = data;
+    return ws;
+  }
+  return open_workspace(name, data, sets);
+}
+
 int fail(std::ostream& err, const Error& e) {
   err << "kfw-cli: " << one_line(e.message) << "\n";
   return e.exit_code;
@@ -122,6 +123,11 @@ int cmd_simulate(const CliArgs& a, std::ostream& out, std::ostream& err) {
 }
 
 int cmd_run(const CliArgs& a, std::ostream& out, std::ostream& err) {
+  if (a.seeds) return cmd_run_seeds(a, out, err);
+  if (a.shard || a.out_dir || a.table) {
+    const char* opt = a.shard ? "--shard" : a.out_dir ? "--out-dir" : "--table";
+    return fail(err, Error{std::string(opt) + ": needs --seeds"});
+  }
   auto ws = open_any(a.target, a.data, a.sets);
   if (!ws) return fail(err, ws.err());
   OutputSet outs = outputs_for(*ws);
@@ -275,6 +281,12 @@ int cmd_tune(const CliArgs& a, std::ostream& out, std::ostream& err) {
 int cmd_sweep(const CliArgs& a, std::ostream& out, std::ostream& err) {
   auto ws = open_any(a.target, a.data, a.sets);
   if (!ws) return fail(err, ws.err());
+  std::optional<std::vector<long long>> seeds;
+  if (a.seeds) {
+    auto set = seeds_for(a, *ws);
+    if (!set) return fail(err, set.err());
+    seeds = std::move(*set);
+  }
   std::vector<SweepAxis> axes;
   for (const auto& t : a.axes) {
     auto ax = parse_sweep_axis(ws->scenario->params(), t);
@@ -314,7 +326,9 @@ int cmd_sweep(const CliArgs& a, std::ostream& out, std::ostream& err) {
     }
   }
   const MetricSpec spec = describe_metric(*ws->scenario, metric, base);
-  auto r = sweep(*ws->scenario, *d, ws->values, axes, 2);
+  // With --seeds each point is scored by the metric's mean over the seeds.
+  auto r = seeds ? sweep_over_seeds(*ws->scenario, ws->values, axes, *seeds)
+                 : sweep(*ws->scenario, *d, ws->values, axes, 2);
   if (!r) return fail(err, r.err());
   const std::size_t none = r->points.size();
   std::size_t best = none;
@@ -372,6 +386,7 @@ int cmd_sweep(const CliArgs& a, std::ostream& out, std::ostream& err) {
   if (spec.direction == Direction::kTarget) j["target"] = spec.target;
   j["points"] = r->points.size();
   j["points_defined"] = defined;
+  if (seeds) j["seeds"] = seeds->size();
   j["best"] = value_at(best);
   for (std::size_t k = 0; k < axes.size(); ++k)
     j["best_at"][axes[k].key] = r->points[best][k];

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/expected.h"
+#include "core/workspace.h"
 
 namespace kfw {
 
@@ -28,6 +29,10 @@ struct CliArgs {
   std::size_t max_points = kDefaultMaxPoints;  // sweep --max-points
   std::optional<std::string> curve;            // gain --curve KEY
   std::size_t curve_points = 100;              // gain --points N
+  std::optional<std::string> seeds, shard;     // run --seeds SET [--shard i/N]
+  std::optional<std::string> out_dir;          // run --seeds --out-dir DIR
+  bool table = false;                          // run --seeds, merge: a readable table
+  std::vector<std::string> parts;              // merge PART...
 };
 
 // Each returns the process exit code (expected.h); errors go to `err` as one line.
@@ -40,8 +45,20 @@ int cmd_params(const CliArgs& a, std::ostream& out, std::ostream& err);
 int cmd_preset(const CliArgs& a, std::ostream& out, std::ostream& err);
 int cmd_metrics(const CliArgs& a, std::ostream& out, std::ostream& err);
 int cmd_list(std::ostream& out);
+// run --seeds (app/cli_montecarlo.cpp): Monte Carlo over simulator seeds; a part with --shard.
+int cmd_run_seeds(const CliArgs& a, std::ostream& out, std::ostream& err);
+// merge PART...: parts of one kind ("montecarlo", ...) into one result.
+int cmd_merge(const CliArgs& a, std::ostream& out, std::ostream& err);
 // A command a scenario offers (Scenario::commands()), e.g. `stats`.
 int cmd_scenario(const std::string& cmd, CliArgs a, std::ostream& out, std::ostream& err);
+
+// A scenario name (its default preset) or a preset (a path or a name in presets/).
+Expected<Workspace> open_any(const std::string& name, const std::optional<std::string>& data,
+                             const std::vector<std::string>& sets);
+
+// The --seeds set, refused with --data or a preset whose data come from a file (--seeds
+// simulates each seed).
+Expected<std::vector<long long>> seeds_for(const CliArgs& a, const Workspace& ws);
 
 // Writes "kfw-cli: MESSAGE" as one line (long tokens shortened) and returns the exit code.
 int fail(std::ostream& err, const Error& e);

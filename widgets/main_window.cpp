@@ -31,6 +31,7 @@
 #include "consistency_panel.h"
 #include "core/statistics.h"
 #include "core/workspace.h"
+#include "monte_carlo_dialog.h"
 #include "param_panel.h"
 #include "plot_export.h"
 #include "run_controller.h"
@@ -234,6 +235,18 @@ void MainWindow::buildMenus() {
   QMenu* tools = menuBar()->addMenu("&Tools");
   tools->addAction("Auto-&tune…", this, [this] { openTuneDialog(); });
   tools->addAction("&Sweep a metric…", this, [this] { openSweepDialog(); });
+  tools->addAction("&Monte Carlo over seeds…", this, [this] {
+    if (!scenario_) return;
+    if (file_data_) {  // seeds simulate; the Simulator group is off for data from a file
+      QMessageBox::information(this, "Monte Carlo",
+                               "Monte Carlo simulates each seed: use "
+                               "simulated data (File → Use simulated data).");
+      return;
+    }
+    auto* d = new MonteCarloDialog(scenario_, values(), this);
+    d->setAttribute(Qt::WA_DeleteOnClose);
+    d->show();
+  });
   tools->addAction("&Pin snapshot…", this, [this] {
     bool ok = false;
     const QString name =

@@ -266,6 +266,14 @@ Expected<Preset> preset_from_json(const json& j, const std::string& path) {
       if (!it->is_boolean()) return Error{path + ": sim.x0_from_prior: must be true or false"};
       p.sim_x0_from_prior = it->get<bool>();
     }
+    if (p.sim_x0_from_prior) {
+      auto drawn = p.instance->with_x0_from_prior();
+      if (!drawn) {
+        return Error{path + ": sim.x0_from_prior: scenario '" + p.instance->name() +
+                     "' cannot draw its initial state from the filter's prior"};
+      }
+      p.instance = std::move(drawn);
+    }
   }
   return p;
 }

@@ -80,6 +80,10 @@ class Scenario {
 
   // A reproducible synthetic dataset from the `sim.*` parameters (seeded by `sim.seed`).
   virtual Expected<Dataset> simulate(const ParamValues& p) const = 0;
+  // This scenario with the simulator's initial state drawn from the filter's prior N(x̂0, P0)
+  // (preset `"sim": {"x0_from_prior": true}`), so that a matched model passes the NEES test;
+  // null when the scenario cannot do it.
+  virtual std::shared_ptr<const Scenario> with_x0_from_prior() const { return nullptr; }
   // Filters a dataset. Bad parameters or a dataset missing columns come back as an Error (exit
   // code 2); a run that breaks down numerically as a failure naming the step and time (exit 1).
   // Runs run_impl, then finalize_run: metrics shared by every scenario, non-finite metrics moved

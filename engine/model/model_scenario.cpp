@@ -117,6 +117,15 @@ class ModelScenario final : public Scenario {
     return out;
   }
 
+  // The simulator already draws x0 ~ N(x0, P0); the filter's prior mean becomes the x0
+  // expressions (a `first` sample would make the prior depend on the simulated data).
+  std::shared_ptr<const Scenario> with_x0_from_prior() const override {
+    auto spec = std::make_shared<model::ModelSpec>(*spec_);
+    for (auto& x0 : spec->x0)
+      x0.first_column.clear();
+    return std::make_shared<ModelScenario>(std::move(spec), table_, title_);
+  }
+
   Expected<Dataset> simulate(const ParamValues& v) const override {
     if (auto st = params().check(v); !st) return st.err();
     return model::simulate_model(*spec_, v, "model '" + title_ + "'");

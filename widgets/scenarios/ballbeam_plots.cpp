@@ -41,6 +41,7 @@ class BallbeamView final : public ScenarioView {
     pos_truth_ = addGraph(pos_, "truth", color::kTruth, Style::kLine);
     pos_est_ = addGraph(pos_, "estimate of x", color::kEstimate, Style::kLine);
     pos_cursor_ = addCursor(pos_);
+    pos_fell_ = addFellMarker(pos_);
 
     volt_ = makePlot(parent, "Contact sensor voltage (seed 003, Fig. 7)", "time (s)",
                      "sensor output voltage (V)");
@@ -85,6 +86,7 @@ class BallbeamView final : public ScenarioView {
     step_on_ = addGraph(step_, "detection on", color::kEstimate, Style::kLine, 1.6);
     step_clean_ = addGraph(step_, "noise-free", color::kTruth, Style::kDashed, 1.4);
     step_cursor_ = addCursor(step_);
+    step_fell_ = addFellMarker(step_);
 
     return {{"position", "Ball position", pos_},
             {"voltage", "Sensor voltage", volt_},
@@ -160,9 +162,9 @@ class BallbeamView final : public ScenarioView {
       auto r = std::dynamic_pointer_cast<const BallbeamResult>(result);
       if (!r) continue;
       const QColor c = plot::color::ghost(i++);
-      const QString run = !r->closed_loop                     ? "truth"
-                          : r->trace.x_true == r->x_detect_on ? "detection on"
-                                                              : "detection off";
+      const QString run = !r->closed_loop   ? "truth"
+                          : r->detection_on ? "detection on"
+                                            : "detection off";
       ghosts_.push_back({r, plot::addGraph(pos_, "estimate of x, " + name, c),
                          plot::addGraph(step_, name + " (" + run + ")", c)});
     }
@@ -194,9 +196,15 @@ class BallbeamView final : public ScenarioView {
     plot::setBand(innov_band_, r.t, zero_, two_sqrt_S_, n);
     setSeries(innov_y_, r.t, tr.innovation, n);
     setSeries(step_setpoint_, r.t, tr.setpoint, n);
-    setSeries(step_clean_, r.t, r.x_noise_free, n);
-    setSeries(step_on_, r.t, r.x_detect_on, n);
-    setSeries(step_off_, r.t, r.x_detect_off, n);
+    // The variants run on the whole loop's grid (a ball that fell ends early).
+    const auto& grid = r.t_loop.empty() ? r.t : r.t_loop;
+    const std::size_t grid_n = all ? grid.size() : n;
+    setSeries(step_clean_, grid, r.x_noise_free, grid_n);
+    setSeries(step_on_, grid, r.x_detect_on, grid_n);
+    setSeries(step_off_, grid, r.x_detect_off, grid_n);
+    const double fell = tr.left_beam_at_s;
+    for (auto* m : {pos_fell_, step_fell_})
+      plot::setCursorAt(m, fell, std::isfinite(fell));
     for (const auto& g : ghosts_) {
       // Cut at the cursor's time (a pinned tuning may have another Ts).
       const auto& gt = g.result->t;
@@ -228,6 +236,13 @@ class BallbeamView final : public ScenarioView {
       plot::replot(p);
   }
 
+  // A dashed black line where the ball left the beam.
+  static QCPItemStraightLine* addFellMarker(QCustomPlot* p) {
+    QCPItemStraightLine* line = plot::addCursor(p);
+    line->setPen(QPen(Qt::black, 1.2, Qt::DashLine));
+    return line;
+  }
+
   struct Ghost {
     std::shared_ptr<const BallbeamResult> result;
     QCPGraph *estimate, *step;
@@ -251,6 +266,7 @@ class BallbeamView final : public ScenarioView {
            *step_off_ = nullptr;
   QCPItemStraightLine *pos_cursor_ = nullptr, *volt_cursor_ = nullptr, *beam_cursor_ = nullptr,
                       *innov_cursor_ = nullptr, *step_cursor_ = nullptr;
+  QCPItemStraightLine *pos_fell_ = nullptr, *step_fell_ = nullptr;
 };
 
 }  // namespace

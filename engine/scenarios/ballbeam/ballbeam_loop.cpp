@@ -55,6 +55,13 @@ void LoopTrace::resize(std::size_t n) {
     v->assign(n, kNaN);
 }
 
+void LoopTrace::truncate(std::size_t n) {
+  for (auto* v :
+       {&t,       &setpoint, &x_true, &v_true, &theta, &theta_c,    &V, &x_meas, &v_raw, &v_sensor,
+        &flagged, &x_hat,    &v_hat,  &P11,    &P22,   &innovation, &S, &nis,    &K1,    &K2})
+    v->resize(std::min(n, v->size()));
+}
+
 std::size_t loop_steps(const LoopParams& p) {
   return static_cast<std::size_t>(std::floor(p.duration_s / p.Ts_s + 1e-9)) + 1;
 }
@@ -110,6 +117,13 @@ LoopTrace run_closed_loop(const LoopParams& p, const BallTracker& tracker, const
   for (std::size_t k = 0; k < n; ++k) {
     if ((k & 1023) == 0 && control.cancelled()) break;
     const double tk = tr.t[k];
+    if (opt.falls && std::abs(s[2]) > p.sensor.half_length_m()) {
+      // Off the end of the beam: the ball has fallen, nothing more to control or track.
+      tr.fell = true;
+      tr.left_beam_at_s = tk;
+      tr.truncate(k);
+      break;
+    }
     const double xc = tr.setpoint[k];
     const bool lost = opt.impulsive && d.lost[k];
     const double reading = lost ? d.spike_m[k] : s[2] + (opt.impulsive ? d.noise_m[k] : 0.0);
@@ -141,8 +155,13 @@ LoopTrace run_closed_loop(const LoopParams& p, const BallTracker& tracker, const
     tr.skipped_updates += st.updated ? 0 : 1;
 
     uc_prev = pl.a3 * s[0];  // u^c_k = a3 θ_k from the beam potentiometer
-    for (int i = 0; i < substeps; ++i)
+    for (int i = 0; i < substeps; ++i) {
       s = rk4(pl, s, V, h);
+      if (std::abs(s[0]) > p.theta_max_rad) {  // on a stop: held there until driven back
+        s[0] = std::copysign(p.theta_max_rad, s[0]);
+        if (s[1] * s[0] > 0.0) s[1] = 0.0;
+      }
+    }
     const bool finite = std::all_of(s.begin(), s.end(), [](double v) { return std::isfinite(v); });
     if (!finite || std::abs(s[2]) > kDivergedM || !std::isfinite(V)) {
       tr.diverged = true;
@@ -150,7 +169,7 @@ LoopTrace run_closed_loop(const LoopParams& p, const BallTracker& tracker, const
       break;
     }
   }
-  tr.left_beam_at_s = left_beam_at(tr.t, tr.x_true, p.sensor.half_length_m());
+  if (!tr.fell) tr.left_beam_at_s = left_beam_at(tr.t, tr.x_true, p.sensor.half_length_m());
   return tr;
 }
 

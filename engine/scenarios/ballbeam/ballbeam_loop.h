@@ -54,6 +54,9 @@ struct LoopParams {
   std::uint64_t seed = 1;
   double V_max =
       12.0;  // motor amplifier limit |V| ≤ V_max (the PID integral stops while saturated)
+  // The beam's mechanical stops |θ| ≤ θ_max (not in seed 003; assumed): the beam rests on a stop
+  // (θ̇ = 0) until the motor drives it back.
+  double theta_max_rad = 0.785;
   Plant plant;
   Controller ctrl;
   SensorModel sensor;
@@ -84,10 +87,14 @@ struct LoopTrace {
   std::size_t skipped_updates = 0;
   bool diverged = false;  // the loop left ±1 km or produced NaN; later samples are NaN
   double diverged_at_s = 0.0;
-  // First time the true ball position leaves the beam (|x| > L/2); NaN while it stays on. The
-  // linear plant (eq. 11) has no beam ends, so the simulation carries on past it.
+  // First time the true ball position is beyond a beam end (|x| > L/2); NaN while it stays on.
+  // With LoopOptions::falls the ball has fallen off there and the trace ends at the last sample
+  // before (`fell`); without, the linear plant (eq. 11) carries on as if the beam were endless.
   double left_beam_at_s = std::numeric_limits<double>::quiet_NaN();
+  bool fell = false;
   void resize(std::size_t n);
+  // Keeps the first n samples of every per-step array.
+  void truncate(std::size_t n);
 };
 
 // The first t_k with |x_k| > half_length_m (non-finite x are skipped); NaN if there is none.
@@ -108,7 +115,12 @@ SettledGain settled_gain(const LoopTrace& tr);
 struct LoopOptions {
   bool detection = true;  // the circuit flags contact losses as missing data
   bool impulsive = true;  // false: contact never lost and no reading noise (noise-free run)
+  bool falls = true;      // the ball falls off a beam end and the run stops there
 };
+
+// The largest beam angle of the small-angle model ẍ = a3 θ (sin θ within 1 % of θ); beyond it
+// the run warns.
+inline constexpr double kSmallAngleRad = 0.25;
 
 // Simulates the loop: at each sample read the sensor, run the tracker, compute V from the
 // estimate, hold V over [t_k, t_k+1] and integrate the plant (RK4, ≤ 1 ms substeps).

@@ -16,6 +16,10 @@ struct BallbeamResult final : RunResult {
   // detection circuit on and off (same seed, same disturbances), per step.
   std::vector<double> x_noise_free, x_detect_on, x_detect_off;
   std::vector<double> x_hat_detect_on, x_hat_detect_off;
+  // Closed loop only: the time grid of the variants above (the whole run; a variant whose ball
+  // fell is NaN after the fall, while `t` ends with the chosen run).
+  std::vector<double> t_loop;
+  bool detection_on = true;  // closed loop: `trace` is the run with detection on
   // Operating point of the tuning.
   double Ts_s = 0.0, lambda = 0.0, alpha = 0.0, beta = 0.0;
   double alpha_dare = 0.0, beta_dare = 0.0;

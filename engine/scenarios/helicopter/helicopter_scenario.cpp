@@ -105,7 +105,18 @@ class HelicopterScenario final : public Scenario {
     s.bias0 = param(v, "sim.bias0");
     s.bias_walk = param(v, "sim.bias_walk");
     s.angle_dropout = param(v, "sim.angle_dropout");
+    s.x0_from_prior = x0_from_prior_;
+    s.P0_theta = param(v, "P0_theta");
+    s.P0_bias = param(v, "P0_bias");
     return helicopter::simulate(s);
+  }
+
+  // θ(0) ~ N(0, P0_theta), b(0) ~ N(0, P0_bias), and the filter starts from that prior mean (0, 0)
+  // instead of the first angle sample.
+  std::shared_ptr<const Scenario> with_x0_from_prior() const override {
+    auto s = std::make_shared<HelicopterScenario>();
+    s->x0_from_prior_ = true;
+    return s;
   }
 
   Expected<std::shared_ptr<RunResult>> run_impl(const Dataset& d, const ParamValues& v,
@@ -120,6 +131,7 @@ class HelicopterScenario final : public Scenario {
     fp.gamma = param(v, "gamma");
     fp.P0_theta = param(v, "P0_theta");
     fp.P0_bias = param(v, "P0_bias");
+    fp.prior_mean_zero = x0_from_prior_;
     auto r = std::make_shared<helicopter::HelicopterResult>(
         helicopter::run_indirect_kf(d.col("t"), d.col("gyro"), d.col("angle"), fp, control));
     r->truth = d.has("truth") ? d.col("truth") : std::vector<double>(d.rows(), kNoSample);
@@ -222,6 +234,9 @@ class HelicopterScenario final : public Scenario {
     g["gamma"] = gamma;
     return g;
   }
+
+ private:
+  bool x0_from_prior_ = false;  // preset sim.x0_from_prior (with_x0_from_prior)
 };
 
 }  // namespace

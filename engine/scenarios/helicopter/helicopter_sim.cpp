@@ -28,10 +28,21 @@ Dataset simulate(const SimParams& p) {
   for (double& ph : phase)
     ph = kTwoPi * uni(rng);
   double b = p.bias0;
+  double offset = 0.0;  // θ(0) drawn from the prior: the sways shifted to start there
+  if (p.x0_from_prior) {
+    std::mt19937_64 prior_rng(p.seed ^ 0x5DEECE66DULL);  // leaves the noise streams alone
+    std::normal_distribution<double> prior(0.0, 1.0);
+    const double theta0 = std::sqrt(p.P0_theta) * prior(prior_rng);
+    b = std::sqrt(p.P0_bias) * prior(prior_rng);
+    double sway0 = 0.0;
+    for (int i = 0; i < 3; ++i)
+      sway0 += p.amplitude_deg * a[i] * std::sin(phase[i]);
+    offset = theta0 - sway0;
+  }
   const double walk = p.bias_walk * std::sqrt(p.Ts_s);
   for (std::size_t k = 0; k < n; ++k) {
     const double tk = static_cast<double>(k) * p.Ts_s;
-    double theta = 0.0, omega = 0.0;
+    double theta = offset, omega = 0.0;
     for (int i = 0; i < 3; ++i) {
       const double w = kTwoPi * f[i];
       theta += p.amplitude_deg * a[i] * std::sin(w * tk + phase[i]);

@@ -18,6 +18,10 @@ struct SimParams {
   double bias_walk = 0.05;      // (deg/s)/√s
   double angle_dropout = 0.0;   // probability an angle sample is missing
   std::uint64_t seed = 1;
+  // With a prior (the filter's P0): θ(0) ~ N(0, P0_theta) (the sways shifted by a constant) and
+  // b(0) ~ N(0, P0_bias) instead of bias0, drawn from their own stream.
+  bool x0_from_prior = false;
+  double P0_theta = 100.0, P0_bias = 4.0;
 };
 
 // Columns t (s), gyro (deg/s), angle (deg, empty = no sample), truth (deg), bias_truth (deg/s).

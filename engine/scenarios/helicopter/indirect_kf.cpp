@@ -61,7 +61,7 @@ HelicopterResult run_indirect_kf(const std::vector<double>& t, const std::vector
 
   // The 2-state recursion written out in scalars: the same arithmetic as kfw::predict and
   // kfw::update_scalar (Joseph form), a test holds them equal; ~4x faster than 2×2 Eigen calls.
-  double th = std::isfinite(angle[0]) ? angle[0] : 0.0, b = 0.0;
+  double th = std::isfinite(angle[0]) && !p.prior_mean_zero ? angle[0] : 0.0, b = 0.0;
   double p11 = p.P0_theta, p12 = 0.0, p22 = p.P0_bias;
   const double a = 1.0 - p.gamma, R = p.N_theta;
   double last_gyro = 0.0;

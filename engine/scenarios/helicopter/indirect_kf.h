@@ -17,6 +17,9 @@ struct FilterParams {
   double gamma = 0.0;     // bias cutoff ratio (0: constant bias)
   double P0_theta = 100;  // deg²
   double P0_bias = 4;     // (deg/s)²
+  // The prior mean: θ̂0 = the first angle sample (default), or 0 (with b̂0 = 0 always) when the
+  // simulator draws the truth from the prior (preset sim.x0_from_prior).
+  bool prior_mean_zero = false;
 };
 
 struct HelicopterResult final : RunResult {

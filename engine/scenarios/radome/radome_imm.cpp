@@ -9,6 +9,8 @@
 #include <sstream>
 #include <string>
 
+#include "scenarios/radome/radome_renewal.h"
+
 #include "core/kalman_filter.h"
 
 namespace kfw::radome {
@@ -121,8 +123,16 @@ void RadomeImm::initialize(const Sample& s) {
 StepOutput RadomeImm::step(const Sample& s, double dt_s) {
   StepOutput o;
   // Mode-parameter renewal (seed 001, eq. 4): the whole grid moves by Kp (R̂_{k−1} − mean R̄_{k−1}).
-  center_psi_ += p_.Kp * (est_psi_ - center_psi_);
-  center_theta_ += p_.Kp * (est_theta_ - center_theta_);
+  const double gain = p_.renewal == Renewal::kRate ? std::min(1.0, p_.Kp * dt_s) : p_.Kp;
+  const double d_psi = gain * (est_psi_ - center_psi_);
+  const double d_theta = gain * (est_theta_ - center_theta_);
+  if (p_.renewal == Renewal::kSlope && (d_psi != 0.0 || d_theta != 0.0)) {
+    const VecX moved =
+        remap_probabilities(imm_probabilities(log_mu_), off_psi_, off_theta_, d_psi, d_theta);
+    log_mu_ = moved.array().max(1e-300).log().matrix();
+  }
+  center_psi_ += d_psi;
+  center_theta_ += d_theta;
   set_model(dt_s);
   if (p_.structure == Structure::kFull) {
     step_full(s, o);

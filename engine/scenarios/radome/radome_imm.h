@@ -21,13 +21,17 @@
 namespace kfw::radome {
 
 enum class Structure { kAxisBlocks = 0, kFull = 1 };
+// Readings of eq. 4 (radome_renewal.h): per sample with μ by grid index; per sample with μ by
+// slope value; Kp per second with μ by grid index.
+enum class Renewal { kIndex = 0, kSlope = 1, kRate = 2 };
 
 struct FilterParams {
-  double Q = 100.0;         // spectral density of w, (m/s²)²/Hz
-  double tau_s = 0.5;       // target manoeuvre time constant τ
-  double var_angle = 1e-6;  // R: ν_ψ, ν_θ variance, rad²
-  double var_range = 1.0;   // ν_R variance assumed by the filter, m²
-  double Kp = 0.0;          // mode-parameter renewal gain (eq. 4); 0 = plain IMM
+  double Q = 100.0;                   // spectral density of w, (m/s²)²/Hz
+  double tau_s = 0.5;                 // target manoeuvre time constant τ
+  double var_angle = 1e-6;            // R: ν_ψ, ν_θ variance, rad²
+  double var_range = 1.0;             // ν_R variance assumed by the filter, m²
+  double Kp = 0.0;                    // mode-parameter renewal gain (eq. 4); 0 = plain IMM
+  Renewal renewal = Renewal::kIndex;  // what eq. 4 does to μ, and Kp's unit (radome_renewal.h)
   double grid_min = -0.05, grid_max = 0.05;
   int n_psi = 7, n_theta = 7;
   double stay = 0.99;  // Markov p^{jj}

@@ -54,6 +54,19 @@ ParamTable make_table() {
        {"axis", "full"}},
       {"Kp", "Kp, mode-parameter renewal gain", "", 0.0, 1.0, 0.0, Scale::kLinear, G,
        "ΔR̄_k = Kp (R̂_{k−1} − mean R̄_{k−1}) moves the grid (seed 001, eq. 4); 0 = plain IMM.", 3},
+      {"renewal.mode",
+       "renewal: what μ and Kp mean",
+       "",
+       0,
+       2,
+       0,
+       Scale::kChoice,
+       G,
+       "index: eq. 4 every sample, μ stays with the grid index; slope: μ shared between the moved "
+       "grid's neighbours of its slope; rate: Kp per second (ΔR̄ = Kp·Ts·(R̂ − R̄)), μ by index. "
+       "README: the reading of eq. 4.",
+       0,
+       {"index", "slope", "rate"}},
       {"grid.min", "grid minimum slope", "", -0.5, 0.5, -0.05, Scale::kLinear, G,
        "Smallest slope of the initial grid, both axes (seed 001, eq. 6: −0.05).", 3},
       {"grid.max", "grid maximum slope", "", -0.5, 0.5, 0.05, Scale::kLinear, G,
@@ -141,6 +154,11 @@ std::vector<MetricSpec> make_metric_specs() {
     v.push_back({"grid_center_" + a + "_max_abs", "largest |grid centre| " + y, "",
                  "furthest the grid centre moved from 0 along " + y + " (renewal, eq. 4)",
                  G::kScenario, D::kLower});
+    v.push_back({"grid_span_" + a, "grid span around the estimate " + y, "",
+                 "furthest a grid edge along " + y +
+                     " was from the slope estimate R̂ (seed 001, Figs. 7–9: about 0.07 with "
+                     "Kp = 0.45)",
+                 G::kScenario, D::kNone});
     v.push_back({"grid_" + a + "_min_reached", "lowest grid slope " + y, "",
                  "smallest slope any grid edge reached along " + y + " (seed 001, Fig. 9)",
                  G::kScenario, D::kLower});
@@ -222,6 +240,7 @@ class RadomeScenario final : public Scenario {
     fp.structure = param(v, "imm.structure") >= 0.5 ? radome::Structure::kFull
                                                     : radome::Structure::kAxisBlocks;
     fp.Kp = param(v, "Kp");
+    fp.renewal = static_cast<radome::Renewal>(param(v, "renewal.mode"));
     fp.grid_min = param(v, "grid.min");
     fp.grid_max = param(v, "grid.max");
     fp.n_psi = static_cast<int>(param(v, "grid.n_psi"));
@@ -324,6 +343,20 @@ class RadomeScenario final : public Scenario {
       if (std::isfinite(r.center_psi[k])) cmax_p = std::max(cmax_p, std::abs(r.center_psi[k]));
       if (std::isfinite(r.center_theta[k])) cmax_t = std::max(cmax_t, std::abs(r.center_theta[k]));
     }
+    // How far the grid reaches around the estimate (renewal: about its half-width).
+    double span_p = 0.0, span_t = 0.0;
+    for (std::size_t k = 0; k < r.steps(); ++k) {
+      if (std::isfinite(r.center_psi[k]) && std::isfinite(r.slope_psi[k])) {
+        const double c = r.center_psi[k] - r.slope_psi[k];
+        span_p = std::max({span_p, std::abs(c + op_lo), std::abs(c + op_hi)});
+      }
+      if (std::isfinite(r.center_theta[k]) && std::isfinite(r.slope_theta[k])) {
+        const double c = r.center_theta[k] - r.slope_theta[k];
+        span_t = std::max({span_t, std::abs(c + ot_lo), std::abs(c + ot_hi)});
+      }
+    }
+    m["grid_span_psi"] = span_p;
+    m["grid_span_theta"] = span_t;
     m["grid_center_psi_max_abs"] = cmax_p;
     m["grid_center_theta_max_abs"] = cmax_t;
     m["grid_psi_min_reached"] = lo_p;

@@ -1,0 +1,183 @@
+// `kfw-cli run PRESET --seeds SET` (Monte Carlo over simulator seeds, sharded like sweeps) and
+// `kfw-cli merge PART...` (parts of any kind, dispatched on their "kind").
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli_commands.h"
+#include "core/grammar.h"
+#include "core/json_io.h"
+#include "core/monte_carlo.h"
+#include "core/output.h"
+#include "core/suggest.h"
+#include "core/workspace.h"
+
+namespace kfw {
+
+namespace {
+
+// The summary on stdout (table or JSON without per-step arrays) and, with --metrics, the full
+// JSON (per-step ANEES_k / ANIS_k and bounds) staged for writing.
+Status report(const MonteCarloSummary& s, const CliArgs& a, OutputSet& outs, std::ostream& out,
+              std::ostream& err) {
+  for (const auto& r : s.stopped)
+    err << "kfw-cli: warning: seed " << r.seed << " stopped: " << one_line(r.error) << "\n";
+  if (a.metrics) {
+    if (auto st = outs.stage(*a.metrics, summary_to_json(s, true).dump(2) + "\n"); !st) return st;
+  }
+  if (auto st = outs.commit(); !st) return st;
+  if (a.table) {
+    out << summary_table(s);
+  } else {
+    out << summary_to_json(s, false).dump(2) << "\n";
+  }
+  return Ok{};
+}
+
+// A run with no completed seed has nothing to summarise (exit 1, the first error named).
+Status require_completed(const MonteCarloSummary& s) {
+  if (s.completed > 0 || s.stopped.empty()) return Ok{};
+  return failure("every run stopped (first: seed " + std::to_string(s.stopped.front().seed) + ": " +
+                 s.stopped.front().error + ")");
+}
+
+Status merge_montecarlo(const std::vector<nlohmann::json>& docs, const CliArgs& a, OutputSet& outs,
+                        std::ostream& out, std::ostream& err) {
+  std::vector<MonteCarloPart> parts;
+  for (std::size_t i = 0; i < docs.size(); ++i) {
+    auto p = part_from_json(docs[i], a.parts[i]);
+    if (!p) return p.err();
+    parts.push_back(std::move(*p));
+  }
+  auto merged = merge_montecarlo_parts(parts, a.parts);
+  if (!merged) return merged.err();
+  const MonteCarloSummary s = summarize_monte_carlo(*merged);
+  if (auto st = require_completed(s); !st) return st;
+  return report(s, a, outs, out, err);
+}
+
+// What `merge` does with the parts of one kind.
+using MergeHandler = Status (*)(const std::vector<nlohmann::json>&, const CliArgs&, OutputSet&,
+                                std::ostream&, std::ostream&);
+const std::map<std::string, MergeHandler>& merge_handlers() {
+  static const std::map<std::string, MergeHandler> handlers = {
+      {kMonteCarloKind, &merge_montecarlo},
+  };
+  return handlers;
+}
+
+}  // namespace
+
+Expected<std::vector<long long>> seeds_for(const CliArgs& a, const Workspace& ws) {
+  auto seeds = parse_int_set(*a.seeds, "--seeds");
+  if (!seeds) return seeds.err();
+  if (a.data) return Error{"--seeds simulates each seed; it cannot be used with --data"};
+  if (ws.data_path) {
+    return Error{ws.preset.path + ": data: the preset's data come from " + *ws.data_path +
+                 "; --seeds simulates (use a preset without \"data\")"};
+  }
+  return seeds;
+}
+
+int cmd_run_seeds(const CliArgs& a, std::ostream& out, std::ostream& err) {
+  auto ws = open_any(a.target, a.data, a.sets);
+  if (!ws) return fail(err, ws.err());
+  auto seeds = seeds_for(a, *ws);
+  if (!seeds) return fail(err, seeds.err());
+  Shard shard;
+  if (a.shard) {
+    auto s = parse_shard(*a.shard, "--shard");
+    if (!s) return fail(err, s.err());
+    shard = *s;
+    if (!a.out)
+      return fail(err, Error{"--shard: needs --out PART.json (kfw-cli merge joins them)"});
+  }
+  OutputSet outs;
+  outs.add_input(ws->preset.path);
+  if (a.out) {
+    if (auto st = outs.add(*a.out, "--out"); !st) return fail(err, st.err());
+  }
+  if (a.metrics) {
+    if (auto st = outs.add(*a.metrics, "--metrics"); !st) return fail(err, st.err());
+  }
+  std::vector<std::pair<long long, std::string>> per_seed;  // seed, estimates path
+  if (a.out_dir) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(*a.out_dir, ec)) {
+      return fail(err, Error{"--out-dir: " + *a.out_dir + ": not a directory"});
+    }
+    for (std::size_t i = 0; i < seeds->size(); ++i) {
+      if (!in_shard(i, shard)) continue;
+      const long long seed = (*seeds)[i];
+      const std::string path =
+          (std::filesystem::path(*a.out_dir) / ("seed_" + std::to_string(seed) + ".csv")).string();
+      if (auto st = outs.add(path, "--out-dir"); !st) return fail(err, st.err());
+      per_seed.emplace_back(seed, path);
+    }
+  }
+  MonteCarloOptions opt;
+  opt.keep_results = a.out_dir.has_value();
+  auto part = run_monte_carlo(*ws->scenario, ws->values, *seeds, shard, opt);
+  if (!part) return fail(err, part.err());
+  part->source = a.target;
+  for (const auto& [seed, path] : per_seed) {
+    for (const auto& r : part->runs) {
+      if (r.seed != seed || !r.result) continue;
+      std::ostringstream csv;
+      write_csv(csv, r.result->table());
+      if (auto st = outs.stage(path, csv.str()); !st) return fail(err, st.err());
+    }
+  }
+  if (a.out) {
+    if (auto st = outs.stage(*a.out, part_to_json(*part).dump(1) + "\n"); !st) {
+      return fail(err, st.err());
+    }
+  }
+  const MonteCarloSummary s = summarize_monte_carlo(*part);
+  if (a.shard) {
+    // A part is written even when its seeds all stopped: the merge decides.
+    if (auto st = outs.commit(); !st) return fail(err, st.err());
+    out << "wrote " << *a.out << " (shard " << shard.index << "/" << shard.count << ": "
+        << part->runs.size() << " of " << part->seeds.size() << " seeds, " << s.stopped.size()
+        << " stopped)\n";
+    return kExitOk;
+  }
+  if (auto st = require_completed(s); !st) return fail(err, st.err());
+  if (auto st = report(s, a, outs, out, err); !st) return fail(err, st.err());
+  return kExitOk;
+}
+
+int cmd_merge(const CliArgs& a, std::ostream& out, std::ostream& err) {
+  OutputSet outs;
+  for (const auto& p : a.parts)
+    outs.add_input(p);
+  if (a.metrics) {
+    if (auto st = outs.add(*a.metrics, "--metrics"); !st) return fail(err, st.err());
+  }
+  std::vector<nlohmann::json> docs;
+  std::string kind;
+  std::vector<std::string> kinds;
+  for (const auto& [k, h] : merge_handlers())
+    kinds.push_back(k);
+  for (const auto& path : a.parts) {
+    auto doc = read_json_document(path, "part");
+    if (!doc) return fail(err, doc.err());
+    const std::string k = doc->is_object() ? doc->value("kind", std::string()) : std::string();
+    if (!merge_handlers().count(k)) {
+      return fail(err,
+                  Error{path + ": kind: " +
+                        (k.empty() ? std::string("missing") : unknown_message("kind", k, kinds))});
+    }
+    if (!kind.empty() && k != kind) {
+      return fail(err, Error{path + ": kind '" + k + "' differs from " + a.parts.front() + "'s '" +
+                             kind + "'"});
+    }
+    kind = k;
+    docs.push_back(std::move(*doc));
+  }
+  if (auto st = merge_handlers().at(kind)(docs, a, outs, out, err); !st) return fail(err, st.err());
+  return kExitOk;
+}
+
+}  // namespace kfw

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <vector>
 
+#include "plot_blocks.h"
 #include "plot_kit.h"
 #include "scenario_view.h"
 #include "scenarios/ballbeam/alpha_beta.h"
@@ -56,10 +57,8 @@ class BallbeamView final : public ScenarioView {
     beam_V_ = addGraphRight(beam_, "motor voltage V", color::kFifth, "motor voltage V (V)");
     beam_cursor_ = addCursor(beam_);
 
-    innov_ = makePlot(parent, "Innovation with ± 2√S", "time (s)", "innovation (m)");
-    innov_band_ = addBand(innov_, "± 2√S", color::kSecond);
-    innov_y_ = addGraph(innov_, "innovation x̃ − x̄", color::kEstimate, Style::kDots);
-    innov_cursor_ = addCursor(innov_);
+    innov_ = std::make_unique<InnovationPlot>(parent, "Innovation with ± 2√S", "innovation (m)",
+                                              "innovation x̃ − x̄");
 
     curve_ = makePlot(parent, "α-β gains vs tracking index λ = Ts²√(Q/R) (seed 003, eq. 16)",
                       "λ (–)", "gain (–)");
@@ -71,13 +70,7 @@ class BallbeamView final : public ScenarioView {
     curve_op_->setLineStyle(QCPGraph::lsNone);
     curve_op_->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCircle, QPen(color::kSecond, 2),
                                                QBrush(color::kSecond), 9));
-    curve_label_ = new QCPItemText(curve_);
-    curve_label_->setPositionAlignment(Qt::AlignLeft | Qt::AlignTop);
-    curve_label_->position->setType(QCPItemPosition::ptAxisRectRatio);
-    curve_label_->position->setCoords(0.02, 0.03);
-    curve_label_->setFont(QFont(curve_->font().family(), 8));
-    curve_label_->setBrush(QBrush(QColor(255, 255, 255, 210)));
-    curve_->axisRect()->insetLayout()->setInsetAlignment(0, Qt::AlignBottom | Qt::AlignRight);
+    curve_label_ = addNote(curve_);
 
     step_ = makePlot(parent, "Step response: noise-free vs detection on / off (Figs. 8, 9)",
                      "time (s)", "ball position x (m)");
@@ -91,7 +84,7 @@ class BallbeamView final : public ScenarioView {
     return {{"position", "Ball position", pos_},
             {"voltage", "Sensor voltage", volt_},
             {"beam", "Beam angle", beam_},
-            {"innovation", "Innovation", innov_},
+            {"innovation", "Innovation", innov_->plot()},
             {"gain_curve", "α-β gain curve", curve_},
             {"step", "Step response", step_}};
   }
@@ -103,19 +96,17 @@ class BallbeamView final : public ScenarioView {
     const auto& tr = r->trace;
     const std::size_t n = r->steps();
     two_sigma_.assign(n, kNoSample);
-    two_sqrt_S_.assign(n, kNoSample);
     lost_x_.assign(n, kNoSample);
     zero_v_.assign(n, kNoSample);
-    zero_.assign(n, 0.0);
     for (std::size_t i = 0; i < n; ++i) {
       if (std::isfinite(tr.P11[i])) two_sigma_[i] = 2.0 * std::sqrt(std::max(0.0, tr.P11[i]));
-      if (std::isfinite(tr.S[i]) && tr.S[i] > 0) two_sqrt_S_[i] = 2.0 * std::sqrt(tr.S[i]);
       const bool lost = tr.v_sensor[i] == 0.0 || !std::isfinite(tr.x_meas[i]);
       if (lost) {
         lost_x_[i] = tr.x_meas[i];
         zero_v_[i] = 0.0;
       }
     }
+    innov_->setData(&r->t, &tr.innovation, &tr.S);
     const bool detection = values.count("detection") && values.at("detection") != 0;
     pos_lost_->setName(detection ? "contact lost: flagged, skipped"
                                  : "contact lost: used (no circuit)");
@@ -193,8 +184,6 @@ class BallbeamView final : public ScenarioView {
     setSeries(beam_cmd_, r.t, tr.theta_c, n);
     setSeries(beam_theta_, r.t, tr.theta, n);
     setSeries(beam_V_, r.t, tr.V, n);
-    plot::setBand(innov_band_, r.t, zero_, two_sqrt_S_, n);
-    setSeries(innov_y_, r.t, tr.innovation, n);
     setSeries(step_setpoint_, r.t, tr.setpoint, n);
     // The variants run on the whole loop's grid (a ball that fell ends early).
     const auto& grid = r.t_loop.empty() ? r.t : r.t_loop;
@@ -217,8 +206,8 @@ class BallbeamView final : public ScenarioView {
     // The estimator's start-up (P0: ±0.2 m bands for the first 0.3 s) would set the position and
     // innovation axes and flatten the ±4 mm steady innovations; they run off the top instead.
     const double settle = plot::settleTime(t0, t1);
-    for (QCustomPlot* p : {pos_, innov_})
-      plot::rescale(p, t0, t1, settle);
+    plot::rescale(pos_, t0, t1, settle);
+    innov_->draw(plot::frameAt(r.t, index));
     for (QCustomPlot* p : {volt_, beam_, step_})
       plot::rescale(p, t0, t1);
     // The beam's motor-voltage axis follows its own data (the saturation limits stay visible).
@@ -230,9 +219,9 @@ class BallbeamView final : public ScenarioView {
     }
     const double v_pad = 0.08 * (v_hi - v_lo);
     beam_->yAxis2->setRange(v_lo - v_pad, v_hi + v_pad);
-    for (auto* c : {pos_cursor_, volt_cursor_, beam_cursor_, innov_cursor_, step_cursor_})
+    for (auto* c : {pos_cursor_, volt_cursor_, beam_cursor_, step_cursor_})
       plot::setCursorAt(c, tc, !all);
-    for (QCustomPlot* p : {pos_, volt_, beam_, innov_, step_})
+    for (QCustomPlot* p : {pos_, volt_, beam_, step_})
       plot::replot(p);
   }
 
@@ -250,22 +239,22 @@ class BallbeamView final : public ScenarioView {
   std::vector<Ghost> ghosts_;
   std::shared_ptr<const BallbeamResult> result_;
   std::size_t cursor_ = plot::kAll;
-  std::vector<double> two_sigma_, two_sqrt_S_, lost_x_, zero_v_, zero_;
+  std::vector<double> two_sigma_, lost_x_, zero_v_;
 
-  QCustomPlot *pos_ = nullptr, *volt_ = nullptr, *beam_ = nullptr, *innov_ = nullptr,
-              *curve_ = nullptr, *step_ = nullptr;
-  plot::Band pos_band_, innov_band_;
+  QCustomPlot *pos_ = nullptr, *volt_ = nullptr, *beam_ = nullptr, *curve_ = nullptr,
+              *step_ = nullptr;
+  plot::Band pos_band_;
+  std::unique_ptr<plot::InnovationPlot> innov_;
   QCPGraph *pos_sensor_ = nullptr, *pos_lost_ = nullptr, *pos_setpoint_ = nullptr,
            *pos_truth_ = nullptr, *pos_est_ = nullptr;
   QCPGraph *volt_raw_ = nullptr, *volt_circ_ = nullptr, *volt_zero_ = nullptr;
   QCPGraph *beam_cmd_ = nullptr, *beam_theta_ = nullptr, *beam_V_ = nullptr;
-  QCPGraph* innov_y_ = nullptr;
   QCPGraph *curve_alpha_ = nullptr, *curve_beta_ = nullptr, *curve_op_ = nullptr;
   QCPItemText* curve_label_ = nullptr;
   QCPGraph *step_setpoint_ = nullptr, *step_clean_ = nullptr, *step_on_ = nullptr,
            *step_off_ = nullptr;
   QCPItemStraightLine *pos_cursor_ = nullptr, *volt_cursor_ = nullptr, *beam_cursor_ = nullptr,
-                      *innov_cursor_ = nullptr, *step_cursor_ = nullptr;
+                      *step_cursor_ = nullptr;
   QCPItemStraightLine *pos_fell_ = nullptr, *step_fell_ = nullptr;
 };
 

@@ -165,7 +165,8 @@ Status OutputSet::add(const std::string& path, std::string_view option) {
   // access() says yes to root on a read-only mount or in /proc: create (and remove) a temporary
   // there now, so the commit cannot fail for that reason after the work.
   if (auto probe = write_temporary(*target, path, {}); !probe) {
-    return Error{at + "cannot write in " + shown(dir) + probe.error().substr(probe.error().rfind(':'))};
+    return Error{at + "cannot write in " + shown(dir) +
+                 probe.error().substr(probe.error().rfind(':'))};
   } else {
     ::unlink(probe->c_str());
   }

@@ -116,5 +116,25 @@ TEST_F(BadPreset, DataPathsThatAreMissingOrDirectories) {
           {"mapping.gyro.unit"});
 }
 
+// Found by the fuzz corpus replay (tests/fuzz/harness.h: a loaded preset is written and re-read).
+TEST_F(BadPreset, WrittenPresetsReadBack) {
+  // A preset named without a folder, with a data file: `preset` aborted (absolute("") threw).
+  file("d.csv", "t,gyro,angle\n0,1,2\n0.02,1,2\n");
+  std::string p = source("presets/helicopter.json");
+  p.replace(p.find("\"parameters\""), 0, "\"data\": \"d.csv\", ");
+  file("p.json", p);
+  auto w = testing::run_command("cd " + dir.string() + " && " + KFW_CLI +
+                                " preset p.json --out x.json 2>&1");
+  ASSERT_EQ(w.code, 0) << w.text;
+  EXPECT_NE(read((dir / "x.json").string()).find("\"data\": \"d.csv\""), std::string::npos);
+  // A model preset written by `preset` (the filter choice as its index) loads again.
+  const std::string cv = (dir / "cv.json").string();
+  ASSERT_EQ(
+      cli("preset " + std::string(KFW_SOURCE_DIR) + "/presets/models/cv1d.json --out " + cv).code,
+      0);
+  auto r = cli("run " + cv + " --set filter=ukf", "2>/dev/null");
+  EXPECT_EQ(r.code, 0) << r.text;
+}
+
 }  // namespace
 }  // namespace kfw

@@ -18,7 +18,9 @@ namespace {
 namespace fs = std::filesystem;
 
 // Cases that fail in scenario files owned by issue 15 (ballbeam, radome); skipped, not hidden.
-const std::set<std::string> kIssue15 = {};
+// radome: grid.min's range reaches above grid.max's preset value and vice versa (the grid must
+// not be reversed), so either end alone is refused.
+const std::set<std::string> kIssue15 = {"radome grid.min=max", "radome grid.max=min"};
 
 std::vector<std::string> preset_files() {
   std::vector<std::string> files;
@@ -35,12 +37,12 @@ std::vector<std::string> preset_files() {
 
 // What one run at one end gives: "" when fine, else why it is a bug.
 std::string check_end(const std::string& preset, const std::string& key, double v,
-                      const ParamValues& base, const ParamTable& table) {
+                      const ParamValues& base, const ParamTable& table, bool shorten = true) {
   std::ostringstream set;
   set.precision(17);
   set << key << '=' << v;
   std::vector<std::string> sets = {set.str()};
-  if (key != "sim.duration" && base.count("sim.duration")) {
+  if (shorten && key != "sim.duration" && base.count("sim.duration")) {
     const auto* d = table.find("sim.duration");
     const double shortest = std::min(base.at("sim.duration"), std::max(d->min, 5.0));
     std::ostringstream os;
@@ -51,12 +53,18 @@ std::string check_end(const std::string& preset, const std::string& key, double 
   auto ws = open_workspace(preset, std::nullopt, sets);
   if (!ws) return "refused: " + ws.error();
   auto data = load_dataset(*ws);
+  // The short duration may clash with this value (sim.dt = 10 s, a step at 100 s): the
+  // preset's own duration decides.
+  if (!data && data.exit_code() == kExitInvalid && sets.size() > 1)
+    return check_end(preset, key, v, base, table, false);
   if (!data) {
     if (data.exit_code() == kExitFailed && data.error().find("(t = ") != std::string::npos)
       return "";
     return "simulation refused: " + data.error();
   }
   auto r = ws->scenario->run(*data, ws->values);
+  if (!r && r.exit_code() == kExitInvalid && sets.size() > 1)
+    return check_end(preset, key, v, base, table, false);
   if (!r) {
     if (r.exit_code() == kExitFailed && r.error().find("(t = ") != std::string::npos) return "";
     return "run failed without step and time: " + r.error();

@@ -136,11 +136,11 @@ TEST_F(KillDuringWrite, ExistingFileIsAlwaysOldOrNewComplete) {
   }
 
   // 10 kills at random points: 5 anywhere in the run (start, compute, write, rename), 5 within
-  // 20 ms of the temporary's creation (the large write, the fsync, the rename).
+  // 400 ms of the temporary's creation (the large write, the fsync, the rename).
   std::mt19937 rng(16);
   const auto span_us = std::chrono::duration_cast<std::chrono::microseconds>(run_time).count();
   std::uniform_int_distribution<long long> anywhere(0, std::max<long long>(span_us * 5 / 4, 1000));
-  std::uniform_int_distribution<long long> in_write(0, 20000);
+  std::uniform_int_distribution<long long> in_write(0, 400000);
   int old_seen = 0, new_seen = 0;
   for (int i = 0; i < 10; ++i) {
     reset_old();

@@ -4,6 +4,10 @@
 #include <QFontDatabase>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "app_options.h"
 #include "core/memory.h"
@@ -15,6 +19,25 @@
 #ifndef KFW_VERSION
 #error "KFW_VERSION comes from CMake's project(VERSION)"
 #endif
+
+namespace {
+
+// Without XDG_RUNTIME_DIR (containers, CI, su) Qt warns on stderr before kfw says anything. Give it
+// the private directory it would fall back to, /tmp/runtime-UID (mode 0700, owned by the user), so
+// kfw's own message is the first line. A directory that is not private is left to Qt to report.
+void ensure_runtime_dir() {
+  if (!qEnvironmentVariableIsEmpty("XDG_RUNTIME_DIR")) return;
+  const std::string dir = "/tmp/runtime-" + std::to_string(::getuid());
+  ::mkdir(dir.c_str(), 0700);
+  struct stat st {};
+  if (::lstat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode) || st.st_uid != ::getuid() ||
+      (st.st_mode & 0777) != 0700) {
+    return;
+  }
+  ::setenv("XDG_RUNTIME_DIR", dir.c_str(), 1);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   kfw::retain_freed_memory();
@@ -38,6 +61,7 @@ int main(int argc, char** argv) {
   if (headless && qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) {
     qputenv("QT_QPA_PLATFORM", "offscreen");
   }
+  ensure_runtime_dir();
   QApplication app(argc, argv);
   QApplication::setApplicationName("kfw");
   QApplication::setFont(QFont("DejaVu Sans", 9));

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <vector>
 
+#include "core/suggest.h"
+
 namespace kfw {
 
 using nlohmann::json;
@@ -83,7 +85,7 @@ class PathTracker final : public nlohmann::json_sax<json> {
     return value();
   }
   bool fail(const std::string& what) {
-    const std::string p = path();
+    const std::string p = truncate_token(path());  // 256 levels or a huge key: cut
     error = (p.empty() ? "" : p + ": ") + what;
     return false;
   }

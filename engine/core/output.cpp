@@ -162,6 +162,14 @@ Status OutputSet::add(const std::string& path, std::string_view option) {
   if (::access(dir.c_str(), W_OK | X_OK) != 0) {
     return Error{at + "cannot write in " + shown(dir) + ": " + errno_text(errno)};
   }
+  // access() says yes to root on a read-only mount or in /proc: create (and remove) a temporary
+  // there now, so the commit cannot fail for that reason after the work.
+  if (auto probe = write_temporary(*target, path, {}); !probe) {
+    return Error{at + "cannot write in " + shown(dir) +
+                 probe.error().substr(probe.error().rfind(':'))};
+  } else {
+    ::unlink(probe->c_str());
+  }
   for (const auto& in : inputs_) {
     if (same_file(*target, in)) {
       return Error{at + "is also an input of this command; refusing to overwrite it"};

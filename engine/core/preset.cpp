@@ -319,9 +319,13 @@ std::string preset_to_json(const Preset& preset) {
       fs::path rel = dp.lexically_relative(dir);
       if (!rel.empty()) dp = rel;
     } else if (!preset.path.empty()) {
-      const fs::path dir = fs::path(preset.path).parent_path();
-      fs::path rel = fs::absolute(dp).lexically_relative(fs::absolute(dir));
-      if (!rel.empty()) dp = rel;
+      // A preset named without a folder ("p.json") is in the current one (absolute("") throws).
+      fs::path dir = fs::path(preset.path).parent_path();
+      std::error_code ec;
+      if (dir.empty()) dir = fs::current_path(ec);
+      const fs::path abs_dir = fs::absolute(dir, ec);
+      fs::path rel = ec ? fs::path() : fs::absolute(dp, ec).lexically_relative(abs_dir);
+      if (!ec && !rel.empty()) dp = rel;
     }
     j["data"] = dp.string();
   }

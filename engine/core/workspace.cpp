@@ -56,6 +56,11 @@ Expected<Dataset> load_dataset(const Workspace& ws) {
     if (!std::filesystem::exists(*ws.data_path, ec)) {
       return Error{ws.preset.path + ": data: " + *ws.data_path + ": no such file"};
     }
+    // Not a file that opens (a directory, no permission): the preset's key is what to fix.
+    if (!std::filesystem::is_regular_file(*ws.data_path, ec) ||
+        d.error().find(": cannot open") != std::string::npos) {
+      return Error{ws.preset.path + ": data: " + d.error()};
+    }
   }
   return d;
 }

@@ -355,9 +355,11 @@ Expected<std::unique_ptr<Scenario>> make_model_scenario(const json& preset,
     const json v = filter_entry.is_object() ? filter_entry.value("value", json()) : filter_entry;
     if (v.is_string()) {
       filter = v.get<std::string>();
-    } else if (v.is_number_integer() && v.get<int>() >= 0 &&
-               static_cast<std::size_t>(v.get<int>()) < filters.size()) {
-      filter = filters[static_cast<std::size_t>(v.get<int>())];
+    } else if (v.is_number() && v.get<double>() >= 0.0 &&
+               v.get<double>() < static_cast<double>(filters.size()) &&
+               v.get<double>() == std::floor(v.get<double>())) {
+      // The choice's index, as preset_to_json writes it (0.0 as well as 0).
+      filter = filters[static_cast<std::size_t>(v.get<double>())];
     } else {
       return Error{path + ": parameters.filter.value: expected a filter name (kf, ekf, ukf)"};
     }

@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <sstream>
@@ -36,7 +37,10 @@ Expected<Dataset> simulate_model(const ModelSpec& spec, const ParamValues& value
   if (!(dt > 0.0) || !(duration >= 0.0)) {
     return Error{"sim.dt must be positive and sim.duration not negative"};
   }
-  const auto rows = static_cast<std::size_t>(std::floor(duration / dt + 1e-9)) + 1;
+  // Samples at 0, dt, ... up to the duration, and at least two: a filter needs one step (a
+  // duration shorter than dt, both inside their ranges, still gives a run).
+  const auto rows =
+      std::max<std::size_t>(static_cast<std::size_t>(std::floor(duration / dt + 1e-9)) + 1, 2);
   if (rows > 50'000'000) return Error{"sim.duration / sim.dt: more than 50 million rows"};
   auto evr = ModelEval::create(spec, values);
   if (!evr) return evr.err();

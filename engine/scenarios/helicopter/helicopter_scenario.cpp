@@ -168,22 +168,34 @@ class HelicopterScenario final : public Scenario {
       r->nis_avg = moving_average_finite(r->nis, r->nis_window);
     }
     if (d.has("bias_truth")) r->bias_truth = d.col("bias_truth");
-    // NEES of the angle (truth holds θ only; with the simulator's bias truth, of [θ, b]).
+    // NEES of the angle (truth holds θ only; with the simulator's bias truth, of [θ, b]). With
+    // γ > 0 the bias has no process noise: P22 decays as (1 − γ)^2k and P turns singular in
+    // double precision, where [θ, b]'s NEES is undefined; the run then reports θ's (1 dof).
     {
       std::vector<double> nees(r->steps(), kNoSample);
       const std::vector<double>* bt = r->bias_truth.empty() ? nullptr : &r->bias_truth;
+      bool joint = bt != nullptr;
       for (std::size_t k = 0; k < r->steps(); ++k) {
         const double e = r->theta[k] - r->truth[k];
         if (!std::isfinite(e)) continue;
         nees[k] = e * e / r->P11[k];
-        if (bt && std::isfinite((*bt)[k])) {
+        if (joint && std::isfinite((*bt)[k])) {
           // e^T P^{-1} e with the 2×2 inverse written out.
           const double eb = r->bias[k] - (*bt)[k];
           const double a = r->P11[k], b = r->P12[k], c = r->P22[k], det = a * c - b * b;
-          nees[k] = det > 0 ? (c * e * e - 2.0 * b * e * eb + a * eb * eb) / det : kNoSample;
+          const double q = (c * e * e - 2.0 * b * e * eb + a * eb * eb) / det;
+          if (det > 1e-12 * a * c && std::isfinite(q)) {
+            nees[k] = q;
+          } else {
+            joint = false;
+            for (std::size_t j = 0; j <= k; ++j) {
+              const double ej = r->theta[j] - r->truth[j];
+              nees[j] = std::isfinite(ej) ? ej * ej / r->P11[j] : kNoSample;
+            }
+          }
         }
       }
-      r->nees_dof = bt ? 2.0 : 1.0;
+      r->nees_dof = joint ? 2.0 : 1.0;
       r->nees_avg = moving_average_finite(nees, r->nis_window);
       r->nees = std::move(nees);
     }

@@ -64,8 +64,10 @@ ParamTable make_table() {
       {"sigma0_pos", "P0: initial position σ", "m", 1e-3, 100, 1.0, Scale::kLog, F,
        "Initial σ of x, y, z around (0, 0, first depth)."},
       {"sim.seed", "seed", "", 0, 1e6, 4, Scale::kInteger, S, "Random seed of the simulator."},
-      {"sim.duration", "duration", "s", 1, 7200, 180, Scale::kLinear, S,
-       "Length of the run (seed 004: 3 min).", 0},
+      {"sim.duration", "duration", "s", 1, 2400, 180, Scale::kLinear, S,
+       "Length of the run (seed 004: 3 min). At most 40 min: the asynchronous clocks log 195 "
+       "rows/s, and a simulated log is limited to 500 000 rows.",
+       0},
       clock,
       {"sim.dt_sync", "synchronous period Δt", "s", 0.01, 2, 0.1, Scale::kLinear, S,
        "Sample period of every sensor when the clocks are synchronous.", 3},

@@ -74,6 +74,42 @@ CLI::Option* add_path(CLI::App* c, const std::string& name, std::optional<std::s
       ->type_name(type);
 }
 
+// tune: the selection, the objective and the optimiser's settings.
+void add_tune_options(CLI::App* c, CliArgs& a) {
+  c->add_option("--params", a.params, "the parameters to search; default: the preset's tunable")
+      ->type_name("KEY[,KEY...]")
+      ->delimiter(',')
+      ->allow_extra_args(false)
+      ->take_all();
+  c->add_option("--objective", a.objective,
+                "a metric key (minimised, maximised or driven to its target by its direction), "
+                "or rmse+nis (RMSE with the noise scale set by NIS consistency); default: "
+                "rmse+nis with truth and a scale group, rmse with truth, else nll")
+      ->type_name("NAME");
+  c->add_option("--method", a.method,
+                "bobyqa (local, default), sbplx (local), direct (DIRECT-L, global) or crs "
+                "(CRS2, global); global ones end with a local polish")
+      ->type_name("NAME")
+      ->capture_default_str();
+  c->add_option("--lo", a.lo, "a search bound (repeatable); default: the preset's range")
+      ->type_name("KEY=V")
+      ->allow_extra_args(false);
+  c->add_option("--hi", a.hi, "a search bound (repeatable); default: the preset's range")
+      ->type_name("KEY=V")
+      ->allow_extra_args(false);
+  c->add_option("--budget", a.budget, "the most evaluations (each runs every dataset)")
+      ->type_name("N")
+      ->capture_default_str();
+  c->add_option("--tol", a.tol,
+                "stop when a step improves the objective by less than this fraction")
+      ->type_name("X")
+      ->capture_default_str();
+  c->add_option("--aggregate", a.aggregate,
+                "over several datasets: mean, or worst by the metric's direction")
+      ->type_name("mean|worst")
+      ->capture_default_str();
+}
+
 const CLI::App* find_command(const CLI::App& app, const std::string& name) {
   for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
     if (sub->get_name() == name) return sub;
@@ -109,11 +145,13 @@ void declare(Cli& cli) {
   add_path(c, "--out-dir", a.out_dir, "DIR", "with --seeds: one estimates file per seed");
   c->add_flag("--table", a.table, "with --seeds: a readable table instead of JSON");
 
-  c = app.add_subcommand("merge", "merge the parts of a sharded run (run --seeds --shard)");
+  c = app.add_subcommand("merge",
+                         "merge the parts of a sharded run (run --seeds --shard, sweep --shard)");
   c->add_option("PART", a.parts, "the part files (JSON, one per shard)")
       ->type_name("PART.json")
       ->required();
   add_path(c, "--metrics", a.metrics, "FILE.json", "write the merged result (JSON) too");
+  add_path(c, "--out", a.out, "FILE.json|FILE.csv", "sweep parts: write the merged sweep");
   c->add_flag("--table", a.table, "a readable table instead of JSON");
 
   c = app.add_subcommand("gain", "print the steady-state gains (closed form and DARE)");
@@ -127,20 +165,16 @@ void declare(Cli& cli) {
       ->check(CLI::Range(2, 100000))
       ->capture_default_str();
 
-  c = app.add_subcommand("tune", "search the parameters that minimise an objective");
+  c = app.add_subcommand("tune", "search the parameters that best meet an objective");
   add_target(c, a);
-  add_data(c, a);
-  add_sets(c, a);
-  c->add_option("--params", a.params, "the parameters to search, comma-separated")
-      ->type_name("KEY[,KEY...]")
-      ->delimiter(',')
+  c->add_option("--data", a.data_all,
+                "a dataset (CSV); repeat it or give a glob for a tuning set; default: the "
+                "preset's, else simulated")
+      ->type_name("FILE.csv")
       ->allow_extra_args(false)
-      ->take_all()
-      ->required();
-  c->add_option("--objective", a.objective,
-                "rmse (needs truth), nll, nis (NIS mean / dof towards 1) or any metric key")
-      ->type_name("NAME")
-      ->capture_default_str();
+      ->take_all();
+  add_sets(c, a);
+  add_tune_options(c, a);
   add_path(c, "--out", a.out, "FILE.json", "write the tuned preset");
 
   c = app.add_subcommand("sweep", "run every point of a grid and report the best by a metric");
@@ -157,17 +191,20 @@ void declare(Cli& cli) {
   c->add_option("--metric", a.metric, "the metric to compare; best by its direction")
       ->type_name("NAME")
       ->required();
-  add_path(c, "--out", a.out, "FILE.csv", "write every grid point and its metric");
+  add_path(c, "--out", a.out, "FILE.csv|FILE.json",
+           "write every grid point and its metric (.json: a document kfw-cli merge reads)");
   add_path(c, "--seeds", a.seeds, "SET",
            "score each point by the metric's mean over these simulator seeds");
   c->add_option("--max-points", a.max_points,
-                "refuse a grid larger than this (default 1000000): a typo in n is caught "
-                "before hours of work")
+                "refuse a grid (or a shard) larger than this (default 1000000): a typo in n is "
+                "caught before hours of work")
       ->type_name("N")
       ->check(CLI::PositiveNumber);
   c->footer(
       "A grid is lo:hi:n, with :log or :lin for the spacing (kfw-cli help grammar);\n"
       "without either, log-scale parameters are spaced in log10.");
+  add_path(c, "--shard", a.shard, "i/N",
+           "run only shard i of N (grid points k with k mod N = i-1)");
 
   c = app.add_subcommand("params", "print the parameter table: key, value, range, unit, label");
   add_target(c, a);

@@ -12,7 +12,6 @@
 #include "core/monte_carlo.h"
 #include "core/output.h"
 #include "core/suggest.h"
-#include "core/tuning.h"
 #include "core/workspace.h"
 
 namespace kfw {
@@ -20,10 +19,6 @@ namespace kfw {
 namespace {
 
 using Json = nlohmann::ordered_json;
-
-bool contains(const std::vector<std::string>& v, const std::string& s) {
-  return std::find(v.begin(), v.end(), s) != v.end();
-}
 
 // Scenario names and preset names, for "did you mean".
 std::vector<std::string> target_names() {
@@ -35,6 +30,13 @@ std::vector<std::string> target_names() {
   return names;
 }
 
+void print_warnings(const RunResult& r, std::ostream& err) {
+  for (const auto& w : r.warnings)
+    err << "kfw-cli: warning: " << one_line(w) << "\n";
+}
+
+}  // namespace
+
 // The files a command on this workspace reads: an output may not be one of them.
 OutputSet outputs_for(const Workspace& ws) {
   OutputSet o;
@@ -42,36 +44,6 @@ OutputSet outputs_for(const Workspace& ws) {
   if (ws.data_path) o.add_input(*ws.data_path);
   return o;
 }
-
-std::vector<std::string> param_keys(const ParamTable& t) {
-  std::vector<std::string> keys;
-  for (const auto& s : t.specs())
-    keys.push_back(s.key);
-  return keys;
-}
-
-// The metrics JSON of a result (flat, "undefined" block, never null) as a JSON value.
-Json metrics_json(const Metrics& m, const UndefinedMetrics& undefined) {
-  return Json::parse(metrics_to_json(m, undefined));
-}
-
-// Warns when a truth-free tuning rests on innovations that are not white (coloured sensor
-// errors make NLL/NIS pick a tuning that trusts that sensor far too much).
-void warn_if_not_white(const Metrics& m, const std::string& objective, std::ostream& err) {
-  auto it = m.find("whiteness_p");
-  if (objective == "rmse" || it == m.end() || !std::isfinite(it->second)) return;
-  if (it->second < 0.01) {
-    err << "kfw-cli: warning: innovations are not white (Ljung-Box p = " << it->second
-        << " < 0.01): a tuning by '" << objective << "' without truth is not trustworthy here\n";
-  }
-}
-
-void print_warnings(const RunResult& r, std::ostream& err) {
-  for (const auto& w : r.warnings)
-    err << "kfw-cli: warning: " << one_line(w) << "\n";
-}
-
-}  // namespace
 
 // A scenario name or a preset (path or name in presets/) both open a workspace.
 Expected<Workspace> open_any(const std::string& name, const std::optional<std::string>& data,
@@ -205,193 +177,6 @@ int cmd_gain(const CliArgs& a, std::ostream& out, std::ostream& err) {
   auto g = ws->scenario->gain(ws->values, data ? &*data : nullptr);
   if (!g) return fail(err, g.err());
   out << metrics_to_json(*g, {}) << "\n";
-  return kExitOk;
-}
-
-int cmd_tune(const CliArgs& a, std::ostream& out, std::ostream& err) {
-  auto ws = open_any(a.target, a.data, a.sets);
-  if (!ws) return fail(err, ws.err());
-  const ParamTable& table = ws->scenario->params();
-  std::vector<SearchParam> params;
-  for (const auto& key : a.params) {
-    const ParamSpec* spec = table.find(key);
-    if (!spec) {
-      return fail(err, Error{"--params: " + unknown_message("parameter", key, param_keys(table))});
-    }
-    SearchParam p{key, spec->min, spec->max, spec->scale == Scale::kLog};
-    if (auto r = ws->preset.ranges.find(key); r != ws->preset.ranges.end()) {
-      p.lo = r->second.first;
-      p.hi = r->second.second;
-    }
-    params.push_back(p);
-  }
-  OutputSet outs = outputs_for(*ws);
-  if (a.out) {
-    if (auto st = outs.add(*a.out, "--out"); !st) return fail(err, st.err());
-  }
-  auto d = load_dataset(*ws);
-  if (!d) return fail(err, d.err());
-  // The objective must name a metric of this scenario and exist on this dataset (rmse: truth).
-  auto probe = ws->scenario->run(*d, ws->values);
-  if (!probe) return fail(err, probe.err());
-  const std::string& name = a.objective;
-  std::vector<std::string> names = {"rmse", "nll", "nis"};
-  const auto keys = metric_keys(*ws->scenario, probe->get());
-  names.insert(names.end(), keys.begin(), keys.end());
-  if (!contains(names, name)) {
-    return fail(err, Error{"--objective: " + unknown_message("objective", name, names)});
-  }
-  auto objective = objective_by_name(name);
-  if (!objective) return fail(err, objective.err());
-  const double start_value = (*objective)((*probe)->metrics);
-  if (!std::isfinite(start_value)) {
-    std::string why = name == "rmse" ? " (no truth column?)" : "";
-    const std::string metric = name == "nis" ? "nis_mean" : name;
-    if (auto u = (*probe)->undefined.find(metric); u != (*probe)->undefined.end()) {
-      why = " (" + u->second + ")";
-    }
-    return fail(err, Error{"--objective: " + quote_token(name) +
-                           " is not available on this dataset" + why});
-  }
-  auto r = tune(*ws->scenario, *d, ws->values, params, *objective);
-  if (!r) return fail(err, r.err());
-  Json j;
-  j["objective"] = name;
-  j["value"] = r->objective;
-  j["evaluations"] = r->evaluations;
-  j["start_value"] = start_value;
-  for (const auto& p : params)
-    j["params"][p.key] = r->best.at(p.key);
-  // The best run again, for its undefined metrics and their reasons.
-  auto best = ws->scenario->run(*d, r->best);
-  j["metrics"] =
-      best ? metrics_json((*best)->metrics, (*best)->undefined) : metrics_json(r->metrics, {});
-  warn_if_not_white(r->metrics, name, err);
-  if (a.out) {
-    Preset p = ws->preset;
-    p.values = r->best;
-    if (ws->data_path) p.data_path = std::filesystem::absolute(*ws->data_path).string();
-    if (auto st = outs.stage(*a.out, preset_to_json(p)); !st) return fail(err, st.err());
-  }
-  if (auto st = outs.commit(); !st) return fail(err, st.err());
-  out << j.dump(2) << "\n";
-  return kExitOk;
-}
-
-int cmd_sweep(const CliArgs& a, std::ostream& out, std::ostream& err) {
-  auto ws = open_any(a.target, a.data, a.sets);
-  if (!ws) return fail(err, ws.err());
-  std::optional<std::vector<long long>> seeds;
-  if (a.seeds) {
-    auto set = seeds_for(a, *ws);
-    if (!set) return fail(err, set.err());
-    seeds = std::move(*set);
-  }
-  std::vector<SweepAxis> axes;
-  for (const auto& t : a.axes) {
-    auto ax = parse_sweep_axis(ws->scenario->params(), t);
-    if (!ax) return fail(err, ax.err());
-    axes.push_back(*ax);
-  }
-  // Refused at once, before any run: the product of the axes' sizes, without overflow.
-  std::size_t points = 1;
-  for (const auto& ax : axes) {
-    const auto n = static_cast<std::size_t>(ax.n);
-    if (points > a.max_points / std::max<std::size_t>(n, 1)) {
-      return fail(err, Error{"--param: the grid has more than " + std::to_string(a.max_points) +
-                             " points; raise --max-points to run it"});
-    }
-    points *= n;
-  }
-  OutputSet outs = outputs_for(*ws);
-  if (a.out) {
-    if (auto st = outs.add(*a.out, "--out"); !st) return fail(err, st.err());
-  }
-  auto d = load_dataset(*ws);
-  if (!d) return fail(err, d.err());
-  // One run at the base values tells which metrics this scenario and dataset produce.
-  // (A base run that stops numerically is no reason not to sweep: grid points may run.)
-  auto probe = ws->scenario->run(*d, ws->values);
-  if (!probe && probe.exit_code() != kExitFailed) return fail(err, probe.err());
-  const RunResult* base = probe ? probe->get() : nullptr;
-  const std::string& metric = a.metric;
-  const auto keys = metric_keys(*ws->scenario, base);
-  if (!contains(keys, metric)) {
-    return fail(err, Error{"--metric: " + unknown_message("metric", metric, keys)});
-  }
-  if (base) {
-    if (auto u = base->undefined.find(metric); u != base->undefined.end()) {
-      return fail(err, Error{"--metric: " + quote_token(metric) +
-                             " is undefined on this dataset (" + u->second + ")"});
-    }
-  }
-  const MetricSpec spec = describe_metric(*ws->scenario, metric, base);
-  // With --seeds each point is scored by the metric's mean over the seeds.
-  auto r = seeds ? sweep_over_seeds(*ws->scenario, ws->values, axes, *seeds)
-                 : sweep(*ws->scenario, *d, ws->values, axes, 2);
-  if (!r) return fail(err, r.err());
-  const std::size_t none = r->points.size();
-  std::size_t best = none;
-  auto value_at = [&](std::size_t i) {
-    auto it = r->metrics[i].find(metric);
-    return it == r->metrics[i].end() ? std::nan("") : it->second;
-  };
-  std::size_t defined = 0;
-  for (std::size_t i = 0; i < r->points.size(); ++i) {
-    const double v = value_at(i);
-    if (!std::isfinite(v)) continue;
-    ++defined;
-    if (best == none || better(spec, v, value_at(best))) best = i;
-  }
-  // Runs that stopped are listed with their point; the sweep fails only when none ran.
-  Json stopped = Json::array();
-  std::string first_error;
-  for (std::size_t i = 0; i < r->points.size(); ++i) {
-    if (r->errors[i].empty()) continue;
-    if (first_error.empty()) first_error = r->errors[i];
-    Json at;
-    for (std::size_t k = 0; k < axes.size(); ++k)
-      at[axes[k].key] = r->points[i][k];
-    stopped.push_back({{"at", at}, {"error", r->errors[i]}});
-  }
-  if (r->stopped() == r->points.size()) {
-    return fail(err, failure("sweep: every run stopped (first: " + first_error + ")"));
-  }
-  if (best == none) {
-    return fail(err, failure("sweep: " + quote_token(metric) + " has no value at any grid point"));
-  }
-  if (!stopped.empty()) {
-    err << "kfw-cli: warning: " << stopped.size() << " of " << r->points.size()
-        << " runs stopped (listed under \"stopped\"; first: " << first_error << ")\n";
-  }
-  if (a.out) {
-    Dataset table;
-    table.source = *a.out;
-    for (const auto& ax : axes)
-      table.add(ax.key, r->points.size());
-    table.add(metric, r->points.size());
-    for (std::size_t i = 0; i < r->points.size(); ++i) {
-      for (std::size_t k = 0; k < axes.size(); ++k)
-        table.columns[k][i] = r->points[i][k];
-      table.columns[axes.size()][i] = value_at(i);  // NaN: an empty cell
-    }
-    std::ostringstream csv;
-    write_csv(csv, table);
-    if (auto st = outs.stage(*a.out, csv.str()); !st) return fail(err, st.err());
-  }
-  if (auto st = outs.commit(); !st) return fail(err, st.err());
-  Json j;
-  j["metric"] = metric;
-  j["direction"] = direction_name(spec.direction);
-  if (spec.direction == Direction::kTarget) j["target"] = spec.target;
-  j["points"] = r->points.size();
-  j["points_defined"] = defined;
-  if (seeds) j["seeds"] = seeds->size();
-  j["best"] = value_at(best);
-  for (std::size_t k = 0; k < axes.size(); ++k)
-    j["best_at"][axes[k].key] = r->points[best][k];
-  j["stopped"] = stopped;
-  out << j.dump(2) << "\n";
   return kExitOk;
 }
 

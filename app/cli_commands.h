@@ -3,12 +3,14 @@
 #pragma once
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
 
 #include "core/expected.h"
+#include "core/output.h"
 #include "core/workspace.h"
 
 namespace kfw {
@@ -23,13 +25,19 @@ struct CliArgs {
   std::vector<std::string> sets;    // --set key=value
   std::vector<std::string> params;  // tune --params key,key
   std::vector<std::string> axes;    // sweep --param key=GRID
-  std::string objective = "rmse";
+  std::string objective;            // tune: empty = the preset's default objective
   std::string metric;
+  // tune (app/cli_tune.cpp)
+  std::vector<std::string> data_all;  // every --data in order (tune: a tuning set; globs)
+  std::string method = "bobyqa", aggregate = "mean";
+  std::vector<std::string> lo, hi;  // --lo KEY=V, --hi KEY=V
+  int budget = 400;
+  double tol = 1e-6;
   bool markdown = false;                       // metrics --markdown
   std::size_t max_points = kDefaultMaxPoints;  // sweep --max-points
   std::optional<std::string> curve;            // gain --curve KEY
   std::size_t curve_points = 100;              // gain --points N
-  std::optional<std::string> seeds, shard;     // run --seeds SET [--shard i/N]
+  std::optional<std::string> seeds, shard;     // run/sweep --seeds SET; run/sweep --shard i/N
   std::optional<std::string> out_dir;          // run --seeds --out-dir DIR
   bool table = false;                          // run --seeds, merge: a readable table
   std::vector<std::string> parts;              // merge PART...
@@ -55,6 +63,11 @@ int cmd_scenario(const std::string& cmd, CliArgs a, std::ostream& out, std::ostr
 // A scenario name (its default preset) or a preset (a path or a name in presets/).
 Expected<Workspace> open_any(const std::string& name, const std::optional<std::string>& data,
                              const std::vector<std::string>& sets);
+// The files a command on this workspace reads: an output may not be one of them.
+OutputSet outputs_for(const Workspace& ws);
+// merge's handler for sweep parts ("kind": "sweep", app/cli_tune.cpp).
+Status merge_sweep_parts(const std::vector<nlohmann::json>& docs, const CliArgs& a, OutputSet& outs,
+                         std::ostream& out, std::ostream& err);
 
 // The --seeds set, refused with --data or a preset whose data come from a file (--seeds
 // simulates each seed).

@@ -62,7 +62,7 @@ using MergeHandler = Status (*)(const std::vector<nlohmann::json>&, const CliArg
                                 std::ostream&, std::ostream&);
 const std::map<std::string, MergeHandler>& merge_handlers() {
   static const std::map<std::string, MergeHandler> handlers = {
-      {kMonteCarloKind, &merge_montecarlo},
+      {kMonteCarloKind, &merge_montecarlo}, {"sweep", &merge_sweep_parts},  // app/cli_tune.cpp
   };
   return handlers;
 }

@@ -7,7 +7,7 @@ packages=(
   libeigen3-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libmuparser-dev libginac-dev libfast-float-dev
-  libboost-math-dev
+  libboost-math-dev libnlopt-dev parallel
   fonts-dejavu-core fontconfig
 )
 missing=()

@@ -70,6 +70,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   left_->addWidget(presets_);
   connect(presets_, &QComboBox::activated, this, [this](int i) {
     const QString path = presets_->itemData(i).toString();
+    if (!confirmDiscard("Switch preset")) {
+      refreshPresetList();
+      return;
+    }
     if (auto st = loadPreset(path); !st) {
       QMessageBox::warning(this, "Preset", q(st.error()));
       refreshPresetList();
@@ -179,7 +183,7 @@ void MainWindow::buildMenus() {
   file->addAction("Open &preset…", this, [this] {
     const QString f =
         QFileDialog::getOpenFileName(this, "Open preset", q(preset_dir()), "Presets (*.json)");
-    if (f.isEmpty()) return;
+    if (f.isEmpty() || !confirmDiscard("Open preset")) return;
     if (auto st = loadPreset(f); !st) QMessageBox::warning(this, "Open preset", q(st.error()));
   });
   file->addAction("&Open CSV…", QKeySequence::Open, this, [this] {
@@ -198,7 +202,7 @@ void MainWindow::buildMenus() {
   file->addAction("Open s&ession…", this, [this] {
     const QString f =
         QFileDialog::getOpenFileName(this, "Open session", QString(), "Sessions (*.json)");
-    if (f.isEmpty()) return;
+    if (f.isEmpty() || !confirmDiscard("Open session")) return;
     if (auto st = loadSession(f); !st) QMessageBox::warning(this, "Open session", q(st.error()));
   });
   file->addAction("Save session &as…", this, [this] {
@@ -404,23 +408,6 @@ void MainWindow::applyValues(const ParamValues& values) {
   panel_->setValues(doc_->values());
   updateUndoActions();
   requestRun();
-}
-
-TuneDialog* MainWindow::openTuneDialog() {
-  if (!scenario_ || !waitForRun() || !runner_->dataset()) return nullptr;
-  auto* d = new TuneDialog(scenario_, runner_->dataset(), values(), this);
-  d->setAttribute(Qt::WA_DeleteOnClose);
-  connect(d, &TuneDialog::tuned, this, &MainWindow::applyValues);
-  d->show();
-  return d;
-}
-
-SweepDialog* MainWindow::openSweepDialog() {
-  if (!scenario_ || !waitForRun() || !runner_->dataset() || !result_) return nullptr;
-  auto* d = new SweepDialog(scenario_, runner_->dataset(), values(), result_->metrics, this);
-  d->setAttribute(Qt::WA_DeleteOnClose);
-  d->show();
-  return d;
 }
 
 const ParamValues& MainWindow::values() const {

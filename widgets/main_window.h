@@ -8,6 +8,7 @@
 #include <QMainWindow>
 #include <QString>
 #include <QStringList>
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -70,9 +71,18 @@ class MainWindow : public QMainWindow {
   void setInteractive(bool on) { interactive_ = on; }
   // Sets many values at once (a tuning result) and runs once.
   void applyValues(const ParamValues& values);
-  // Opens the auto-tune / sweep dialogs on the current dataset and values (non-modal).
+  // Opens the auto-tune / sweep dialogs on the current dataset and values (non-modal);
+  // main_window_tune.cpp. Their results go through the document's undo stack.
   class TuneDialog* openTuneDialog();
   class SweepDialog* openSweepDialog();
+  // Sets values as one named undo step (a tuning, its revert, a sweep point) and runs once.
+  void applyValuesAs(const ParamValues& values, const QString& label);
+  // Asks before throwing away unsaved changes or pinned snapshots (switching preset, opening a
+  // session, quitting); true: go ahead. Tests answer through setConfirmHandler.
+  bool confirmDiscard(const QString& action);
+  void setConfirmHandler(std::function<bool(const QString&)> handler) {
+    confirm_ = std::move(handler);
+  }
 
   // Waits (processing events) until the latest request has run and its plots are drawn.
   bool waitForRun(int timeout_ms = 20000);
@@ -99,6 +109,9 @@ class MainWindow : public QMainWindow {
  signals:
   void resultApplied();
   void errorShown(const QString& message);
+
+ protected:
+  void closeEvent(QCloseEvent* event) override;
 
  private:
   void buildMenus();
@@ -157,6 +170,7 @@ class MainWindow : public QMainWindow {
   QElapsedTimer since_request_;
   double last_latency_ms_ = 0.0;
   bool applied_latest_ = true;
+  std::function<bool(const QString&)> confirm_;  // empty: a message box asks
 };
 
 }  // namespace kfw

@@ -8,12 +8,17 @@
 #include <QFileDialog>
 #include <QGridLayout>
 #include <QLabel>
+#include <QMouseEvent>
+#include <QProgressBar>
 #include <QPushButton>
 #include <QSpinBox>
+#include <QTimer>
 #include <QVBoxLayout>
 #include <QtConcurrent>
 #include <cmath>
+#include <sstream>
 
+#include "core/output.h"
 #include "plot_export.h"
 #include "plot_kit.h"
 
@@ -69,15 +74,26 @@ SweepDialog::SweepDialog(std::shared_ptr<const Scenario> scenario,
   row->addWidget(new QLabel("metric"));
   metric_ = new QComboBox(this);
   metric_->setObjectName("sweep.metric");
-  for (const auto& [k, v] : metrics)
-    metric_->addItem(QString::fromStdString(k));
+  for (const auto& [k, v] : metrics) {
+    // Informational metrics (a gain, a count) have no better value to mark.
+    if (describe_metric(*scenario_, k).direction != Direction::kNone)
+      metric_->addItem(QString::fromStdString(k));
+  }
   metric_->setCurrentText("rmse");
   row->addWidget(metric_, 1);
   run_ = new QPushButton("Run", this);
+  cancel_ = new QPushButton("Cancel", this);
+  cancel_->setEnabled(false);
   auto* save = new QPushButton("Save PNG…", this);
+  auto* csv = new QPushButton("Export CSV…", this);
   row->addWidget(run_);
+  row->addWidget(cancel_);
   row->addWidget(save);
+  row->addWidget(csv);
   lay->addLayout(row);
+  progress_ = new QProgressBar(this);
+  progress_->setObjectName("sweep.progress");
+  lay->addWidget(progress_);
   status_ = new QLabel(this);
   status_->setObjectName("sweep.status");
   lay->addWidget(status_);
@@ -86,6 +102,37 @@ SweepDialog::SweepDialog(std::shared_ptr<const Scenario> scenario,
   axes_[0].key->setCurrentIndex(std::max(0, axes_[0].key->findData("gamma")));
   emit axes_[0].key->currentIndexChanged(axes_[0].key->currentIndex());
   connect(run_, &QPushButton::clicked, this, &SweepDialog::start);
+  connect(cancel_, &QPushButton::clicked, this, &SweepDialog::cancel);
+  connect(csv, &QPushButton::clicked, this, [this] {
+    if (!last_) return;
+    const QString f =
+        QFileDialog::getSaveFileName(this, "Export sweep", "sweep.csv", "CSV (*.csv)");
+    if (f.isEmpty()) return;
+    if (auto st = exportCsv(f); !st) status_->setText("⚠ " + QString::fromStdString(st.error()));
+  });
+  // A click picks the nearest grid point (1-D: by x; 2-D: the cell under the cursor).
+  connect(plot_, &QCustomPlot::mousePress, this, [this](QMouseEvent* ev) {
+    if (!last_ || last_->points.empty()) return;
+    const SweepResult& r = *last_;
+    auto coord = [](const SweepAxis& a, double v) { return a.log ? std::log10(v) : v; };
+    std::size_t pick = 0;
+    double best_d = INFINITY;
+    for (std::size_t i = 0; i < r.points.size(); ++i) {
+      double d = 0;
+      if (r.axes.size() == 1) {
+        d = std::abs(plot_->xAxis->coordToPixel(r.points[i][0]) - ev->pos().x());
+      } else {
+        d = std::hypot(
+            plot_->xAxis->coordToPixel(coord(r.axes[0], r.points[i][0])) - ev->pos().x(),
+            plot_->yAxis->coordToPixel(coord(r.axes[1], r.points[i][1])) - ev->pos().y());
+      }
+      if (d < best_d) {
+        best_d = d;
+        pick = i;
+      }
+    }
+    choosePoint(pick);
+  });
   connect(save, &QPushButton::clicked, this, [this] {
     const QString f = QFileDialog::getSaveFileName(this, "Save sweep", "sweep.png",
                                                    "PNG (*.png);;PDF (*.pdf);;SVG (*.svg)");
@@ -93,10 +140,16 @@ SweepDialog::SweepDialog(std::shared_ptr<const Scenario> scenario,
   });
   connect(&watcher_, &QFutureWatcher<Expected<SweepResult>>::finished, this, [this] {
     run_->setEnabled(true);
+    cancel_->setEnabled(false);
     const auto r = watcher_.result();
     if (!r) {
       status_->setText("⚠ " + QString::fromStdString(r.error()));
+    } else if (stop_->load()) {
+      status_->setText(
+          QString("cancelled after %1 of %2 points").arg(done_->load()).arg(r->points.size()));
     } else {
+      progress_->setValue(progress_->maximum());
+      last_ = *r;
       showResult(*r, running_metric_);
     }
     emit done();
@@ -118,6 +171,48 @@ void SweepDialog::setAxis(int which, const QString& key, double lo, double hi, i
 
 void SweepDialog::setMetric(const QString& name) {
   metric_->setCurrentText(name);
+}
+
+void SweepDialog::cancel() {
+  if (stop_) stop_->store(true);
+}
+
+int SweepDialog::progressValue() const {
+  return progress_->value();
+}
+
+void SweepDialog::choosePoint(std::size_t index) {
+  if (!last_ || index >= last_->points.size()) return;
+  ParamValues v = base_;
+  QStringList parts;
+  for (std::size_t a = 0; a < last_->axes.size(); ++a) {
+    v[last_->axes[a].key] = last_->points[index][a];
+    parts << QString("%1 = %2")
+                 .arg(QString::fromStdString(last_->axes[a].key))
+                 .arg(last_->points[index][a], 0, 'g', 4);
+  }
+  status_->setText("applied " + parts.join(", "));
+  emit pointChosen(v);
+}
+
+Status SweepDialog::exportCsv(const QString& path) const {
+  if (!last_) return Error{"no sweep to export"};
+  const SweepResult& r = *last_;
+  const std::string m = running_metric_.toStdString();
+  Dataset table;
+  table.source = path.toStdString();
+  for (const auto& ax : r.axes)
+    table.add(ax.key, r.points.size());
+  table.add(m, r.points.size());
+  for (std::size_t i = 0; i < r.points.size(); ++i) {
+    for (std::size_t k = 0; k < r.axes.size(); ++k)
+      table.columns[k][i] = r.points[i][k];
+    auto it = r.metrics[i].find(m);
+    table.columns[r.axes.size()][i] = it == r.metrics[i].end() ? std::nan("") : it->second;
+  }
+  std::ostringstream csv;
+  write_csv(csv, table);
+  return write_file_atomic(path.toStdString(), csv.str());
 }
 
 QString SweepDialog::message() const {
@@ -143,11 +238,29 @@ void SweepDialog::start() {
   }
   running_metric_ = metric_->currentText();
   stop_ = std::make_shared<std::atomic<bool>>(false);
+  done_ = std::make_shared<std::atomic<std::size_t>>(0);
   run_->setEnabled(false);
+  cancel_->setEnabled(true);
   status_->setText("running…");
-  watcher_.setFuture(QtConcurrent::run([s = scenario_, d = data_, b = base_, axes, stop = stop_] {
-    return sweep(*s, *d, b, axes, 2, stop.get());
-  }));
+  std::size_t total = 1;
+  for (const auto& a : axes)
+    total *= static_cast<std::size_t>(a.n);
+  progress_->setRange(0, static_cast<int>(total));
+  progress_->setValue(0);
+  auto timer = new QTimer(this);
+  connect(timer, &QTimer::timeout, this, [this, timer, done = done_] {
+    if (!running()) {
+      timer->deleteLater();
+      return;
+    }
+    progress_->setValue(static_cast<int>(done->load()));
+  });
+  timer->start(50);
+  watcher_.setFuture(
+      QtConcurrent::run([s = scenario_, d = data_, b = base_, axes, stop = stop_, done = done_] {
+        return sweep(*s, *d, b, axes, 0, stop.get(), Shard{},
+                     [done](std::size_t n) { done->store(std::max(done->load(), n)); });
+      }));
 }
 
 void SweepDialog::showResult(const SweepResult& r, const QString& metric) {
@@ -169,11 +282,15 @@ void SweepDialog::showResult(const SweepResult& r, const QString& metric) {
                                                            : r.axes[0].key)));
   }
   plot_->xAxis->setLabel(QString::fromStdString(r.axes[0].key));
+  spec_ = describe_metric(*scenario_, m);
   std::size_t best = 0;
   for (std::size_t i = 0; i < r.points.size(); ++i) {
-    if (std::isfinite(value(i)) && (!std::isfinite(value(best)) || value(i) < value(best)))
-      best = i;
+    if (better(spec_, value(i), value(best))) best = i;
   }
+  best_ = best;
+  const QString sense = spec_.direction == Direction::kTarget
+                            ? QString("closest to %1").arg(spec_.target, 0, 'g', 4)
+                            : QString(spec_.direction == Direction::kHigher ? "highest" : "lowest");
   if (r.axes.size() == 1) {
     plot_->yAxis->setLabel(metric);
     std::vector<double> x, y;
@@ -184,7 +301,7 @@ void SweepDialog::showResult(const SweepResult& r, const QString& metric) {
     auto* g = plot::addGraph(plot_, metric, plot::color::kEstimate, plot::Style::kLine, 1.8);
     g->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCircle, 5));
     plot::setSeries(g, x, y, plot::kAll);
-    auto* b = plot::addGraph(plot_, "minimum", plot::color::kSecond);
+    auto* b = plot::addGraph(plot_, "best (" + sense + ")", plot::color::kSecond);
     b->setLineStyle(QCPGraph::lsNone);
     b->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssDisc, 10));
     b->addData(r.points[best][0], value(best));
@@ -224,12 +341,18 @@ void SweepDialog::showResult(const SweepResult& r, const QString& metric) {
     map->setColorScale(scale);
     map->setGradient(QCPColorGradient::gpThermal);
     map->rescaleDataRange(true);
+    // The best cell, marked.
+    auto* b = plot::addGraph(plot_, "best (" + sense + ")", plot::color::kSecond);
+    b->setLineStyle(QCPGraph::lsNone);
+    b->setScatterStyle(
+        QCPScatterStyle(QCPScatterStyle::ssCrossCircle, QPen(Qt::white, 2), Qt::NoBrush, 14));
+    b->addData(coord(r.axes[0], r.points[best][0]), coord(r.axes[1], r.points[best][1]));
     plot_->legend->setVisible(false);
     plot_->rescaleAxes();
   }
-  status_->setText(QString("%1 points; minimum %2 = %3 at %4")
+  status_->setText(QString("%1 points; best %2 (%3) = %4 at %5; click a point to apply it")
                        .arg(r.points.size())
-                       .arg(metric)
+                       .arg(metric, sense)
                        .arg(value(best), 0, 'g', 5)
                        .arg([&] {
                          QStringList parts;

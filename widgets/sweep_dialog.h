@@ -1,11 +1,14 @@
-// A metric over one parameter (a curve) or two (a heat map), from the engine's kfw::sweep on both
-// cores — e.g. seed 000 Fig. 8 (RMS error vs γ) or Fig. 7 (√(P11/N_θ) vs m).
+// A metric over one parameter (a curve) or two (a heat map), from the engine's kfw::sweep on every
+// core — e.g. seed 000 Fig. 8 (RMS error vs γ) or Fig. 7 (√(P11/N_θ) vs m). Progress and Cancel;
+// the best point by the metric's declared direction is marked; a click on a point applies it
+// (through the main window's undo stack); the grid exports as CSV.
 #pragma once
 
 #include <QDialog>
 #include <QFutureWatcher>
 #include <atomic>
 #include <memory>
+#include <optional>
 
 #include "core/scenario.h"
 #include "core/tuning.h"
@@ -15,6 +18,7 @@ class QDoubleSpinBox;
 class QSpinBox;
 class QLabel;
 class QPushButton;
+class QProgressBar;
 class QCustomPlot;
 
 namespace kfw {
@@ -33,9 +37,20 @@ class SweepDialog : public QDialog {
   bool running() const { return watcher_.isRunning(); }
   QCustomPlot* plot() const { return plot_; }
   QString message() const;
+  // The last sweep's best point by the metric's direction (npos: none), and a point's values.
+  std::size_t bestIndex() const { return best_; }
+  const SweepResult* result() const { return last_ ? &*last_ : nullptr; }
+  // Emits pointChosen with the base values and the point's axis values.
+  void choosePoint(std::size_t index);
+  // The grid (axes' values and the metric; empty cells where undefined) as CSV, written safely.
+  Status exportCsv(const QString& path) const;
+  void cancel();
+  int progressValue() const;
 
  signals:
   void done();
+  // A point of the grid was clicked: every key's value (the base with the axes' values).
+  void pointChosen(const kfw::ParamValues& values);
 
  private:
   struct AxisUi {
@@ -50,12 +65,17 @@ class SweepDialog : public QDialog {
   ParamValues base_;
   AxisUi axes_[2];
   QComboBox* metric_ = nullptr;
-  QPushButton* run_ = nullptr;
+  QPushButton *run_ = nullptr, *cancel_ = nullptr;
+  QProgressBar* progress_ = nullptr;
   QLabel* status_ = nullptr;
   QCustomPlot* plot_ = nullptr;
   std::shared_ptr<std::atomic<bool>> stop_;
   QFutureWatcher<Expected<SweepResult>> watcher_;
   QString running_metric_;
+  std::shared_ptr<std::atomic<std::size_t>> done_;
+  std::optional<SweepResult> last_;
+  MetricSpec spec_;
+  std::size_t best_ = static_cast<std::size_t>(-1);
 };
 
 }  // namespace kfw

@@ -156,7 +156,7 @@ TEST_F(TuneCli, ShardedSweepThroughParallelMergesExactly) {
   EXPECT_EQ(cli("merge " + path("part_1.json") + " " + path("part_2.json")).code, 2);
   EXPECT_EQ(cli("merge " + path("part_1.json") + " " + path("part_1.json")).code, 2);
   std::ofstream(path("odd.json")) << R"({"kind": "montecarl"})";
-  EXPECT_NE(cli("merge " + path("odd.json")).text.find("unknown kind of part 'montecarl'"),
+  EXPECT_NE(cli("merge " + path("odd.json")).text.find("unknown kind 'montecarl'"),
             std::string::npos);
   // The cap applies per shard: 35 points in 4 shards are at most 9 each.
   EXPECT_EQ(run_command(sweep + " --shard 1/4 --out " + path("p.json") + " --max-points 9").code,

@@ -477,7 +477,7 @@ void MainWindow::clearError() {
 bool MainWindow::waitForRun(int timeout_ms) {
   // A nested event loop that sleeps until the run lands (no busy polling: the worker keeps a core).
   QDeadlineTimer deadline(timeout_ms);
-  while (!applied_latest_ || runner_->busy()) {
+  while (!applied_latest_ || runner_->busy() || (view_ && view_->busy())) {
     if (deadline.hasExpired()) return false;
     QEventLoop loop;
     connect(this, &MainWindow::resultApplied, &loop, &QEventLoop::quit);

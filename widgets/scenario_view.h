@@ -47,6 +47,9 @@ class ScenarioView : public QObject {
   virtual void setResult(std::shared_ptr<const RunResult> result, const ParamValues& values) = 0;
   // Replay: show steps [0, index]; index >= steps() shows everything. Replot.
   virtual void setCursor(std::size_t index) = 0;
+  // True while the view still computes something in the background (a gain curve); the window's
+  // waitForRun() waits for it, so tests and exports see the finished plots.
+  virtual bool busy() const { return false; }
   // Pinned tunings to draw as faded ghosts beside the live run (optional; empty clears).
   using Snapshots = QList<QPair<QString, std::shared_ptr<const RunResult>>>;
   virtual void setSnapshots(const Snapshots& snapshots) { Q_UNUSED(snapshots); }

@@ -54,7 +54,8 @@ std::string lower(std::string s) {
   return s;
 }
 
-// Words that name a role, by the role's name (strong) and its unit's kind.
+// Words that name a role. A reference word outweighs the role's own name among the words
+// ("ref_angle" is truth, not angle); the exact name outweighs everything.
 struct Synonyms {
   const char* role;
   std::vector<std::string> words;
@@ -65,7 +66,7 @@ const std::vector<Synonyms>& synonyms() {
       {"t", {"t", "time", "timestamp", "zeit", "ts", "datetime", "date", "sec", "seconds"}, 3},
       {"gyro", {"gyro", "gyr", "omega", "rate", "drehrate", "angular", "gx", "gy", "gz", "w"}, 3},
       {"angle", {"angle", "roll", "pitch", "yaw", "phi", "theta", "winkel", "tilt", "incl"}, 3},
-      {"truth", {"truth", "true", "ref", "reference", "gt", "groundtruth", "soll"}, 4},
+      {"truth", {"truth", "true", "ref", "reference", "gt", "groundtruth", "soll"}, 6},
   };
   return s;
 }

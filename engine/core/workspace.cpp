@@ -46,6 +46,9 @@ Expected<Dataset> import_dataset(const Scenario& scenario, const Table& table,
   // A required role that reads from no column: name it, and say what the guesser would map.
   for (const auto& c : roles_with_time(columns)) {
     if (!c.required || role_column(table, mapping, c.name) >= 0) continue;
+    if (auto m = mapping.find(c.name); m != mapping.end() && !m->second.column.empty()) {
+      continue;  // mapped to a column the file lacks: import_table names it
+    }
     std::string msg = table.source + ": missing required column '" + c.name + "'";
     if (!c.meaning.empty()) msg += " (" + c.meaning + (c.unit.empty() ? "" : ", " + c.unit) + ")";
     msg += "; columns present:";

@@ -113,7 +113,8 @@ TEST(Import, ConvertsScalesOffsetsAndFlipsInThatOrder) {
   auto d = import_table(t, m, kHeli);
   ASSERT_TRUE(d.ok()) << d.error();
   EXPECT_EQ(d->names.front(), "t");
-  EXPECT_EQ(d->col("t"), (std::vector<double>{0.0, 0.02}));
+  EXPECT_EQ(d->col("t")[0], 0.0);
+  EXPECT_DOUBLE_EQ(d->col("t")[1], 0.02);
   const double k = 180.0 / 3.14159265358979323846;
   EXPECT_DOUBLE_EQ(d->col("gyro")[0], -(2.0 * (1.0 * k) + 1.0));
   EXPECT_DOUBLE_EQ(d->col("gyro")[1], -(2.0 * (2.0 * k) + 1.0));

@@ -168,14 +168,14 @@ void MainWindow::setImportHook(std::function<bool(ImportDialog&)> hook) {
 }
 
 void MainWindow::buildDataMenu() {
-  QMenu* data = menuBar()->addMenu("&Data");
+  QMenu* menu = menuBar()->addMenu("&Data");
   auto report = [this](const char* title, const Status& st) {
     if (!st) QMessageBox::warning(this, title, q(st.error()));
   };
-  data->addAction("&Mapping…", this, [this, report] { report("Mapping", editMapping()); });
-  data->addAction("&Forget remembered mapping", this,
+  menu->addAction("&Mapping…", this, [this, report] { report("Mapping", editMapping()); });
+  menu->addAction("&Forget remembered mapping", this,
                   [this, report] { report("Forget mapping", forgetMapping()); });
-  data->addAction("&Save as kfw CSV…", this, [this, report] {
+  menu->addAction("&Save as kfw CSV…", this, [this, report] {
     const QString f =
         QFileDialog::getSaveFileName(this, "Save as kfw CSV", QString(), "CSV (*.csv)");
     if (!f.isEmpty()) report("Save as kfw CSV", saveConvertedCsv(f));

@@ -301,7 +301,7 @@ Expected<Dataset> import_table(const Table& t, const Mapping& m,
       if (text.empty()) break;  // reported below as an empty time
       auto ns = parse_iso_time_ns(text);
       if (!ns) {
-        if (t.line_of(r) > cell_line) break;
+        if (t.line_of(r) >= cell_line) break;  // a cell that is not a number comes first
         return Error{at(t.source, t.line_of(r), t.cell_column(r, tb.col)) + ": column '" + tname +
                      "': " + ns.error()};
       }
@@ -319,7 +319,7 @@ Expected<Dataset> import_table(const Table& t, const Mapping& m,
       x = -x;
   }
   for (std::size_t r = 0; r < t.rows(); ++r) {
-    if (t.line_of(r) > cell_line) break;
+    if (t.line_of(r) >= cell_line) break;  // a cell that is not a number comes first
     const double x = time[r];
     const std::size_t line = t.line_of(r);
     if (std::isnan(x)) {

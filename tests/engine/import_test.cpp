@@ -148,6 +148,8 @@ TEST(Import, TimeErrorsNameTheLine) {
   EXPECT_EQ(err("t,gyro,angle\n0,1,2\n2,1,2\n1,1,2\n"),
             "f.csv:4:1: time is not increasing (t = 1 after 2)");
   EXPECT_EQ(err("t,gyro,angle\n0,1,2\n1,x,2\n"), "f.csv:3:3: column 'gyro': 'x' is not a number");
+  EXPECT_EQ(err("t,gyro,angle\n0,1,2\nnoon,1,2\n"),
+            "f.csv:3:1: column 't': 'noon' is not a number");
   EXPECT_EQ(err("when,gyro,angle\n2024-05-01T00:00:00,1,2\nlater,1,2\n", {{"t", {"when", "iso"}}}),
             "f.csv:3:1: column 'when': 'later' is not an ISO-8601 date-time");
   EXPECT_EQ(err("a,b,gyro\n0,1,2\n", {{"t", {"a"}}, {"angle", {"a"}}}),

@@ -51,11 +51,38 @@ void add_target(CLI::App* c, CliArgs& a, const std::string& help = kPresetHelp) 
   c->add_option("PRESET", a.target, help)->type_name("")->required();
 }
 
+// How a CSV's columns become roles (README "Importing logs"); over the preset's mapping.
+void add_import(CLI::App* c, ImportArgs& m) {
+  auto repeat = [c](const char* name, std::vector<std::string>& dst, const char* type,
+                    const char* help) {
+    c->add_option(name, dst, help)->type_name(type)->allow_extra_args(false)->take_all();
+  };
+  repeat("--map", m.map, "ROLE=COLUMN", "read a role from a column (repeatable)");
+  repeat("--unit", m.unit, "ROLE=UNIT",
+         "the unit the role's column is in, converted to the role's (repeatable)");
+  c->add_option_function<std::string>(
+       "--time", [&m](const std::string& v) { m.time = v; },
+       "the time column, in s (default), ms, us, ns or iso (ISO-8601 date-time)")
+      ->type_name("COLUMN[:UNIT]");
+  repeat("--scale", m.scale, "ROLE=X", "multiply the role's values after unit conversion");
+  repeat("--offset", m.offset, "ROLE=X", "add to the role's values after scaling");
+  repeat("--flip", m.flip, "ROLE", "flip the sign of the role's values (repeatable)");
+  c->add_option_function<std::string>(
+       "--sep", [&m](const std::string& v) { m.sep = v; },
+       "the separator: comma, semicolon, tab, whitespace (default: detected)")
+      ->type_name("SEP");
+  c->add_option_function<std::string>(
+       "--mapping", [&m](const std::string& v) { m.mapping_file = v; },
+       "a mapping file (the preset's \"mapping\" block); options above override it")
+      ->type_name("FILE.json");
+}
+
 void add_data(CLI::App* c, CliArgs& a) {
   c->add_option_function<std::string>(
        "--data", [&a](const std::string& v) { a.data = v; },
        "the dataset (CSV); default: the preset's, else simulated")
       ->type_name("FILE.csv");
+  add_import(c, a.import);
 }
 
 void add_sets(CLI::App* c, CliArgs& a) {
@@ -173,6 +200,7 @@ void declare(Cli& cli) {
       ->type_name("FILE.csv")
       ->allow_extra_args(false)
       ->take_all();
+  add_import(c, a.import);  // the same mapping for every log of the tuning set
   add_sets(c, a);
   add_tune_options(c, a);
   add_path(c, "--out", a.out, "FILE.json", "write the tuned preset");
@@ -221,6 +249,17 @@ void declare(Cli& cli) {
   c->add_flag("--markdown", a.markdown, "print a Markdown table (the README's tables)");
 
   app.add_subcommand("list", "list the scenarios and presets");
+
+  c = app.add_subcommand("inspect",
+                         "read a CSV: separator, columns, rows, time span and rate, and the "
+                         "mapping kfw would guess for a preset");
+  c->add_option("FILE", a.target, "the CSV file")->type_name("")->required();
+  c->add_option_function<std::string>(
+       "PRESET", [&a](const std::string& v) { a.inspect_preset = v; },
+       "guess the roles of this preset or scenario")
+      ->type_name("");
+  add_import(c, a.import);
+  c->add_flag("--json", a.json, "print JSON");
 
   for (const auto& [name, offering] : scenario_commands()) {
     if (find_command(app, name)) continue;  // a built-in command wins
@@ -334,6 +373,7 @@ int dispatch(const Cli& cli, std::ostream& out, std::ostream& err) {
   if (cmd == "preset") return cmd_preset(a, out, err);
   if (cmd == "list") return cmd_list(out);
   if (cmd == "merge") return cmd_merge(a, out, err);
+  if (cmd == "inspect") return cmd_inspect(a, out, err);
   return cmd_scenario(cmd, a, out, err);
 }
 

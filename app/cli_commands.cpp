@@ -30,6 +30,11 @@ std::vector<std::string> target_names() {
   return names;
 }
 
+// The workspace with the import options applied (--map, --unit, ...).
+Expected<Workspace> open_any(const CliArgs& a) {
+  return open_workspace_for_cli(a);
+}
+
 void print_warnings(const RunResult& r, std::ostream& err) {
   for (const auto& w : r.warnings)
     err << "kfw-cli: warning: " << one_line(w) << "\n";
@@ -42,6 +47,7 @@ OutputSet outputs_for(const Workspace& ws) {
   OutputSet o;
   o.add_input(ws.preset.path);
   if (ws.data_path) o.add_input(*ws.data_path);
+  if (ws.mapping_path) o.add_input(*ws.mapping_path);
   return o;
 }
 
@@ -72,6 +78,13 @@ Expected<Workspace> open_any(const std::string& name, const std::optional<std::s
   return open_workspace(name, data, sets);
 }
 
+Expected<Workspace> open_workspace_for_cli(const CliArgs& a) {
+  auto ws = open_any(a.target, a.data, a.sets);
+  if (!ws) return ws;
+  if (auto st = apply_import_args(a.import, *ws); !st) return st.err();
+  return ws;
+}
+
 int fail(std::ostream& err, const Error& e) {
   err << "kfw-cli: " << one_line(e.message) << "\n";
   return e.exit_code;
@@ -100,7 +113,7 @@ int cmd_run(const CliArgs& a, std::ostream& out, std::ostream& err) {
     const char* opt = a.shard ? "--shard" : a.out_dir ? "--out-dir" : "--table";
     return fail(err, Error{std::string(opt) + ": needs --seeds"});
   }
-  auto ws = open_any(a.target, a.data, a.sets);
+  auto ws = open_any(a);
   if (!ws) return fail(err, ws.err());
   OutputSet outs = outputs_for(*ws);
   if (a.out) {
@@ -163,7 +176,7 @@ int print_gain_curve(const Scenario& s, const ParamValues& values, const std::st
 }  // namespace
 
 int cmd_gain(const CliArgs& a, std::ostream& out, std::ostream& err) {
-  auto ws = open_any(a.target, a.data, a.sets);
+  auto ws = open_any(a);
   if (!ws) return fail(err, ws.err());
   std::optional<Dataset> data;
   if (ws->data_path) {
@@ -257,7 +270,7 @@ int cmd_scenario(const std::string& cmd, CliArgs a, std::ostream& out, std::ostr
     a.data = first;
     a.target = offering.front();
   }
-  auto ws = open_any(a.target, a.data, a.sets);
+  auto ws = open_any(a);
   if (!ws) return fail(err, ws.err());
   const auto cmds = ws->scenario->commands();
   if (std::find(cmds.begin(), cmds.end(), cmd) == cmds.end()) {

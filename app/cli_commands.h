@@ -18,6 +18,16 @@ namespace kfw {
 // A sweep larger than this needs --max-points (README "Limits").
 inline constexpr std::size_t kDefaultMaxPoints = 1000000;
 
+// How every --data file is read (README "Importing logs"): applied over the preset's mapping.
+struct ImportArgs {
+  std::vector<std::string> map, unit, scale, offset, flip;  // ROLE=COLUMN, ROLE=UNIT, ...; ROLE
+  std::optional<std::string> time, sep, mapping_file;       // COLUMN[:UNIT|:iso], SEP, FILE
+  bool any() const {
+    return !map.empty() || !unit.empty() || !scale.empty() || !offset.empty() || !flip.empty() ||
+           time || sep || mapping_file;
+  }
+};
+
 struct CliArgs {
   std::string target;  // PRESET: a preset file, a name in presets/, a scenario, or FILE.csv
   std::optional<std::string> data, out, metrics;
@@ -41,6 +51,9 @@ struct CliArgs {
   std::optional<std::string> out_dir;          // run --seeds --out-dir DIR
   bool table = false;                          // run --seeds, merge: a readable table
   std::vector<std::string> parts;              // merge PART...
+  ImportArgs import;                           // --map, --unit, --time, ... (every --data)
+  std::optional<std::string> inspect_preset;   // inspect FILE [PRESET]
+  bool json = false;                           // inspect --json
 };
 
 // Each returns the process exit code (expected.h); errors go to `err` as one line.
@@ -72,6 +85,17 @@ Status merge_sweep_parts(const std::vector<nlohmann::json>& docs, const CliArgs&
 // The --seeds set, refused with --data or a preset whose data come from a file (--seeds
 // simulates each seed).
 Expected<std::vector<long long>> seeds_for(const CliArgs& a, const Workspace& ws);
+int cmd_inspect(const CliArgs& a, std::ostream& out, std::ostream& err);
+// A command a scenario offers (Scenario::commands()), e.g. `stats`.
+int cmd_scenario(const std::string& cmd, CliArgs a, std::ostream& out, std::ostream& err);
+
+struct Workspace;
+// The import options over the workspace's (the preset's) mapping: a --mapping file replaces the
+// roles it names, then each option changes one field of one role. Unknown roles and units, bad
+// numbers and a bad mapping file are errors naming the option or the file's key.
+Status apply_import_args(const ImportArgs& imp, Workspace& ws);
+// The workspace of a command: its preset (or scenario), --data, --set and the import options.
+Expected<Workspace> open_workspace_for_cli(const CliArgs& a);
 
 // Writes "kfw-cli: MESSAGE" as one line (long tokens shortened) and returns the exit code.
 int fail(std::ostream& err, const Error& e);

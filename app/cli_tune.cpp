@@ -95,6 +95,7 @@ int cmd_tune(const CliArgs& a, std::ostream& out, std::ostream& err) {
       files->empty() ? std::nullopt : std::optional<std::string>(files->front());
   auto ws = open_any(a.target, first, a.sets);
   if (!ws) return fail(err, ws.err());
+  if (auto st = apply_import_args(a.import, *ws); !st) return fail(err, st.err());
   // The selection: --params, else the preset's tunable keys.
   std::vector<SearchParam> params;
   if (a.params.empty()) {
@@ -154,7 +155,7 @@ int cmd_tune(const CliArgs& a, std::ostream& out, std::ostream& err) {
     names.push_back(ws->data_path ? *ws->data_path : "simulated");
   }
   for (const auto& f : *files) {
-    auto d = load_dataset_file(*ws->scenario, f, ws->mapping);
+    auto d = load_dataset_file(*ws->scenario, f, ws->mapping, ws->separator);
     if (!d) return fail(err, d.err());
     data.push_back(std::move(*d));
     names.push_back(f);
@@ -374,7 +375,7 @@ Status finish_sweep(const Doc& doc, const MetricSpec& spec, const CliArgs& a, Ou
 }  // namespace
 
 int cmd_sweep(const CliArgs& a, std::ostream& out, std::ostream& err) {
-  auto ws = open_any(a.target, a.data, a.sets);
+  auto ws = open_workspace_for_cli(a);
   if (!ws) return fail(err, ws.err());
   std::optional<std::vector<long long>> seeds;
   if (a.seeds) {

@@ -67,7 +67,13 @@ int main(int argc, char** argv) {
   QApplication::setFont(QFont("DejaVu Sans", 9));
 
   kfw::MainWindow w;
-  if (auto st = w.loadPreset(opt->preset, opt->data, opt->sets); !st) {
+  auto loaded = w.loadPreset(opt->preset, opt->data, opt->sets);
+  if (!loaded && opt->data && !headless && w.loadPreset(opt->preset, std::nullopt, opt->sets)) {
+    // --data that the preset's mapping does not read: the import dialog on the file.
+    w.setInteractive(true);
+    loaded = w.openDataset(*opt->data);
+  }
+  if (const auto& st = loaded; !st) {
     std::fprintf(stderr, "kfw: %s\n", kfw::one_line(st.error()).c_str());
     return st.exit_code();
   }

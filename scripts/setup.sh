@@ -6,7 +6,7 @@ packages=(
   qt6-base-dev qt6-svg-dev libqcustomplot-dev
   libeigen3-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libcli11-dev libmuparser-dev libginac-dev libfast-float-dev
+  libcli11-dev libmuparser-dev libginac-dev libfast-float-dev libhowardhinnant-date-dev
   libboost-math-dev libnlopt-dev parallel
   fonts-dejavu-core fontconfig
 )

@@ -27,7 +27,6 @@
 #include <QVBoxLayout>
 #include <cmath>
 
-#include "column_map_dialog.h"
 #include "consistency_panel.h"
 #include "core/statistics.h"
 #include "core/workspace.h"
@@ -155,6 +154,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   consistency_ = new ConsistencyPanel;
   consistency_->setObjectName("consistency");
   tabs->addTab(consistency_, "Consistency");
+  buildDataTab(tabs);  // main_window_data.cpp
   cl->addWidget(tabs, 1);
   transport_ = new TransportBar;
   transport_->setObjectName("transport");
@@ -173,6 +173,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   status_ = new QLabel;
   statusBar()->addWidget(status_, 1);
   buildMenus();
+  buildDataMenu();  // main_window_data.cpp
   refreshPresetList();
 }
 
@@ -380,23 +381,6 @@ void MainWindow::rebuildScenarioUi() {
   }
   plot_area_->setWidget(plot_host_);
   updateDataLabel();
-}
-
-void MainWindow::updateDataLabel() {
-  const bool file = static_cast<bool>(file_data_);
-  if (file) {
-    data_label_->setText(QString("<b>Data:</b> %1 (%2 rows)")
-                             .arg(QFileInfo(q(file_data_->source)).fileName())
-                             .arg(file_data_->rows()));
-    data_label_->setToolTip(q(file_data_->source));
-  } else {
-    data_label_->setText("<b>Data:</b> simulated from the Simulator parameters");
-    data_label_->setToolTip({});
-  }
-  sim_button_->setEnabled(file);
-  if (panel_) {
-    panel_->setGroupEnabled("Simulator", !file, file ? "off: data from file" : QString());
-  }
 }
 
 void MainWindow::applyValues(const ParamValues& values) {

@@ -20,6 +20,8 @@
 #include "scenario_view.h"
 
 class QAction;
+class QCustomPlot;
+class QTabWidget;
 class QComboBox;
 class QLabel;
 class QScrollArea;
@@ -31,6 +33,7 @@ class QPushButton;
 namespace kfw {
 
 class ConsistencyPanel;
+class ImportDialog;
 class ParamPanel;
 class RunController;
 class TransportBar;
@@ -67,8 +70,20 @@ class MainWindow : public QMainWindow {
   // Sessions: everything set up here, in one JSON file (atomic write).
   Status saveSession(const QString& path) const;
   Status loadSession(const QString& path);
-  // When true, missing columns open the mapping dialog (the GUI); tests and exports stay silent.
+  // When true, Open CSV… opens the import dialog (the GUI); tests and exports stay silent and use
+  // the preset's or the remembered mapping. A cancelled dialog changes nothing and returns Ok.
   void setInteractive(bool on) { interactive_ = on; }
+  // Tests drive the import dialog through this instead of exec(): set roles, return true for OK
+  // (refused while the dialog reports a problem). Set, it opens on every openDataset().
+  void setImportHook(std::function<bool(ImportDialog&)> hook);
+  // The Data menu: the import dialog on the current file (an undoable mapping change), forget
+  // the mapping remembered for its header, write the converted data in kfw's CSV format.
+  Status editMapping();
+  Status forgetMapping();
+  Status saveConvertedCsv(const QString& path) const;
+  // The Data tab: any column of the current dataset over time.
+  QComboBox* dataColumnCombo() const { return data_column_; }
+  QCustomPlot* dataPlot() const { return data_plot_; }
   // Sets many values at once (a tuning result) and runs once.
   void applyValues(const ParamValues& values);
   // Opens the auto-tune / sweep dialogs on the current dataset and values (non-modal);
@@ -121,7 +136,11 @@ class MainWindow : public QMainWindow {
   void showError(const QString& message, bool from_run = false);
   void clearError();
   void refreshPresetList();
-  void updateDataLabel();
+  void updateDataLabel();  // main_window_data.cpp, with the Data menu and tab
+  void buildDataMenu();
+  void buildDataTab(QTabWidget* tabs);
+  void refreshDataTab();
+  void plotDataColumn();
 
   struct Pinned {
     Snapshot snap;
@@ -148,6 +167,11 @@ class MainWindow : public QMainWindow {
   QAction* undo_action_ = nullptr;
   QAction* redo_action_ = nullptr;
   bool interactive_ = false;
+  std::function<bool(ImportDialog&)> import_hook_;
+  QComboBox* data_column_ = nullptr;
+  QCustomPlot* data_plot_ = nullptr;
+  QPushButton* data_fix_ = nullptr;  // "Use the file: set mode=replay" when the mode ignores it
+  std::shared_ptr<const Dataset> data_tab_source_;
   std::unique_ptr<ScenarioView> view_;
   std::shared_ptr<const Dataset> file_data_;
   std::shared_ptr<const RunResult> result_;

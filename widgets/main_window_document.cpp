@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "column_map_dialog.h"
 #include "core/workspace.h"
 #include "main_window.h"
 #include "param_panel.h"
@@ -22,98 +21,6 @@ QString q(const std::string& s) {
   return QString::fromStdString(s);
 }
 }  // namespace
-
-namespace {
-QString mapKey(const Dataset& d) {
-  return "columnMaps/" +
-         QCryptographicHash::hash(QByteArray::fromStdString(header_key(d)), QCryptographicHash::Md5)
-             .toHex();
-}
-}  // namespace
-
-Expected<Dataset> MainWindow::readMapped(const QString& path, const Mapping* map, Mapping& used) {
-  const std::string file = path.toStdString();
-  if (map) {
-    used = *map;
-    auto d = load_dataset_file(*scenario_, file, *map);
-    if (d && !map->empty()) {
-      // Remembered for this header: the same header opens with this mapping next time.
-      if (auto raw = read_csv(file)) {
-        QStringList pairs;
-        for (const auto& [role, r] : *map) {
-          if (!r.column.empty()) pairs << QString::fromStdString(role + "=" + r.column);
-        }
-        QSettings("kfw", "kfw").setValue(mapKey(*raw), pairs.join(';'));
-      }
-    }
-    return d;
-  }
-  used = doc_->preset().mapping;
-  auto direct = load_dataset_file(*scenario_, file, used);
-  if (direct) return direct;
-  auto raw = read_csv(file);
-  if (!raw) return raw;
-  if (require_columns(*raw, scenario_->columns())) return direct;  // its own error, not names
-  // Remembered for this header (QSettings), else ask (GUI only).
-  ColumnMap m;
-  QSettings settings("kfw", "kfw");
-  const QString stored = settings.value(mapKey(*raw)).toString();
-  for (const QString& pair : stored.split(';', Qt::SkipEmptyParts)) {
-    const auto kv = pair.split('=');
-    if (kv.size() == 2) m[kv[0].toStdString()] = kv[1].toStdString();
-  }
-  if (m.empty() && interactive_) {
-    ColumnMap current;
-    if (doc_->data()) {
-      for (const auto& [role, r] : doc_->data()->mapping)
-        current[role] = r.column;
-    }
-    ColumnMapDialog dialog(scenario_->columns(), *raw, current, this);
-    if (dialog.exec() != QDialog::Accepted) return Error{file + ": column mapping cancelled"};
-    m = dialog.mapping();
-  }
-  if (m.empty()) return direct;
-  used = to_mapping(m);
-  auto mapped = load_dataset_file(*scenario_, file, used);
-  if (!mapped) return mapped;
-  QStringList pairs;
-  for (const auto& [role, col] : m)
-    pairs << QString::fromStdString(role + "=" + col);
-  settings.setValue(mapKey(*raw), pairs.join(';'));
-  return mapped;
-}
-
-Status MainWindow::openDataset(const QString& path) {
-  return openFile(path, nullptr);
-}
-
-Status MainWindow::openDatasetMapped(const QString& path, const ColumnMap& map) {
-  const Mapping m = to_mapping(map);
-  return openFile(path, &m);
-}
-
-Status MainWindow::openDatasetMapped(const QString& path, const Mapping& map) {
-  return openFile(path, &map);
-}
-
-Status MainWindow::openFile(const QString& path, const Mapping* map) {
-  if (!scenario_) return Error{"load a preset first"};
-  Mapping used;
-  auto ds = readMapped(path, map, used);
-  if (!ds) {
-    showError(q(ds.error()));
-    return ds.err();
-  }
-  file_data_ = std::make_shared<const Dataset>(std::move(*ds));
-  loaded_data_ = DataRef{path.toStdString(), used};
-  doc_->set_data(loaded_data_);
-  runner_->setFileDataset(file_data_);
-  clearError();
-  updateDataLabel();
-  updateUndoActions();
-  requestRun();
-  return Ok{};
-}
 
 void MainWindow::pinSnapshot(const QString& name) {
   if (!result_ || !scenario_) return;

@@ -20,6 +20,7 @@ struct Dataset {
   std::string source;  // file path, or "simulated <scenario> seed N"
   std::vector<std::string> names;
   std::vector<std::vector<double>> columns;  // columns[i] belongs to names[i]
+  std::string time_origin;  // an ISO-8601 time column's first instant (t = 0), UTC; else empty
 
   std::size_t rows() const { return columns.empty() ? 0 : columns.front().size(); }
   bool has(std::string_view name) const { return index(name) >= 0; }

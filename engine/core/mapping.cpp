@@ -84,10 +84,16 @@ Expected<Mapping> mapping_from_json(const json& j, const std::string& where) {
         }
       }
       if (r.scale == 0.0) return Error{key_path(at, "scale") + ": must not be 0"};
+      if (!std::isfinite(r.scale) || !std::isfinite(r.offset))
+        return Error{at + ": scale and offset must be finite"};
     } else {
       return Error{at + ": must be a column name or an object, not " + json_type_name(*it)};
     }
-    if (!r.unit.empty() && !find_unit(r.unit)) {
+    if (r.unit == "iso" && it.key() != "t") {
+      return Error{key_path(at, "unit") +
+                   ": 'iso' (an ISO-8601 date-time) is for the time 't' only"};
+    }
+    if (!r.unit.empty() && r.unit != "iso" && !find_unit(r.unit)) {
       return Error{key_path(at, "unit") + ": " + unit_factor(r.unit, "s").error()};
     }
     m[it.key()] = r;

@@ -6,6 +6,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -99,6 +100,13 @@ class Scenario {
   // Steady-state gains for the current parameters (closed form and DARE), when the scenario has
   // any. With a dataset, its sample period is used; without, the simulator's.
   virtual Expected<Metrics> gain(const ParamValues& p, const Dataset* data = nullptr) const;
+
+  // When a run with these values does not filter a loaded dataset (a mode that re-simulates):
+  // why, and the assignment that makes runs use it ("mode=replay"). Empty: the data are used.
+  struct DataUnused {
+    std::string why, fix;
+  };
+  virtual std::optional<DataUnused> data_unused(const ParamValues&) const { return std::nullopt; }
 
   // Scenario-specific analyses offered on the command line as
   // `kfw-cli NAME SCENARIO|PRESET [--data FILE] [--set k=v]...` (e.g. underwater "stats").

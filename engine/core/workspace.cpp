@@ -2,6 +2,8 @@
 
 #include <filesystem>
 
+#include "core/import.h"
+
 namespace kfw {
 
 Expected<Workspace> open_workspace(const std::string& preset,
@@ -22,35 +24,60 @@ Expected<Workspace> open_workspace(const std::string& preset,
   return ws;
 }
 
-Expected<Dataset> load_dataset_file(const Scenario& scenario, const std::string& path,
-                                    const Mapping& mapping) {
-  CsvOptions opt;
+std::string mapping_options(const Mapping& m) {
+  std::string s;
+  if (auto t = m.find("t"); t != m.end()) {
+    s = "--time " + t->second.column + (t->second.unit.empty() ? "" : ":" + t->second.unit);
+  }
+  for (const auto& [role, r] : m) {
+    if (role == "t") continue;
+    s += (s.empty() ? "" : " ") + std::string("--map ") + role + "=" + r.column;
+    if (!r.unit.empty()) s += " --unit " + role + "=" + r.unit;
+    if (r.scale != 1.0) s += " --scale " + role + "=" + std::to_string(r.scale);
+    if (r.offset != 0.0) s += " --offset " + role + "=" + std::to_string(r.offset);
+    if (r.flip) s += " --flip " + role;
+  }
+  return s;
+}
+
+Expected<Dataset> import_dataset(const Scenario& scenario, const Table& table,
+                                 const Mapping& mapping) {
   const auto columns = scenario.columns();
-  // Time is the role "t"; the mapping may name another column for it.
-  if (auto t = mapping.find("t"); t != mapping.end() && !t->second.column.empty()) {
-    opt.time_column = t->second.column;
+  // A required role that reads from no column: name it, and say what the guesser would map.
+  for (const auto& c : roles_with_time(columns)) {
+    if (!c.required || role_column(table, mapping, c.name) >= 0) continue;
+    if (auto m = mapping.find(c.name); m != mapping.end() && !m->second.column.empty()) {
+      continue;  // mapped to a column the file lacks: import_table names it
+    }
+    std::string msg = table.source + ": missing required column '" + c.name + "'";
+    if (!c.meaning.empty()) msg += " (" + c.meaning + (c.unit.empty() ? "" : ", " + c.unit) + ")";
+    msg += "; columns present:";
+    for (const auto& n : table.names)
+      msg += " " + n;
+    Mapping guess = guess_mapping(table, columns);
+    for (const auto& [role, r] : mapping)
+      guess[role] = r;
+    if (guess.count(c.name)) msg += "; map them, e.g. " + mapping_options(guess);
+    return Error{msg};
   }
-  for (const auto& c : columns) {
-    auto m = mapping.find(c.name);
-    opt.validate.push_back(m == mapping.end() || m->second.column.empty() ? c.name
-                                                                          : m->second.column);
-  }
-  auto d = read_csv(path, opt);
+  auto d = import_table(table, mapping, columns);
   if (!d) return d;
-  std::map<std::string, std::string> units;
-  for (const auto& c : columns)
-    units[c.name] = c.unit;
-  units["t"] = "s";
-  auto mapped = apply_mapping(std::move(*d), mapping, units);
-  if (!mapped) return mapped;
-  if (auto st = require_columns(*mapped, columns); !st) return st.err();
-  if (auto st = require_some_value(*mapped, columns); !st) return st.err();
-  return mapped;
+  if (auto st = require_some_value(*d, columns); !st) return st.err();
+  return d;
+}
+
+Expected<Dataset> load_dataset_file(const Scenario& scenario, const std::string& path,
+                                    const Mapping& mapping, char separator) {
+  TableOptions opt;
+  opt.separator = separator;
+  auto t = read_table(path, opt);
+  if (!t) return t.err();
+  return import_dataset(scenario, *t, mapping);
 }
 
 Expected<Dataset> load_dataset(const Workspace& ws) {
   if (!ws.data_path) return ws.scenario->simulate(ws.values);
-  auto d = load_dataset_file(*ws.scenario, *ws.data_path, ws.mapping);
+  auto d = load_dataset_file(*ws.scenario, *ws.data_path, ws.mapping, ws.separator);
   if (!d && ws.data_from_preset) {
     std::error_code ec;
     if (!std::filesystem::exists(*ws.data_path, ec)) {

@@ -201,6 +201,12 @@ class BallbeamScenario final : public Scenario {
     static const ParamTable table = make_table();
     return table;
   }
+  std::optional<DataUnused> data_unused(const ParamValues& v) const override {
+    if (param(v, "mode") != kClosed) return std::nullopt;
+    return DataUnused{"mode=closed re-simulates the loop from the Simulator parameters",
+                      "mode=replay"};
+  }
+
   std::vector<ColumnSpec> columns() const override {
     return {{"t", "s", "time", true},
             {"x_meas", "m",

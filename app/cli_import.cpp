@@ -1,0 +1,316 @@
+// kfw-cli's import options (--map, --unit, --time, --scale, --offset, --flip, --sep, --mapping)
+// and the `inspect` command. Declared with the other options in cli.cpp.
+#include <fast_float/fast_float.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli_commands.h"
+#include "core/import.h"
+#include "core/json_io.h"
+#include "core/preset.h"
+#include "core/suggest.h"
+#include "core/workspace.h"
+
+namespace kfw {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+struct KeyValue {
+  std::string key, value;
+};
+
+Expected<KeyValue> split_kv(const std::string& opt, const std::string& text, const char* form) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size()) {
+    return Error{opt + ": expected " + form + ", got " + quote_token(text)};
+  }
+  return KeyValue{text.substr(0, eq), text.substr(eq + 1)};
+}
+
+Expected<double> number(const std::string& opt, const KeyValue& kv) {
+  double v = 0.0;
+  const char* b = kv.value.data();
+  const char* e = b + kv.value.size();
+  auto r = fast_float::from_chars(b + (*b == '+' ? 1 : 0), e, v);
+  if (r.ec != std::errc() || r.ptr != e || !std::isfinite(v)) {
+    return Error{opt + " " + kv.key + "=" + kv.value + ": " + quote_token(kv.value) +
+                 " is not a finite number"};
+  }
+  return v;
+}
+
+bool is_time_unit(const std::string& u) {
+  return u == kIsoTime || u == "s" || u == "ms" || u == "us" || u == "ns";
+}
+
+}  // namespace
+
+Status apply_import_args(const ImportArgs& imp, Workspace& ws) {
+  if (imp.sep) {
+    auto s = parse_separator(*imp.sep);
+    if (!s) return Error{"--sep: " + s.error()};
+    ws.separator = *s;
+  }
+  if (imp.mapping_file) {
+    auto j = read_json_document(*imp.mapping_file, "mapping");
+    if (!j) return j.err();
+    // The preset's "mapping" block, alone or inside {"mapping": ...}.
+    const nlohmann::json& block = j->is_object() && j->contains("mapping") ? (*j)["mapping"] : *j;
+    auto m = mapping_from_json(block, *imp.mapping_file + ": mapping");
+    if (!m) return m.err();
+    for (const auto& [role, r] : *m)
+      ws.mapping[role] = r;
+    ws.mapping_path = imp.mapping_file;
+  }
+  std::vector<std::string> roles{"t"};
+  for (const auto& c : ws.scenario->columns()) {
+    if (c.name != "t") roles.push_back(c.name);
+  }
+  auto role = [&](const std::string& opt, const std::string& name) -> Expected<RoleMapping*> {
+    if (std::find(roles.begin(), roles.end(), name) == roles.end()) {
+      return Error{opt + ": " + unknown_message("role", name, roles)};
+    }
+    return &ws.mapping[name];
+  };
+  if (imp.time) {
+    std::string col = *imp.time, unit;
+    if (const auto colon = col.rfind(':');
+        colon != std::string::npos && is_time_unit(col.substr(colon + 1))) {
+      unit = col.substr(colon + 1);
+      col.erase(colon);
+    }
+    if (col.empty()) return Error{"--time: expected COLUMN[:UNIT], got " + quote_token(*imp.time)};
+    RoleMapping& r = ws.mapping["t"];
+    r.column = col;
+    if (!unit.empty()) r.unit = unit == "s" ? "" : unit;
+  }
+  for (const auto& m : imp.map) {
+    auto kv = split_kv("--map", m, "ROLE=COLUMN");
+    if (!kv) return kv.err();
+    auto r = role("--map", kv->key);
+    if (!r) return r.err();
+    (*r)->column = kv->value;
+  }
+  for (const auto& u : imp.unit) {
+    auto kv = split_kv("--unit", u, "ROLE=UNIT");
+    if (!kv) return kv.err();
+    auto r = role("--unit", kv->key);
+    if (!r) return r.err();
+    if (kv->value == kIsoTime && kv->key != "t") {
+      return Error{"--unit " + u + ": 'iso' is for the time 't' only"};
+    }
+    if (kv->value != kIsoTime) {
+      if (auto f = unit_factor(kv->value, kv->value == "s" ? "ms" : "s");
+          !f && f.error().rfind("unknown unit", 0) == 0) {
+        return Error{"--unit " + u + ": " + f.error()};
+      }
+    }
+    (*r)->unit = kv->value;
+  }
+  for (const auto& s : imp.scale) {
+    auto kv = split_kv("--scale", s, "ROLE=X");
+    if (!kv) return kv.err();
+    auto r = role("--scale", kv->key);
+    if (!r) return r.err();
+    auto v = number("--scale", *kv);
+    if (!v) return v.err();
+    if (*v == 0.0) return Error{"--scale " + s + ": must not be 0"};
+    (*r)->scale = *v;
+  }
+  for (const auto& s : imp.offset) {
+    auto kv = split_kv("--offset", s, "ROLE=X");
+    if (!kv) return kv.err();
+    auto r = role("--offset", kv->key);
+    if (!r) return r.err();
+    auto v = number("--offset", *kv);
+    if (!v) return v.err();
+    (*r)->offset = *v;
+  }
+  for (const auto& f : imp.flip) {
+    auto r = role("--flip", f);
+    if (!r) return r.err();
+    (*r)->flip = true;
+  }
+  // A role touched only by --unit/--scale/... reads the column of its own name.
+  return Ok{};
+}
+
+namespace {
+
+struct TimeSummary {
+  std::string column, unit, error, origin;
+  double start = 0.0, end = 0.0, median_dt = 0.0, min_dt = 0.0, max_dt = 0.0;
+};
+
+TimeSummary summarize_time(const Table& t, const Mapping& m) {
+  TimeSummary s;
+  auto it = m.find("t");
+  if (it == m.end() && t.index("t") < 0) {
+    s.error = "no time column found (give one: --time COLUMN[:UNIT])";
+    return s;
+  }
+  Mapping only_t;
+  if (it != m.end()) only_t["t"] = it->second;
+  s.column = it == m.end() || it->second.column.empty() ? "t" : it->second.column;
+  s.unit = it == m.end() || it->second.unit.empty() ? "s" : it->second.unit;
+  auto d = import_table(t, only_t, {});
+  if (!d) {
+    s.error = d.error();
+    return s;
+  }
+  const auto& time = d->col("t");
+  s.start = time.front();
+  s.end = time.back();
+  s.median_dt = d->median_dt();
+  s.origin = d->time_origin;
+  if (time.size() > 1) {
+    s.min_dt = s.max_dt = time[1] - time[0];
+    for (std::size_t i = 2; i < time.size(); ++i) {
+      s.min_dt = std::min(s.min_dt, time[i] - time[i - 1]);
+      s.max_dt = std::max(s.max_dt, time[i] - time[i - 1]);
+    }
+  }
+  return s;
+}
+
+std::string num(double v) {
+  std::ostringstream os;
+  os << std::setprecision(6) << v;
+  return os.str();
+}
+
+}  // namespace
+
+int cmd_inspect(const CliArgs& a, std::ostream& out, std::ostream& err) {
+  TableOptions opt;
+  if (a.import.sep) {
+    auto s = parse_separator(*a.import.sep);
+    if (!s) return fail(err, Error{"--sep: " + s.error()});
+    opt.separator = *s;
+  }
+  auto t = read_table(a.target, opt);
+  if (!t) return fail(err, t.err());
+  // The roles: the preset's (or scenario's), else time alone.
+  std::vector<ColumnSpec> roles;
+  Mapping given;
+  std::string scenario;
+  if (a.inspect_preset) {
+    CliArgs b = a;
+    b.target = *a.inspect_preset;
+    b.data = a.target;
+    auto ws = open_workspace_for_cli(b);
+    if (!ws) return fail(err, ws.err());
+    roles = ws->scenario->columns();
+    given = ws->mapping;
+    scenario = ws->scenario->name();
+  } else if (a.import.any()) {
+    ImportArgs imp = a.import;
+    if (!imp.map.empty() || !imp.unit.empty() || !imp.scale.empty() || !imp.offset.empty() ||
+        !imp.flip.empty() || imp.mapping_file) {
+      return fail(err, Error{"inspect: role options (--map, --unit, ...) need a PRESET: "
+                             "kfw-cli inspect FILE PRESET"});
+    }
+    if (imp.time) {
+      Workspace ws;
+      auto s = make_scenario("helicopter");  // any scenario: only "t" is touched
+      if (!s) return fail(err, s.err());
+      ws.scenario = std::shared_ptr<const Scenario>(std::move(*s));
+      if (auto st = apply_import_args(imp, ws); !st) return fail(err, st.err());
+      given = ws.mapping;
+    }
+  }
+  Mapping guess = guess_mapping(*t, roles);
+  Mapping mapping = guess;
+  for (const auto& [role, r] : given)
+    mapping[role] = r;
+  std::vector<std::string> missing;
+  for (const auto& c : roles_with_time(roles)) {
+    if (c.required && role_column(*t, mapping, c.name) < 0) missing.push_back(c.name);
+  }
+  const TimeSummary ts = summarize_time(*t, mapping);
+  const double rate = ts.median_dt > 0 ? 1.0 / ts.median_dt : 0.0;
+  if (a.json) {
+    Json j;
+    j["file"] = a.target;
+    j["separator"] = t->separator_name();
+    j["decimal_comma"] = t->decimal_comma;
+    j["header_line"] = t->header_line;
+    j["rows"] = t->rows();
+    Json cols = Json::array();
+    for (std::size_t c = 0; c < t->columns(); ++c) {
+      Json col;
+      col["name"] = t->names[c];
+      col["not_numbers"] = t->invalid[c];
+      col["unit_from_name"] = unit_from_name(t->names[c]);
+      cols.push_back(col);
+    }
+    j["columns"] = cols;
+    Json time;
+    time["column"] = ts.column;
+    time["unit"] = ts.unit;
+    if (ts.error.empty()) {
+      time["start_s"] = ts.start;
+      time["end_s"] = ts.end;
+      time["span_s"] = ts.end - ts.start;
+      time["median_step_s"] = ts.median_dt;
+      time["min_step_s"] = ts.min_dt;
+      time["max_step_s"] = ts.max_dt;
+      time["rate_hz"] = rate;
+      if (!ts.origin.empty()) time["origin"] = ts.origin;
+    } else {
+      time["error"] = ts.error;
+    }
+    j["time"] = time;
+    if (!scenario.empty()) j["scenario"] = scenario;
+    j["mapping"] = mapping_to_json(mapping);
+    j["missing"] = missing;
+    out << j.dump(2) << "\n";
+    return kExitOk;
+  }
+  out << "file: " << a.target << "\n";
+  out << "separator: " << t->separator_name() << (t->decimal_comma ? " (decimal comma)" : "")
+      << "\n";
+  out << "rows: " << t->rows() << " (header on line " << t->header_line << ")\n";
+  out << "columns: " << t->columns() << "\n";
+  for (std::size_t c = 0; c < t->columns(); ++c) {
+    out << "  " << std::setw(3) << c + 1 << "  " << t->names[c];
+    if (const auto u = unit_from_name(t->names[c]); !u.empty()) out << "  [" << u << "]";
+    if (t->invalid[c] > 0) {
+      out << "  (" << t->invalid[c] << " cells not numbers, first at line "
+          << t->first_invalid[c].line << ")";
+    }
+    out << "\n";
+  }
+  if (ts.error.empty()) {
+    out << "time: column '" << ts.column << "' (" << ts.unit << "), " << num(ts.start) << " .. "
+        << num(ts.end) << " s, span " << num(ts.end - ts.start) << " s\n";
+    out << "rate: " << num(rate) << " Hz (median step " << num(ts.median_dt) << " s, min "
+        << num(ts.min_dt) << ", max " << num(ts.max_dt) << ")\n";
+    if (!ts.origin.empty()) out << "time origin: " << ts.origin << " (t = 0)\n";
+  } else {
+    out << "time: " << ts.error << "\n";
+  }
+  if (scenario.empty()) {
+    out << "mapping: give a PRESET to guess its roles (kfw-cli inspect FILE PRESET)\n";
+  } else {
+    out << "mapping for " << scenario << ": " << mapping_options(mapping) << "\n";
+    out << "mapping block: " << mapping_to_json(mapping).dump() << "\n";
+    if (missing.empty()) {
+      out << "complete: every required role has a column\n";
+    } else {
+      out << "missing required roles:";
+      for (const auto& m : missing)
+        out << " " << m;
+      out << "\n";
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace kfw

@@ -1,0 +1,199 @@
+// The import dialog and the Data menu/tab (issue 13), driven offscreen: the four foreign layouts
+// opened through the dialog match the kfw file's run; OK is refused while a required role is
+// unassigned or a column is assigned twice; bad files leave the previous dataset loaded; the data
+// label says when ball-and-beam's closed loop ignores a loaded file.
+#include <qcustomplot.h>
+
+#include <gtest/gtest.h>
+
+#include <QComboBox>
+#include <QLabel>
+#include <QPushButton>
+#include <QSettings>
+#include <QTableWidget>
+#include <QTemporaryDir>
+#include <filesystem>
+#include <fstream>
+
+#include "common/import_files.h"
+#include "core/dataset.h"
+#include "import_dialog.h"
+#include "main_window.h"
+
+namespace kfw {
+namespace {
+
+class ImportGui : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    QSettings("kfw", "kfw").remove("columnMaps");
+    if (!testing::make_import_files(dir.path().toStdString(), 4000, files))
+      GTEST_SKIP() << "no real log";
+    ASSERT_TRUE(w.loadPreset("broad_imu").ok());
+    ASSERT_TRUE(w.waitForRun());
+  }
+  void TearDown() override { QSettings("kfw", "kfw").remove("columnMaps"); }
+
+  // Opens `file` through the dialog, configured by `set`; returns the run's metrics.
+  Metrics open(const std::string& file, const std::function<void(ImportDialog&)>& set) {
+    w.setImportHook([&](ImportDialog& d) {
+      set(d);
+      EXPECT_EQ(d.problem(), QString()) << file;
+      return true;
+    });
+    const auto st = w.openDataset(QString::fromStdString(file));
+    EXPECT_TRUE(st.ok()) << st.error();
+    EXPECT_TRUE(w.waitForRun());
+    EXPECT_EQ(w.dataset()->source, file);
+    return w.result() ? w.result()->metrics : Metrics{};
+  }
+
+  void expect_same(const Metrics& got, const Metrics& want, const char* what) {
+    ASSERT_TRUE(want.count("rmse"));
+    for (const auto& [k, v] : want) {
+      ASSERT_TRUE(got.count(k)) << what << ": " << k;
+      EXPECT_TRUE(testing::close12(got.at(k), v))
+          << what << ": " << k << " " << got.at(k) << " vs " << v;
+    }
+  }
+
+  QTemporaryDir dir;
+  testing::ImportFiles files;
+  MainWindow w;
+};
+
+TEST_F(ImportGui, FourLayoutsMatchTheKfwFile) {
+  const Metrics want = open(files.reference, [](ImportDialog&) {});
+  // Names that state their units: the guess is complete, nothing to set.
+  QString guess_shown;
+  const Metrics units = open(files.units, [&](ImportDialog& d) {
+    guess_shown = d.findChild<QLabel*>("guess.gyro")->text();
+    EXPECT_EQ(d.mapping().at("gyro"), (RoleMapping{"omega_rads", "rad/s"}));
+    EXPECT_EQ(d.mapping().at("t"), (RoleMapping{"time_ms", "ms"}));
+  });
+  EXPECT_EQ(guess_shown, "omega_rads [rad/s]");
+  expect_same(units, want, "units");
+  // No units in the names: the user sets the roles and the gyro's unit.
+  const Metrics german = open(files.german, [](ImportDialog& d) {
+    EXPECT_TRUE(d.preview()->item(1, 0)->text().startsWith("0,0035"));  // Zeit, as written
+    d.setColumn("t", "Zeit");
+    d.setColumn("gyro", "Drehrate");
+    d.setUnit("gyro", "rad/s");
+    d.setColumn("angle", "Winkel");
+    d.setColumn("truth", "Referenz");
+  });
+  expect_same(german, want, "german");
+  expect_same(open(files.tabs, [](ImportDialog&) {}), want, "tabs");
+  const Metrics iso =
+      open(files.iso, [](ImportDialog& d) { EXPECT_EQ(d.mapping().at("t").unit, "iso"); });
+  expect_same(iso, want, "iso");
+  EXPECT_EQ(w.dataset()->time_origin, "2024-05-01T10:00:00.000000000Z");
+  EXPECT_NE(w.findChild<QLabel*>("dataLabel")->text().indexOf("2024-05-01T10:00:00"), -1);
+}
+
+TEST_F(ImportGui, OkIsRefusedWhileARoleIsMissingOrTaken) {
+  w.setImportHook([](ImportDialog& d) {
+    d.setColumn("gyro", "");
+    EXPECT_NE(d.problem().indexOf("'gyro' (required)"), -1) << d.problem().toStdString();
+    EXPECT_FALSE(d.okButton()->isEnabled());
+    d.setColumn("gyro", "acc_roll_deg");
+    EXPECT_NE(d.problem().indexOf("'acc_roll_deg' is assigned to both"), -1);
+    return true;  // refused: the dialog still has a problem
+  });
+  const auto before = w.dataset();
+  EXPECT_TRUE(w.openDataset(QString::fromStdString(files.units)).ok());  // nothing changed
+  EXPECT_EQ(w.dataset(), before);
+}
+
+TEST_F(ImportGui, BadFilesKeepThePreviousDataset) {
+  const std::string before = w.dataset()->source;
+  w.setImportHook([](ImportDialog&) { return true; });
+  const std::pair<std::string, std::string> cases[] = {
+      {"empty.csv", ": empty file"},
+      {"header.csv", ": no data rows after the header"},
+      {"novalue.csv", ": column 'angle' has no value"},
+      {"binary.csv", "binary.csv:2: not a text file"},
+  };
+  std::ofstream(dir.filePath("empty.csv").toStdString());
+  std::ofstream(dir.filePath("header.csv").toStdString()) << "t,gyro,angle\n";
+  std::ofstream(dir.filePath("novalue.csv").toStdString()) << "t,gyro,angle\n0,1,\n1,2,\n";
+  std::ofstream(dir.filePath("binary.csv").toStdString(), std::ios::binary)
+      << std::string("t,gyro\n\x00\x01\x02", 10);
+  for (const auto& [name, fragment] : cases) {
+    const auto st = w.openDataset(dir.filePath(QString::fromStdString(name)));
+    ASSERT_FALSE(st.ok()) << name;
+    EXPECT_NE(st.error().find(name), std::string::npos) << st.error();
+    EXPECT_NE(st.error().find(fragment), std::string::npos) << st.error();
+    EXPECT_EQ(w.dataset()->source, before) << name;
+    EXPECT_NE(w.lastError().indexOf(QString::fromStdString(name)), -1);
+  }
+}
+
+TEST_F(ImportGui, MappingEditsAreUndoableAndDataCanBeSavedConverted) {
+  w.setImportHook([](ImportDialog&) { return true; });
+  ASSERT_TRUE(w.openDataset(QString::fromStdString(files.units)).ok());
+  ASSERT_TRUE(w.waitForRun());
+  const double rmse = w.result()->metrics.at("rmse");
+  // Data ▸ Mapping…: flip the gyro (a different run), then undo restores the mapping and RMSE.
+  w.setImportHook([](ImportDialog& d) {
+    d.setFlip("gyro", true);
+    return true;
+  });
+  ASSERT_TRUE(w.editMapping().ok());
+  ASSERT_TRUE(w.waitForRun());
+  EXPECT_TRUE(w.document()->data()->mapping.at("gyro").flip);
+  EXPECT_NE(w.result()->metrics.at("rmse"), rmse);
+  ASSERT_TRUE(w.undo());
+  ASSERT_TRUE(w.waitForRun());
+  EXPECT_FALSE(w.document()->data()->mapping.at("gyro").flip);
+  EXPECT_EQ(w.result()->metrics.at("rmse"), rmse);
+  // Save as kfw CSV: the converted data, readable without any mapping.
+  const QString out = dir.filePath("converted.csv");
+  ASSERT_TRUE(w.saveConvertedCsv(out).ok());
+  EXPECT_FALSE(w.saveConvertedCsv(QString::fromStdString(files.units)).ok());  // the input
+  auto back = read_csv(out.toStdString());
+  ASSERT_TRUE(back.ok()) << back.error();
+  auto ref = read_csv(files.reference);
+  ASSERT_TRUE(ref.ok());
+  for (const char* c : {"t", "gyro", "angle", "truth"}) {
+    for (std::size_t i = 0; i < ref->rows(); i += 97)
+      EXPECT_TRUE(testing::close12(back->col(c)[i], ref->col(c)[i])) << c << " row " << i;
+  }
+  // The Data tab plots any column over time.
+  auto* combo = w.dataColumnCombo();
+  const int i = combo->findText("gyro");
+  ASSERT_GE(i, 0);
+  combo->setCurrentIndex(i);
+  ASSERT_EQ(w.dataPlot()->graphCount(), 1);
+  EXPECT_EQ(w.dataPlot()->graph(0)->data()->size(), static_cast<int>(files.rows));
+  // Forget: the next open starts from the guess again (the remembered flip is gone).
+  ASSERT_TRUE(w.forgetMapping().ok());
+}
+
+TEST(ImportGuiState, ClosedLoopSaysTheFileIsNotUsed) {
+  MainWindow w;
+  ASSERT_TRUE(w.loadPreset("ballbeam", {}, {"sim.duration=5"}).ok());
+  ASSERT_TRUE(w.waitForRun());
+  QTemporaryDir dir;
+  const QString csv = dir.filePath("bb.csv");
+  auto d = w.scenario()->simulate(w.values());
+  ASSERT_TRUE(d.ok());
+  ASSERT_TRUE(write_csv_file(csv.toStdString(), *d).ok());
+  ASSERT_TRUE(w.openDataset(csv).ok());
+  ASSERT_TRUE(w.waitForRun());
+  auto* label = w.findChild<QLabel*>("dataLabel");
+  auto* fix = w.findChild<QPushButton*>("useDataMode");
+  ASSERT_NE(fix, nullptr);
+  if (w.values().at("mode") == 0.0) {  // closed
+    EXPECT_NE(label->text().indexOf("not used"), -1) << label->text().toStdString();
+    EXPECT_TRUE(fix->isVisibleTo(&w));
+    fix->click();
+    ASSERT_TRUE(w.waitForRun());
+  }
+  EXPECT_EQ(w.values().at("mode"), 1.0);
+  EXPECT_EQ(label->text().indexOf("not used"), -1) << label->text().toStdString();
+  EXPECT_FALSE(fix->isVisibleTo(&w));
+}
+
+}  // namespace
+}  // namespace kfw

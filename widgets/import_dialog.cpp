@@ -1,0 +1,270 @@
+#include "import_dialog.h"
+
+#include <qcustomplot.h>
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDialogButtonBox>
+#include <QDoubleSpinBox>
+#include <QFileInfo>
+#include <QGridLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QPushButton>
+#include <QTableWidget>
+#include <QVBoxLayout>
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "core/import.h"
+
+namespace kfw {
+
+namespace {
+QString q(const std::string& s) {
+  return QString::fromStdString(s);
+}
+constexpr int kPreviewRows = 20;
+constexpr std::size_t kPlotRows = 5000;
+
+// The units a role's column may be in: those kfw converts to the role's unit (and "iso" for t).
+QStringList units_for(const ColumnSpec& r) {
+  QStringList u;
+  for (const auto& name : known_units()) {
+    if (name != r.unit && !r.unit.empty() && unit_factor(name, r.unit).ok()) u << q(name);
+  }
+  if (r.name == "t") u << kIsoTime;
+  return u;
+}
+
+QString describe(const RoleMapping& g) {
+  QString s = q(g.column);
+  if (!g.unit.empty()) s += " [" + q(g.unit) + "]";
+  return s;
+}
+}  // namespace
+
+ImportDialog::ImportDialog(std::shared_ptr<const Table> table, const std::vector<ColumnSpec>& roles,
+                           const Mapping& start, const Mapping& guess, QWidget* parent)
+    : QDialog(parent), table_(std::move(table)) {
+  setWindowTitle("Import " + QFileInfo(q(table_->source)).fileName());
+  setObjectName("importDialog");
+  auto* lay = new QVBoxLayout(this);
+  lay->addWidget(new QLabel(QString("<b>%1</b>: %2 rows, %3 columns, %4-separated%5")
+                                .arg(QFileInfo(q(table_->source)).fileName())
+                                .arg(table_->rows())
+                                .arg(table_->columns())
+                                .arg(q(table_->separator_name()))
+                                .arg(table_->decimal_comma ? ", decimal comma" : "")));
+  preview_ = new QTableWidget(this);
+  preview_->setObjectName("importPreview");
+  const int nrows = static_cast<int>(std::min<std::size_t>(table_->rows(), kPreviewRows));
+  preview_->setRowCount(nrows);
+  preview_->setColumnCount(static_cast<int>(table_->columns()));
+  QStringList headers;
+  for (const auto& n : table_->names)
+    headers << q(n);
+  preview_->setHorizontalHeaderLabels(headers);
+  for (int r = 0; r < nrows; ++r) {
+    for (int c = 0; c < static_cast<int>(table_->columns()); ++c) {
+      preview_->setItem(r, c,
+                        new QTableWidgetItem(q(table_->cell(static_cast<std::size_t>(r),
+                                                            static_cast<std::size_t>(c)))));
+    }
+  }
+  preview_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  preview_->setMaximumHeight(200);
+  lay->addWidget(preview_);
+
+  auto* grid = new QGridLayout;
+  const QStringList head{"role", "column", "unit in file", "scale", "offset", "flip", "guess"};
+  for (int i = 0; i < head.size(); ++i)
+    grid->addWidget(new QLabel("<b>" + head[i] + "</b>"), 0, i);
+  int line = 1;
+  for (const auto& role : roles_with_time(roles)) {
+    Row row{role};
+    const QString key = q(role.name);
+    row.column = new QComboBox(this);
+    row.column->setObjectName("column." + key);
+    row.column->addItem("(none)", QString());
+    for (const auto& n : table_->names)
+      row.column->addItem(q(n), q(n));
+    row.unit = new QComboBox(this);
+    row.unit->setObjectName("unit." + key);
+    row.unit->addItem(role.unit.empty() ? QString("as is") : "= " + q(role.unit), QString());
+    for (const auto& u : units_for(role))
+      row.unit->addItem(u, u);
+    row.scale = new QDoubleSpinBox(this);
+    row.scale->setObjectName("scale." + key);
+    row.offset = new QDoubleSpinBox(this);
+    row.offset->setObjectName("offset." + key);
+    for (auto* s : {row.scale, row.offset}) {
+      s->setDecimals(9);
+      s->setRange(-1e12, 1e12);
+    }
+    row.scale->setValue(1.0);
+    row.flip = new QCheckBox(this);
+    row.flip->setObjectName("flip." + key);
+    auto g = guess.find(role.name);
+    auto* guessed = new QLabel(g == guess.end() ? QString("—") : describe(g->second));
+    guessed->setObjectName("guess." + key);
+    QString label = key + (role.unit.empty() ? "" : " [" + q(role.unit) + "]");
+    if (!role.required) label += " (optional)";
+    auto* name = new QLabel(label);
+    name->setToolTip(q(role.meaning));
+    grid->addWidget(name, line, 0);
+    grid->addWidget(row.column, line, 1);
+    grid->addWidget(row.unit, line, 2);
+    grid->addWidget(row.scale, line, 3);
+    grid->addWidget(row.offset, line, 4);
+    grid->addWidget(row.flip, line, 5);
+    grid->addWidget(guessed, line, 6);
+    ++line;
+    rows_.push_back(row);
+  }
+  lay->addLayout(grid);
+  plot_ = new QCustomPlot(this);
+  plot_->setObjectName("importPlot");
+  plot_->setMinimumHeight(160);
+  plot_->xAxis->setLabel("row");
+  plot_->legend->setVisible(true);
+  lay->addWidget(plot_);
+  problem_ = new QLabel(this);
+  problem_->setObjectName("importProblem");
+  problem_->setStyleSheet("color: #a01e14");
+  lay->addWidget(problem_);
+  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, this);
+  ok_ = buttons->button(QDialogButtonBox::Ok);
+  connect(buttons, &QDialogButtonBox::accepted, this, &ImportDialog::accept);
+  connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
+  lay->addWidget(buttons);
+
+  for (const auto& row : rows_) {
+    auto it = start.find(row.role.name);
+    RoleMapping m;
+    if (it != start.end())
+      m = it->second;
+    else if (table_->index(row.role.name) >= 0)
+      m.column = row.role.name;
+    setColumn(row.role.name, m.column);
+    setUnit(row.role.name, m.unit);
+    setScale(row.role.name, m.scale);
+    setOffset(row.role.name, m.offset);
+    setFlip(row.role.name, m.flip);
+  }
+  for (auto& row : rows_) {
+    connect(row.column, &QComboBox::currentIndexChanged, this, &ImportDialog::refresh);
+    connect(row.unit, &QComboBox::currentIndexChanged, this, &ImportDialog::refresh);
+    connect(row.scale, &QDoubleSpinBox::valueChanged, this, &ImportDialog::refresh);
+    connect(row.offset, &QDoubleSpinBox::valueChanged, this, &ImportDialog::refresh);
+    connect(row.flip, &QCheckBox::toggled, this, &ImportDialog::refresh);
+  }
+  refresh();
+}
+
+ImportDialog::Row* ImportDialog::row(const std::string& role) {
+  for (auto& r : rows_) {
+    if (r.role.name == role) return &r;
+  }
+  return nullptr;
+}
+
+void ImportDialog::setColumn(const std::string& role, const std::string& column) {
+  if (Row* r = row(role)) {
+    const int i = r->column->findData(q(column));
+    r->column->setCurrentIndex(std::max(i, 0));
+  }
+}
+
+void ImportDialog::setUnit(const std::string& role, const std::string& unit) {
+  if (Row* r = row(role)) {
+    const bool same = unit.empty() || unit == r->role.unit;
+    const int i = same ? 0 : r->unit->findData(q(unit));
+    r->unit->setCurrentIndex(std::max(i, 0));
+  }
+}
+
+void ImportDialog::setScale(const std::string& role, double scale) {
+  if (Row* r = row(role)) r->scale->setValue(scale);
+}
+
+void ImportDialog::setOffset(const std::string& role, double offset) {
+  if (Row* r = row(role)) r->offset->setValue(offset);
+}
+
+void ImportDialog::setFlip(const std::string& role, bool flip) {
+  if (Row* r = row(role)) r->flip->setChecked(flip);
+}
+
+Mapping ImportDialog::mapping() const {
+  Mapping m;
+  for (const auto& r : rows_) {
+    const std::string col = r.column->currentData().toString().toStdString();
+    if (col.empty()) continue;
+    RoleMapping rm;
+    rm.column = col;
+    rm.unit = r.unit->currentData().toString().toStdString();
+    rm.scale = r.scale->value();
+    rm.offset = r.offset->value();
+    rm.flip = r.flip->isChecked();
+    m[r.role.name] = rm;
+  }
+  return m;
+}
+
+QString ImportDialog::problem() const {
+  std::map<std::string, std::string> owner;
+  for (const auto& r : rows_) {
+    const std::string col = r.column->currentData().toString().toStdString();
+    if (col.empty()) {
+      if (r.role.required) return "choose a column for '" + q(r.role.name) + "' (required)";
+      continue;
+    }
+    if (auto [it, fresh] = owner.emplace(col, r.role.name); !fresh) {
+      return "column '" + q(col) + "' is assigned to both '" + q(it->second) + "' and '" +
+             q(r.role.name) + "'";
+    }
+    if (r.scale->value() == 0.0) return "the scale of '" + q(r.role.name) + "' is 0";
+  }
+  return {};
+}
+
+void ImportDialog::accept() {
+  if (!problem().isEmpty()) return;  // OK is refused; the reason is shown
+  QDialog::accept();
+}
+
+void ImportDialog::refresh() {
+  const QString why = problem();
+  problem_->setText(why);
+  ok_->setEnabled(why.isEmpty());
+  plot_->clearGraphs();
+  const Mapping m = mapping();
+  static const QColor colors[] = {QColor(31, 119, 180), QColor(214, 39, 40), QColor(44, 160, 44),
+                                  QColor(148, 103, 189), QColor(255, 127, 14)};
+  int k = 0;
+  for (const auto& r : rows_) {
+    auto it = m.find(r.role.name);
+    if (r.role.name == "t" || it == m.end()) continue;
+    const int c = table_->index(it->second.column);
+    if (c < 0) continue;
+    const auto& v = table_->values[static_cast<std::size_t>(c)];
+    double f = 1.0;
+    if (auto u = unit_factor(it->second.unit, r.role.unit); u) f = *u;
+    const double sign = it->second.flip ? -1.0 : 1.0;
+    const std::size_t n = std::min(v.size(), kPlotRows);
+    QVector<double> x(static_cast<int>(n)), y(static_cast<int>(n));
+    for (std::size_t i = 0; i < n; ++i) {
+      x[static_cast<int>(i)] = static_cast<double>(i);
+      y[static_cast<int>(i)] = sign * (it->second.scale * (f * v[i]) + it->second.offset);
+    }
+    auto* g = plot_->addGraph();
+    g->setData(x, y, true);
+    g->setName(q(r.role.name) + (r.role.unit.empty() ? "" : " [" + q(r.role.unit) + "]"));
+    g->setPen(QPen(colors[k++ % 5]));
+  }
+  plot_->rescaleAxes();
+  plot_->replot();
+}
+
+}  // namespace kfw

@@ -23,8 +23,8 @@ const std::string& million_row_file() {
     std::normal_distribution<double> n(0.0, 1.0);
     char line[160];
     for (int i = 0; i < 1000000; ++i) {
-      const int len = std::snprintf(line, sizeof line, "%.6f,%.17g,%.17g,%.17g\n", i * 0.0035, n(rng),
-                                    10.0 * n(rng), 10.0 * n(rng));
+      const int len = std::snprintf(line, sizeof line, "%.6f,%.17g,%.17g,%.17g\n", i * 0.0035,
+                                    n(rng), 10.0 * n(rng), 10.0 * n(rng));
       out.write(line, len);
     }
     return p.string();

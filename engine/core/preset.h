@@ -42,8 +42,8 @@ struct Preset {
   Mapping mapping;                  // role -> column, unit, scale/offset (import fills it)
   nlohmann::json model;             // the user-model block ("scenario": "model"); null otherwise
   nlohmann::json parameters_block;  // a model preset's own parameter declarations
-  bool sim_x0_from_prior =
-      false;  // the simulator draws x0 from the filter's prior (instance swapped)
+  // The simulator draws x0 from the filter's prior (the instance is swapped).
+  bool sim_x0_from_prior = false;
   // The scenario this preset runs (built-in, or built from the model block).
   std::shared_ptr<const Scenario> instance;
 };

@@ -3,6 +3,8 @@
 
 #include <qcustomplot.h>
 
+#include <QImage>
+#include <cstdlib>
 #include <vector>
 
 #include "main_window.h"
@@ -29,6 +31,21 @@ inline std::vector<double> graphValues(QCPGraph* g) {
   for (auto it = g->data()->constBegin(); it != g->data()->constEnd(); ++it)
     v.push_back(it->value);
   return v;
+}
+
+// Pixels of an exported image (every third row and column) whose colour is clearly not grey: a
+// plot with drawn data has many, an empty or flat one almost none. -1 when the file is no image.
+inline int colouredPixels(const QString& file) {
+  const QImage img(file);
+  if (img.isNull()) return -1;
+  int coloured = 0;
+  for (int y = 0; y < img.height(); y += 3) {
+    for (int x = 0; x < img.width(); x += 3) {
+      const QColor c = img.pixelColor(x, y);
+      coloured += std::abs(c.red() - c.blue()) > 40 || std::abs(c.green() - c.blue()) > 40;
+    }
+  }
+  return coloured;
 }
 
 }  // namespace kfw::testing

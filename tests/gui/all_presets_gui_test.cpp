@@ -7,6 +7,7 @@
 #include <QImage>
 #include <QTemporaryDir>
 
+#include "common/plot_probe.h"
 #include "consistency_panel.h"
 #include "main_window.h"
 #include "param_panel.h"
@@ -42,13 +43,7 @@ TEST_P(AllPresets, RunsExportsAndReportsConsistency) {
   for (const QString& f : *files) {
     QImage img(f);
     ASSERT_FALSE(img.isNull()) << f.toStdString();
-    int colored = 0;
-    for (int y = 0; y < img.height(); y += 3) {
-      for (int x = 0; x < img.width(); x += 3) {
-        const QColor c = img.pixelColor(x, y);
-        colored += std::abs(c.red() - c.blue()) > 40 || std::abs(c.green() - c.blue()) > 40;
-      }
-    }
+    const int colored = testing::colouredPixels(f);
     EXPECT_GT(colored, 40) << "no coloured content in " << f.toStdString();
   }
 

@@ -109,13 +109,7 @@ TEST_F(HelicopterWindow, ExportWritesNonBlankFiles) {
     QImage img(f);
     ASSERT_FALSE(img.isNull()) << f.toStdString();
     EXPECT_EQ(img.width(), 1200);
-    int colored = 0;
-    for (int y = 0; y < img.height(); y += 3) {
-      for (int x = 0; x < img.width(); x += 3) {
-        const QColor c = img.pixelColor(x, y);
-        colored += std::abs(c.red() - c.blue()) > 40 || std::abs(c.green() - c.blue()) > 40;
-      }
-    }
+    const int colored = testing::colouredPixels(f);
     EXPECT_GT(colored, 200) << "no coloured curves in " << f.toStdString();
   }
 }

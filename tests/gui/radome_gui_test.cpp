@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/plot_probe.h"
 #include "main_window.h"
 #include "scenarios/radome/radome_imm.h"
 #include "transport_bar.h"
@@ -237,13 +238,7 @@ TEST_F(RadomeWindow, ExportWritesEveryPlot) {
   for (const QString& f : *files) {
     QImage img(f);
     ASSERT_FALSE(img.isNull()) << f.toStdString();
-    int colored = 0;
-    for (int y = 0; y < img.height(); y += 3) {
-      for (int x = 0; x < img.width(); x += 3) {
-        const QColor c = img.pixelColor(x, y);
-        colored += std::abs(c.red() - c.blue()) > 40 || std::abs(c.green() - c.blue()) > 40;
-      }
-    }
+    const int colored = testing::colouredPixels(f);
     EXPECT_GT(colored, 200) << "no coloured content in " << f.toStdString();
   }
 }

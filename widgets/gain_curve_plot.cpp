@@ -78,8 +78,16 @@ void GainCurvePlot::setCurve(const GainCurve& c, const QString& label, const QSt
   }
   plot_->xAxis->setRange(c.x.front(), c.x.back());
   if (!(lo <= hi)) lo = 0.0, hi = 1.0;
-  const double pad = hi > lo ? 0.08 * (hi - lo) : std::max(1e-3, 0.1 * std::abs(hi));
-  plot_->yAxis->setRange(lo - pad, hi + pad);
+  if (lo > 0.0) {
+    // Positive gains span decades over a log parameter: a log axis keeps the small ones readable.
+    setLog(plot_->yAxis);
+    plot_->yAxis->setRange(lo / 1.5, hi * 1.5);
+  } else {
+    plot_->yAxis->setScaleType(QCPAxis::stLinear);
+    plot_->yAxis->setTicker(QSharedPointer<QCPAxisTicker>(new QCPAxisTicker));
+    const double pad = hi > lo ? 0.08 * (hi - lo) : std::max(1e-3, 0.1 * std::abs(hi));
+    plot_->yAxis->setRange(lo - pad, hi + pad);
+  }
 
   QString text = QString("%1 = %2").arg(QString::fromStdString(c.key)).arg(c.at_x, 0, 'g', 4);
   for (std::size_t e = 0; e < c.entries.size() && e < 6; ++e)

@@ -52,7 +52,8 @@ class ModelView final : public ScenarioView {
     curve_key_.clear();  // chosen from the first result's values (setResult)
   }
   void setDataset(std::shared_ptr<const Dataset> data) override { data_ = std::move(data); }
-  bool busy() const override { return curve_watcher_.isRunning() || curve_pending_; }
+  // Until the latest curve is drawn (a finished future's signal may still be queued).
+  bool busy() const override { return curve_outstanding_; }
 
   QWidget* createControls(QWidget* parent) override {
     if (curve_keys_.empty()) return nullptr;
@@ -230,6 +231,7 @@ class ModelView final : public ScenarioView {
   // the other plots redraw at once; requests coalesce, the latest values win.
   void requestCurve() {
     if (!curve_ || curve_key_.empty()) return;
+    curve_outstanding_ = true;
     if (curve_watcher_.isRunning()) {
       curve_pending_ = true;
       return;
@@ -249,6 +251,7 @@ class ModelView final : public ScenarioView {
       requestCurve();
       return;
     }
+    curve_outstanding_ = false;
     const auto c = curve_watcher_.result();
     if (!c->ok()) {
       curve_->setMessage(q(c->error()));
@@ -304,6 +307,7 @@ class ModelView final : public ScenarioView {
   QComboBox* combo_ = nullptr;
   QFutureWatcher<std::shared_ptr<const Expected<GainCurve>>> curve_watcher_;
   bool curve_pending_ = false;
+  bool curve_outstanding_ = false;
 };
 
 }  // namespace

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <QElapsedTimer>
+#include <QJsonValue>
 #include <QList>
 #include <QMainWindow>
 #include <QString>
@@ -11,6 +12,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "core/document.h"
 #include "core/expected.h"
@@ -70,6 +72,13 @@ class MainWindow : public QMainWindow {
   // Sessions: everything set up here, in one JSON file (atomic write).
   Status saveSession(const QString& path) const;
   Status loadSession(const QString& path);
+  // The session's view state (opaque to the engine): a JSON object with the window geometry,
+  // the splitters and one key per registered part. A part (the plots' zoom, the replay
+  // position, ...) registers once: `save` gives its JSON value, `restore` takes it back.
+  QString viewState() const;
+  void restoreViewState(const QString& state);
+  void addViewStatePart(const QString& key, std::function<QJsonValue()> save,
+                        std::function<void(const QJsonValue&)> restore);
   // When true, Open CSV… opens the import dialog (the GUI); tests and exports stay silent and use
   // the preset's or the remembered mapping. A cancelled dialog changes nothing and returns Ok.
   void setInteractive(bool on) { interactive_ = on; }
@@ -195,6 +204,12 @@ class MainWindow : public QMainWindow {
   double last_latency_ms_ = 0.0;
   bool applied_latest_ = true;
   std::function<bool(const QString&)> confirm_;  // empty: a message box asks
+  struct ViewPart {
+    QString key;
+    std::function<QJsonValue()> save;
+    std::function<void(const QJsonValue&)> restore;
+  };
+  std::vector<ViewPart> view_parts_;
 };
 
 }  // namespace kfw

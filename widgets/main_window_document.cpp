@@ -3,6 +3,8 @@
 #include <QColor>
 #include <QCryptographicHash>
 #include <QFileInfo>
+#include <QJsonDocument>
+#include <QJsonObject>
 #include <QSettings>
 #include <QSplitter>
 #include <QTableWidget>
@@ -183,16 +185,59 @@ void MainWindow::fillMetrics() {
   }
 }
 
+QString MainWindow::viewState() const {
+  // Geometry and splitters, then each registered part (zoom, replay, ...) under its own key.
+  QJsonObject o;
+  o["geometry"] = QString::fromLatin1(saveGeometry().toBase64());
+  QJsonObject splits;
+  for (auto* sp : findChildren<QSplitter*>()) {
+    if (!sp->objectName().isEmpty()) {
+      splits[sp->objectName()] = QString::fromLatin1(sp->saveState().toBase64());
+    }
+  }
+  o["splitters"] = splits;
+  for (const auto& part : view_parts_)
+    o[part.key] = part.save();
+  return QString::fromUtf8(QJsonDocument(o).toJson(QJsonDocument::Compact));
+}
+
+void MainWindow::restoreViewState(const QString& state) {
+  auto restoreSplit = [this](const QString& name, const QString& b64) {
+    if (auto* sp = findChild<QSplitter*>(name))
+      sp->restoreState(QByteArray::fromBase64(b64.toLatin1()));
+  };
+  if (!state.startsWith('{')) {
+    // Sessions before the JSON form: geometry, then two splitters, base64, ':'-separated.
+    const QStringList parts = state.split(':');
+    if (!parts.isEmpty() && !parts[0].isEmpty()) {
+      restoreGeometry(QByteArray::fromBase64(parts[0].toLatin1()));
+    }
+    const char* splits[] = {"mainSplit", "leftSplit"};
+    for (int i = 1; i < parts.size() && i <= 2; ++i)
+      restoreSplit(splits[i - 1], parts[i]);
+    return;
+  }
+  const QJsonObject o = QJsonDocument::fromJson(state.toUtf8()).object();
+  if (o.contains("geometry")) {
+    restoreGeometry(QByteArray::fromBase64(o["geometry"].toString().toLatin1()));
+  }
+  const QJsonObject splits = o["splitters"].toObject();
+  for (auto it = splits.begin(); it != splits.end(); ++it)
+    restoreSplit(it.key(), it.value().toString());
+  for (const auto& part : view_parts_) {
+    if (o.contains(part.key)) part.restore(o[part.key]);
+  }
+}
+
+void MainWindow::addViewStatePart(const QString& key, std::function<QJsonValue()> save,
+                                  std::function<void(const QJsonValue&)> restore) {
+  view_parts_.push_back({key, std::move(save), std::move(restore)});
+}
+
 Status MainWindow::saveSession(const QString& path) const {
   if (!doc_) return Error{"nothing to save"};
-  // Window layout: geometry, then each splitter's state, base64, ':'-separated; opaque to the
-  // engine, kept in the document's view state.
-  QByteArrayList parts{saveGeometry().toBase64()};
-  for (const char* name : {"mainSplit", "leftSplit"}) {
-    if (auto* sp = findChild<QSplitter*>(name)) parts << sp->saveState().toBase64();
-  }
   Session s = doc_->to_session();
-  s.window_state = parts.join(':').toStdString();
+  s.window_state = viewState().toStdString();
   if (auto st = save_session(path.toStdString(), s); !st) return st;
   doc_->mark_saved();
   return Ok{};
@@ -214,14 +259,7 @@ Status MainWindow::loadSession(const QString& path) {
   if (auto st = adoptDocument(std::move(*doc)); !st) return st;
   waitForRun();
   refreshSnapshots();
-  const QByteArrayList parts = QByteArray::fromStdString(s->window_state).split(':');
-  if (!parts.isEmpty() && !parts[0].isEmpty()) restoreGeometry(QByteArray::fromBase64(parts[0]));
-  const char* splits[] = {"mainSplit", "leftSplit"};
-  for (int i = 1; i < parts.size() && i <= 2; ++i) {
-    if (auto* sp = findChild<QSplitter*>(splits[i - 1])) {
-      sp->restoreState(QByteArray::fromBase64(parts[i]));
-    }
-  }
+  restoreViewState(QString::fromStdString(s->window_state));
   if (!warning.isEmpty()) showError(warning);
   return Ok{};
 }

@@ -203,6 +203,8 @@ void declare(Cli& cli) {
   add_import(c, a.import);  // the same mapping for every log of the tuning set
   add_sets(c, a);
   add_tune_options(c, a);
+  add_path(c, "--seeds", a.seeds, "SET",
+           "tune over the datasets of these simulator seeds (a tuning set, like --data)");
   add_path(c, "--out", a.out, "FILE.json", "write the tuned preset");
 
   c = app.add_subcommand("sweep", "run every point of a grid and report the best by a metric");

@@ -46,7 +46,15 @@ Expected<double> number(const std::string& opt, const KeyValue& kv) {
 }
 
 bool is_time_unit(const std::string& u) {
-  return u == kIsoTime || u == "s" || u == "ms" || u == "us" || u == "ns";
+  return is_iso_unit(u) || u == "s" || u == "ms" || u == "us" || u == "ns";
+}
+
+// "iso@ZONE" names a zone of the system's database.
+Status check_iso_zone(const std::string& option, const std::string& unit) {
+  if (const std::string zone = iso_zone(unit); !zone.empty()) {
+    if (auto st = check_time_zone(zone); !st) return Error{option + ": " + st.error()};
+  }
+  return Ok{};
 }
 
 }  // namespace
@@ -86,6 +94,7 @@ Status apply_import_args(const ImportArgs& imp, Workspace& ws) {
       col.erase(colon);
     }
     if (col.empty()) return Error{"--time: expected COLUMN[:UNIT], got " + quote_token(*imp.time)};
+    if (auto st = check_iso_zone("--time", unit); !st) return st;
     RoleMapping& r = ws.mapping["t"];
     r.column = col;
     if (!unit.empty()) r.unit = unit == "s" ? "" : unit;
@@ -102,10 +111,11 @@ Status apply_import_args(const ImportArgs& imp, Workspace& ws) {
     if (!kv) return kv.err();
     auto r = role("--unit", kv->key);
     if (!r) return r.err();
-    if (kv->value == kIsoTime && kv->key != "t") {
+    if (is_iso_unit(kv->value) && kv->key != "t") {
       return Error{"--unit " + u + ": 'iso' is for the time 't' only"};
     }
-    if (kv->value != kIsoTime) {
+    if (auto st = check_iso_zone("--unit " + u, kv->value); !st) return st;
+    if (!is_iso_unit(kv->value)) {
       if (auto f = unit_factor(kv->value, kv->value == "s" ? "ms" : "s");
           !f && f.error().rfind("unknown unit", 0) == 0) {
         return Error{"--unit " + u + ": " + f.error()};

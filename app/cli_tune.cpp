@@ -145,10 +145,27 @@ int cmd_tune(const CliArgs& a, std::ostream& out, std::ostream& err) {
   if (a.out) {
     if (auto st = outs.add(*a.out, "--out"); !st) return fail(err, st.err());
   }
-  // The tuning set: every file, else the preset's dataset (or a simulated one).
+  // The tuning set: every file, else one simulated dataset per seed, else the preset's dataset
+  // (or a simulated one).
   std::vector<Dataset> data;
   std::vector<std::string> names;
-  if (files->empty()) {
+  std::vector<ParamValues> fixed;  // per dataset: the seed it was simulated with
+  if (a.seeds) {
+    if (!files->empty()) {
+      return fail(err, Error{"--seeds simulates each seed; it cannot be used with --data"});
+    }
+    auto seeds = seeds_for(a, *ws);
+    if (!seeds) return fail(err, seeds.err());
+    for (long long seed : *seeds) {
+      ParamValues v = ws->values;
+      v["sim.seed"] = static_cast<double>(seed);
+      auto d = ws->scenario->simulate(v);
+      if (!d) return fail(err, d.err());
+      data.push_back(std::move(*d));
+      names.push_back("seed " + std::to_string(seed));
+      fixed.push_back({{"sim.seed", static_cast<double>(seed)}});
+    }
+  } else if (files->empty()) {
     auto d = load_dataset(*ws);
     if (!d) return fail(err, d.err());
     data.push_back(std::move(*d));
@@ -162,8 +179,14 @@ int cmd_tune(const CliArgs& a, std::ostream& out, std::ostream& err) {
   }
   // The objective must name a metric of this scenario and be defined on every dataset.
   std::vector<std::shared_ptr<const RunResult>> probes;
-  for (const auto& d : data) {
-    auto probe = ws->scenario->run(d, ws->values);
+  fixed.resize(data.size());
+  auto with_fixed = [&](ParamValues v, std::size_t i) {
+    for (const auto& [k, x] : fixed[i])
+      v[k] = x;
+    return v;
+  };
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    auto probe = ws->scenario->run(data[i], with_fixed(ws->values, i));
     if (!probe) return fail(err, probe.err());
     probes.push_back(*probe);
   }
@@ -188,7 +211,7 @@ int cmd_tune(const CliArgs& a, std::ostream& out, std::ostream& err) {
   }
   std::vector<TuneLog> logs;
   for (std::size_t i = 0; i < data.size(); ++i)
-    logs.push_back({names[i], &data[i]});
+    logs.push_back({names[i], &data[i], fixed[i]});
   TuneOptions opt;
   opt.method = *method;
   opt.aggregate = *aggregate;
@@ -204,6 +227,7 @@ int cmd_tune(const CliArgs& a, std::ostream& out, std::ostream& err) {
   if (objective->spec.direction == Direction::kTarget) j["target"] = objective->spec.target;
   j["method"] = r->method;
   j["aggregate"] = aggregate_name(*aggregate);
+  if (a.seeds) j["seeds"] = data.size();
   j["value"] = r->value;
   j["start_value"] = start_sum / static_cast<double>(data.size());
   j["evaluations"] = r->evaluations;
@@ -244,14 +268,14 @@ int cmd_tune(const CliArgs& a, std::ostream& out, std::ostream& err) {
     j["logs"].push_back(e);
   }
   // The best run again, for its undefined metrics and their reasons.
-  auto best = ws->scenario->run(data.front(), r->best);
+  auto best = ws->scenario->run(data.front(), with_fixed(r->best, 0));
   j["metrics"] =
       best ? metrics_json((*best)->metrics, (*best)->undefined) : metrics_json(r->metrics, {});
   warn_if_not_white(r->metrics, *objective, err);
   if (a.out) {
     Preset p = ws->preset;
     p.values = r->best;
-    if (!names.empty() && names.front() != "simulated") {
+    if (!names.empty() && names.front() != "simulated" && !a.seeds) {
       p.data_path = std::filesystem::absolute(names.front()).string();
     }
     if (auto st = outs.stage(*a.out, preset_to_json(p)); !st) return fail(err, st.err());

@@ -7,7 +7,7 @@ packages=(
   libeigen3-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libmuparser-dev libginac-dev libfast-float-dev libhowardhinnant-date-dev
-  libboost-math-dev libnlopt-dev parallel
+  libboost-math-dev libfftw3-dev libnlopt-dev parallel tzdata
   fonts-dejavu-core fontconfig
 )
 missing=()

@@ -7,14 +7,17 @@
 #include <QDoubleSpinBox>
 #include <QFileInfo>
 #include <QGridLayout>
+#include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
+#include <QLineEdit>
 #include <QPushButton>
 #include <QTableWidget>
 #include <QVBoxLayout>
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include "core/import.h"
 
@@ -26,6 +29,8 @@ QString q(const std::string& s) {
 }
 constexpr int kPreviewRows = 20;
 constexpr std::size_t kPlotRows = 5000;
+const QColor kColors[] = {QColor(31, 119, 180), QColor(214, 39, 40), QColor(44, 160, 44),
+                          QColor(148, 103, 189), QColor(255, 127, 14)};
 
 // The units a role's column may be in: those kfw converts to the role's unit (and "iso" for t).
 QStringList units_for(const ColumnSpec& r) {
@@ -46,7 +51,7 @@ QString describe(const RoleMapping& g) {
 
 ImportDialog::ImportDialog(std::shared_ptr<const Table> table, const std::vector<ColumnSpec>& roles,
                            const Mapping& start, const Mapping& guess, QWidget* parent)
-    : QDialog(parent), table_(std::move(table)) {
+    : QDialog(parent), table_(std::move(table)), roles_(roles) {
   setWindowTitle("Import " + QFileInfo(q(table_->source)).fileName());
   setObjectName("importDialog");
   auto* lay = new QVBoxLayout(this);
@@ -114,7 +119,22 @@ ImportDialog::ImportDialog(std::shared_ptr<const Table> table, const std::vector
     name->setToolTip(q(role.meaning));
     grid->addWidget(name, line, 0);
     grid->addWidget(row.column, line, 1);
-    grid->addWidget(row.unit, line, 2);
+    if (role.name == "t") {
+      // iso@ZONE: an ISO time column without offsets holds local times of ZONE.
+      zone_ = new QLineEdit(this);
+      zone_->setObjectName("zone.t");
+      zone_->setPlaceholderText("UTC, or a zone: Europe/Berlin");
+      zone_->setToolTip(
+          "Time zone of ISO date-times written without an offset (IANA name); "
+          "daylight saving is honoured. Empty: UTC.");
+      auto* unit_box = new QHBoxLayout;
+      unit_box->setContentsMargins(0, 0, 0, 0);
+      unit_box->addWidget(row.unit);
+      unit_box->addWidget(zone_);
+      grid->addLayout(unit_box, line, 2);
+    } else {
+      grid->addWidget(row.unit, line, 2);
+    }
     grid->addWidget(row.scale, line, 3);
     grid->addWidget(row.offset, line, 4);
     grid->addWidget(row.flip, line, 5);
@@ -126,7 +146,7 @@ ImportDialog::ImportDialog(std::shared_ptr<const Table> table, const std::vector
   plot_ = new QCustomPlot(this);
   plot_->setObjectName("importPlot");
   plot_->setMinimumHeight(160);
-  plot_->xAxis->setLabel("row");
+  plot_->xAxis->setLabel("t [s]");
   plot_->legend->setVisible(true);
   lay->addWidget(plot_);
   problem_ = new QLabel(this);
@@ -159,6 +179,7 @@ ImportDialog::ImportDialog(std::shared_ptr<const Table> table, const std::vector
     connect(row.offset, &QDoubleSpinBox::valueChanged, this, &ImportDialog::refresh);
     connect(row.flip, &QCheckBox::toggled, this, &ImportDialog::refresh);
   }
+  if (zone_) connect(zone_, &QLineEdit::textChanged, this, &ImportDialog::refresh);
   refresh();
 }
 
@@ -178,8 +199,10 @@ void ImportDialog::setColumn(const std::string& role, const std::string& column)
 
 void ImportDialog::setUnit(const std::string& role, const std::string& unit) {
   if (Row* r = row(role)) {
-    const bool same = unit.empty() || unit == r->role.unit;
-    const int i = same ? 0 : r->unit->findData(q(unit));
+    if (zone_ && role == "t") zone_->setText(q(iso_zone(unit)));
+    const std::string base = is_iso_unit(unit) ? std::string(kIsoTime) : unit;
+    const bool same = base.empty() || base == r->role.unit;
+    const int i = same ? 0 : r->unit->findData(q(base));
     r->unit->setCurrentIndex(std::max(i, 0));
   }
 }
@@ -204,6 +227,9 @@ Mapping ImportDialog::mapping() const {
     RoleMapping rm;
     rm.column = col;
     rm.unit = r.unit->currentData().toString().toStdString();
+    if (zone_ && r.role.name == "t" && rm.unit == kIsoTime && !zone_->text().trimmed().isEmpty()) {
+      rm.unit += "@" + zone_->text().trimmed().toStdString();
+    }
     rm.scale = r.scale->value();
     rm.offset = r.offset->value();
     rm.flip = r.flip->isChecked();
@@ -213,6 +239,11 @@ Mapping ImportDialog::mapping() const {
 }
 
 QString ImportDialog::problem() const {
+  const QString p = roleProblem();
+  return p.isEmpty() ? import_error_ : p;
+}
+
+QString ImportDialog::roleProblem() const {
   std::map<std::string, std::string> owner;
   for (const auto& r : rows_) {
     const std::string col = r.column->currentData().toString().toStdString();
@@ -235,13 +266,48 @@ void ImportDialog::accept() {
 }
 
 void ImportDialog::refresh() {
+  const Mapping m = mapping();
+  import_error_.clear();
+  plot_->clearGraphs();
+  std::optional<Dataset> d;
+  if (roleProblem().isEmpty()) {
+    // The import itself (what OK will load): its error refuses OK, its data are plotted.
+    auto imported = import_table(*table_, m, roles_);
+    if (imported) {
+      if (auto st = require_some_value(*imported, roles_); !st) imported = st.err();
+    }
+    if (imported) {
+      d = std::move(*imported);
+    } else {
+      import_error_ = q(imported.error());
+    }
+  }
   const QString why = problem();
   problem_->setText(why);
   ok_->setEnabled(why.isEmpty());
-  plot_->clearGraphs();
-  const Mapping m = mapping();
-  static const QColor colors[] = {QColor(31, 119, 180), QColor(214, 39, 40), QColor(44, 160, 44),
-                                  QColor(148, 103, 189), QColor(255, 127, 14)};
+  if (d) {
+    int k = 0;
+    const auto& t = d->col("t");
+    const std::size_t n = std::min(t.size(), kPlotRows);
+    for (const auto& r : roles_) {
+      if (!m.count(r.name) || d->index(r.name) < 0) continue;
+      const auto& v = d->col(r.name);
+      auto* g = plot_->addGraph();
+      g->setData(QVector<double>(t.begin(), t.begin() + static_cast<std::ptrdiff_t>(n)),
+                 QVector<double>(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n)), true);
+      g->setName(q(r.name) + (r.unit.empty() ? "" : " [" + q(r.unit) + "]"));
+      g->setPen(QPen(kColors[k++ % 5]));
+    }
+    plot_->xAxis->setLabel("t [s]");
+  } else {
+    plotRows(m);
+  }
+  plot_->rescaleAxes();
+  plot_->replot();
+}
+
+// Before the mapping imports: each mapped role's column (converted) over the row number.
+void ImportDialog::plotRows(const Mapping& m) {
   int k = 0;
   for (const auto& r : rows_) {
     auto it = m.find(r.role.name);
@@ -261,10 +327,9 @@ void ImportDialog::refresh() {
     auto* g = plot_->addGraph();
     g->setData(x, y, true);
     g->setName(q(r.role.name) + (r.role.unit.empty() ? "" : " [" + q(r.role.unit) + "]"));
-    g->setPen(QPen(colors[k++ % 5]));
+    g->setPen(QPen(kColors[k++ % 5]));
   }
-  plot_->rescaleAxes();
-  plot_->replot();
+  plot_->xAxis->setLabel("row");
 }
 
 }  // namespace kfw

@@ -18,6 +18,7 @@ class QComboBox;
 class QCustomPlot;
 class QDoubleSpinBox;
 class QLabel;
+class QLineEdit;
 class QPushButton;
 class QTableWidget;
 
@@ -39,11 +40,14 @@ class ImportDialog : public QDialog {
   void setFlip(const std::string& role, bool flip);
 
   Mapping mapping() const;
-  // Why OK is refused (a required role unassigned, a column assigned twice); empty when not.
+  // Why OK is refused (a required role unassigned, a column assigned twice, or the import's own
+  // error: a decreasing time, text in a mapped column, ...); empty when not.
   QString problem() const;
   void accept() override;
 
   QTableWidget* preview() const { return preview_; }
+  // The mapped roles over time (converted, as they will load; over the row number until the
+  // mapping imports).
   QCustomPlot* plot() const { return plot_; }
   QPushButton* okButton() const { return ok_; }
 
@@ -57,9 +61,14 @@ class ImportDialog : public QDialog {
     QCheckBox* flip = nullptr;
   };
   Row* row(const std::string& role);
+  QString roleProblem() const;
   void refresh();
+  void plotRows(const Mapping& m);
 
   std::shared_ptr<const Table> table_;
+  std::vector<ColumnSpec> roles_;
+  QLineEdit* zone_ = nullptr;  // time zone of an ISO time column without offsets
+  QString import_error_;
   std::vector<Row> rows_;
   QTableWidget* preview_ = nullptr;
   QCustomPlot* plot_ = nullptr;

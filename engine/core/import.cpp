@@ -1,6 +1,7 @@
 #include "core/import.h"
 
 #include <date/date.h>
+#include <date/tz.h>
 
 #include <algorithm>
 #include <cctype>
@@ -191,24 +192,58 @@ Mapping guess_mapping(const Table& t, const std::vector<ColumnSpec>& spec) {
 // GCC 12 reports a false -Wmaybe-uninitialized inside date.h's parser (inlined here).
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-Expected<long long> parse_iso_time_ns(std::string_view text) {
+Expected<long long> parse_iso_time_ns(std::string_view text, const std::string& zone) {
   std::string s(text);
   while (!s.empty() && (s.back() == ' ' || s.back() == '\t'))
     s.pop_back();
   const auto bad = Error{"'" + shown(text) + "' is not an ISO-8601 date-time"};
   if (s.size() < 10) return bad;
   if (s.size() > 10 && s[10] == ' ') s[10] = 'T';
-  if (s.back() == 'Z' || s.back() == 'z') s.pop_back();
+  bool utc = false;
+  if (s.back() == 'Z' || s.back() == 'z') {
+    s.pop_back();
+    utc = true;
+  }
   // An offset is a sign after the time of day.
   const auto sign = s.size() > 11 ? s.find_first_of("+-", 11) : std::string::npos;
   std::string fmt = s.size() == 10 ? "%Y-%m-%d" : "%Y-%m-%dT%H:%M:%S";
-  if (sign != std::string::npos) fmt += s.find(':', sign) != std::string::npos ? "%Ez" : "%z";
   std::istringstream in(s);
   in.imbue(std::locale::classic());
+  if (sign == std::string::npos && !utc && !zone.empty()) {
+    // A local time in `zone`.
+    date::local_time<std::chrono::nanoseconds> lt;
+    in >> date::parse(fmt, lt);
+    if (in.fail() || in.peek() != std::char_traits<char>::eof()) return bad;
+    const date::time_zone* z = nullptr;
+    try {
+      z = date::locate_zone(zone);
+    } catch (const std::exception&) {
+      return Error{"unknown time zone '" + shown(zone) + "'"};
+    }
+    try {
+      return static_cast<long long>(z->to_sys(lt).time_since_epoch().count());
+    } catch (const date::ambiguous_local_time&) {
+      return static_cast<long long>(
+          z->to_sys(lt, date::choose::earliest).time_since_epoch().count());
+    } catch (const date::nonexistent_local_time&) {
+      return Error{"'" + shown(text) + "' does not exist in " + zone +
+                   " (the clocks jump forward then)"};
+    }
+  }
+  if (sign != std::string::npos) fmt += s.find(':', sign) != std::string::npos ? "%Ez" : "%z";
   date::sys_time<std::chrono::nanoseconds> tp;
   in >> date::parse(fmt, tp);
   if (in.fail() || in.peek() != std::char_traits<char>::eof()) return bad;
   return static_cast<long long>(tp.time_since_epoch().count());
+}
+
+Status check_time_zone(const std::string& zone) {
+  try {
+    date::locate_zone(zone);
+  } catch (const std::exception&) {
+    return Error{"unknown time zone '" + shown(zone) + "' (an IANA name such as Europe/Berlin)"};
+  }
+  return Ok{};
 }
 #pragma GCC diagnostic pop
 
@@ -249,15 +284,20 @@ Expected<Dataset> import_table(const Table& t, const Mapping& m,
                    bound[static_cast<std::size_t>(owner[col])].role + "' and '" + role + "'"};
     }
     Bound b{role, col, rm, 1.0};
-    if (!rm.unit.empty() && rm.unit != kIsoTime) {
+    if (!rm.unit.empty() && !is_iso_unit(rm.unit)) {
       auto ru = role_unit.find(role);
       auto f =
           unit_factor(rm.unit, ru == role_unit.end() || ru->second.empty() ? rm.unit : ru->second);
       if (!f) return Error{t.source + ": mapping." + role + ".unit: " + f.error()};
       b.factor = *f;
     }
-    if (rm.unit == kIsoTime && role != "t") {
+    if (is_iso_unit(rm.unit) && role != "t") {
       return Error{t.source + ": mapping." + role + ".unit: 'iso' is for the time role 't' only"};
+    }
+    if (const std::string zone = iso_zone(rm.unit); !zone.empty()) {
+      if (auto st = check_time_zone(zone); !st) {
+        return Error{t.source + ": mapping." + role + ".unit: " + st.error()};
+      }
     }
     owner[col] = static_cast<int>(bound.size());
     bound.push_back(std::move(b));
@@ -281,7 +321,7 @@ Expected<Dataset> import_table(const Table& t, const Mapping& m,
   std::optional<Error> cell_error;
   std::size_t cell_line = std::numeric_limits<std::size_t>::max();
   for (const auto& b : bound) {
-    if (b.map.unit == kIsoTime || t.invalid[b.col] == 0) continue;
+    if (is_iso_unit(b.map.unit) || t.invalid[b.col] == 0) continue;
     const auto& i = t.first_invalid[b.col];
     if (i.line < cell_line) {
       cell_line = i.line;
@@ -294,12 +334,13 @@ Expected<Dataset> import_table(const Table& t, const Mapping& m,
   const Bound& tb = bound.front();
   const std::string tname = shown(t.names[tb.col]);
   auto& time = d.add("t", t.rows());
-  if (tb.map.unit == kIsoTime) {
+  if (is_iso_unit(tb.map.unit)) {
+    const std::string zone = iso_zone(tb.map.unit);
     long long origin = 0;
     for (std::size_t r = 0; r < t.rows(); ++r) {
       const std::string text = t.cell(r, tb.col);
       if (text.empty()) break;  // reported below as an empty time
-      auto ns = parse_iso_time_ns(text);
+      auto ns = parse_iso_time_ns(text, zone);
       if (!ns) {
         if (t.line_of(r) >= cell_line) break;  // a cell that is not a number comes first
         return Error{at(t.source, t.line_of(r), t.cell_column(r, tb.col)) + ": column '" + tname +

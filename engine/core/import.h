@@ -43,8 +43,13 @@ Expected<Dataset> import_table(const Table& t, const Mapping& m,
                                const std::vector<ColumnSpec>& roles);
 
 // ISO-8601 date-time to nanoseconds since 1970-01-01 UTC: date, 'T' or ' ', time with optional
-// fraction, then 'Z', +hh:mm, +hhmm or nothing (UTC). Error text for a cell that is not one.
-Expected<long long> parse_iso_time_ns(std::string_view s);
+// fraction, then 'Z', +hh:mm, +hhmm or nothing: UTC, or a local time in `zone` (an IANA name,
+// from the system's time zone database) when one is given. Error text for a cell that is not
+// one, or a local time the zone skips (the clocks jump forward); of a repeated local time (the
+// clocks go back) the earlier.
+Expected<long long> parse_iso_time_ns(std::string_view s, const std::string& zone = {});
+// Ok when `zone` names a time zone of the system's database; else an Error naming it.
+Status check_time_zone(const std::string& zone);
 std::string format_iso_time_ns(long long ns);
 
 }  // namespace kfw

@@ -59,6 +59,14 @@ Expected<double> unit_factor(const std::string& from, const std::string& to) {
   return a->si / b->si;
 }
 
+bool is_iso_unit(const std::string& unit) {
+  return unit == "iso" || (unit.size() > 4 && unit.compare(0, 4, "iso@") == 0);
+}
+
+std::string iso_zone(const std::string& unit) {
+  return is_iso_unit(unit) && unit.size() > 4 ? unit.substr(4) : std::string();
+}
+
 Expected<Mapping> mapping_from_json(const json& j, const std::string& where) {
   if (!j.is_object()) return Error{where + ": must be an object of role -> column"};
   Mapping m;
@@ -89,11 +97,11 @@ Expected<Mapping> mapping_from_json(const json& j, const std::string& where) {
     } else {
       return Error{at + ": must be a column name or an object, not " + json_type_name(*it)};
     }
-    if (r.unit == "iso" && it.key() != "t") {
+    if (is_iso_unit(r.unit) && it.key() != "t") {
       return Error{key_path(at, "unit") +
                    ": 'iso' (an ISO-8601 date-time) is for the time 't' only"};
     }
-    if (!r.unit.empty() && r.unit != "iso" && !find_unit(r.unit)) {
+    if (!r.unit.empty() && !is_iso_unit(r.unit) && !find_unit(r.unit)) {
       return Error{key_path(at, "unit") + ": " + unit_factor(r.unit, "s").error()};
     }
     m[it.key()] = r;

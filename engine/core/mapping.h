@@ -36,6 +36,11 @@ struct DataRef {
 // m mm. Factor to multiply a value in `from` by to get `to`; an Error when they are not of one
 // kind or unknown.
 Expected<double> unit_factor(const std::string& from, const std::string& to);
+// The time role's unit for an ISO-8601 date-time column: "iso" (a date-time without an offset
+// is UTC), or "iso@ZONE" with an IANA zone ("iso@Europe/Berlin": such a date-time is a local
+// time there, daylight saving included). iso_zone() is ZONE, or "" for plain "iso".
+bool is_iso_unit(const std::string& unit);
+std::string iso_zone(const std::string& unit);
 const std::vector<std::string>& known_units();
 
 // The "mapping" block: {"gyro": "omega_dps"} or {"gyro": {"column": ..., "unit": ..., "scale":

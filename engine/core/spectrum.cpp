@@ -1,37 +1,51 @@
 #include "core/spectrum.h"
 
+#include <fftw3.h>
 #include <cmath>
-#include <complex>
+
+#include <mutex>
 #include <numbers>
 
 namespace kfw {
 
 namespace {
 
-// In-place iterative radix-2 FFT.
-void fft(std::vector<std::complex<double>>& a) {
-  const std::size_t n = a.size();
-  for (std::size_t i = 1, j = 0; i < n; ++i) {
-    std::size_t bit = n >> 1;
-    for (; j & bit; bit >>= 1)
-      j ^= bit;
-    j ^= bit;
-    if (i < j) std::swap(a[i], a[j]);
-  }
-  for (std::size_t len = 2; len <= n; len <<= 1) {
-    const double ang = -2.0 * std::numbers::pi / static_cast<double>(len);
-    const std::complex<double> wl(std::cos(ang), std::sin(ang));
-    for (std::size_t i = 0; i < n; i += len) {
-      std::complex<double> w(1.0);
-      for (std::size_t k = 0; k < len / 2; ++k) {
-        const auto u = a[i + k], v = a[i + k + len / 2] * w;
-        a[i + k] = u + v;
-        a[i + k + len / 2] = u - v;
-        w *= wl;
-      }
-    }
-  }
+// FFTW's planner is not thread-safe (runs of several seeds compute spectra at once); executing a
+// plan is.
+std::mutex& planner_mutex() {
+  static std::mutex m;
+  return m;
 }
+
+// A real-to-complex transform of `n` samples on its own FFTW buffers.
+class RealFft {
+ public:
+  explicit RealFft(std::size_t n)
+      : in_(static_cast<double*>(fftw_malloc(sizeof(double) * n))),
+        out_(static_cast<fftw_complex*>(fftw_malloc(sizeof(fftw_complex) * (n / 2 + 1)))) {
+    std::lock_guard<std::mutex> lock(planner_mutex());
+    plan_ = fftw_plan_dft_r2c_1d(static_cast<int>(n), in_, out_, FFTW_ESTIMATE);
+  }
+  ~RealFft() {
+    {
+      std::lock_guard<std::mutex> lock(planner_mutex());
+      fftw_destroy_plan(plan_);
+    }
+    fftw_free(in_);
+    fftw_free(out_);
+  }
+  RealFft(const RealFft&) = delete;
+  RealFft& operator=(const RealFft&) = delete;
+  double* input() { return in_; }
+  void run() { fftw_execute(plan_); }
+  // |X_k|² of the last run, k = 0 … n/2.
+  double power(std::size_t k) const { return out_[k][0] * out_[k][0] + out_[k][1] * out_[k][1]; }
+
+ private:
+  double* in_;
+  fftw_complex* out_;
+  fftw_plan plan_;
+};
 
 }  // namespace
 
@@ -57,7 +71,8 @@ Expected<Psd> welch_psd(const std::vector<double>& x, double fs_hz, std::size_t 
   const std::size_t bins = segment / 2 + 1;
   out.density.assign(bins, 0.0);
   std::size_t count = 0;
-  std::vector<std::complex<double>> buf(segment);
+  RealFft fft(segment);
+  double* buf = fft.input();
   for (std::size_t start = 0; start + segment <= x.size(); start += segment / 2) {
     double mean = 0.0;
     for (std::size_t i = 0; i < segment; ++i)
@@ -65,10 +80,10 @@ Expected<Psd> welch_psd(const std::vector<double>& x, double fs_hz, std::size_t 
     mean /= static_cast<double>(segment);
     for (std::size_t i = 0; i < segment; ++i)
       buf[i] = (x[start + i] - mean) * w[i];
-    fft(buf);
+    fft.run();
     for (std::size_t k = 0; k < bins; ++k) {
       const double scale = (k == 0 || k == segment / 2) ? 1.0 : 2.0;  // one-sided
-      out.density[k] += scale * std::norm(buf[k]) / (fs_hz * wss);
+      out.density[k] += scale * fft.power(k) / (fs_hz * wss);
     }
     ++count;
   }

@@ -85,7 +85,10 @@ class Tuner {
     e.values.assign(n, kNaN);
     std::vector<char> ok(n, 0);
     parallel_for(n, opt_.threads, [&](std::size_t i) {
-      auto r = s_.run(*logs_[i].data, v);
+      ParamValues vi = v;
+      for (const auto& [k, x] : logs_[i].fixed)
+        vi[k] = x;
+      auto r = s_.run(*logs_[i].data, vi);
       if (!r) return;
       e.metrics[i] = (*r)->metrics;
       ok[i] = 1;

@@ -56,11 +56,14 @@ struct SearchParam {
   std::string scale_group;  // preset flag: scales together with the other selected members
 };
 
-// One dataset of a tuning set. Issue 15's `--seeds` plugs in here: one simulated dataset per
-// seed, aggregated like logs.
+// One dataset of a tuning set: a log, or the dataset one simulator seed gives (`tune --seeds`),
+// aggregated alike.
 struct TuneLog {
   std::string name;  // the path, or "seed 7"
   const Dataset* data = nullptr;
+  // Values this log is always run with, over the searched ones ({"sim.seed": 7}: a mode that
+  // re-simulates inside the run then draws the same seed as the dataset).
+  ParamValues fixed;
 };
 
 struct TuneOptions {

@@ -133,6 +133,37 @@ TEST_F(TuneCli, ADifferentLogIsReportedPerLog) {
   }
 }
 
+// tune --seeds: the tuning set is the datasets of the seeds, the same as those logs given with
+// --data.
+TEST_F(TuneCli, SeedsTuneLikeTheirSimulatedLogs) {
+  for (int seed : {1, 2}) {
+    ASSERT_EQ(cli("simulate helicopter --seed " + std::to_string(seed) +
+                  " --set sim.duration=20 --out " + path("s" + std::to_string(seed) + ".csv"))
+                  .code,
+              0);
+  }
+  const std::string base =
+      "tune helicopter --params Q,gamma --objective rmse --budget 40 "
+      "--set sim.duration=20 ";
+  auto by_seeds = cli(base + "--seeds 1..2", "2>/dev/null");
+  auto by_logs =
+      cli(base + "--data " + path("s1.csv") + " --data " + path("s2.csv"), "2>/dev/null");
+  ASSERT_EQ(by_seeds.code, 0) << by_seeds.text;
+  ASSERT_EQ(by_logs.code, 0) << by_logs.text;
+  auto js = json_of(by_seeds.text), jl = json_of(by_logs.text);
+  EXPECT_EQ(js["seeds"], 2);
+  ASSERT_EQ(js["logs"].size(), 2u);
+  EXPECT_EQ(js["logs"][0]["data"], "seed 1");
+  EXPECT_EQ(js["logs"][1]["data"], "seed 2");
+  EXPECT_EQ(js["params"], jl["params"]);
+  EXPECT_DOUBLE_EQ(js["value"].get<double>(), jl["value"].get<double>());
+  EXPECT_NE(js["logs"][0]["value"], js["logs"][1]["value"]);
+  // Seeds simulate: not with a dataset.
+  auto refused = cli(base + "--seeds 1..2 --data " + path("s1.csv"));
+  EXPECT_EQ(refused.code, 2);
+  EXPECT_NE(refused.text.find("--seeds"), std::string::npos) << refused.text;
+}
+
 // Acceptance: a sweep in 4 shards run through GNU parallel merges to the unsharded result,
 // byte for byte; the cap applies per shard.
 TEST_F(TuneCli, ShardedSweepThroughParallelMergesExactly) {

@@ -137,6 +137,37 @@ TEST(Import, IsoTimeIsRebasedWithTheOriginAndZonesHonoured) {
   EXPECT_FALSE(parse_iso_time_ns("yesterday").ok());
 }
 
+// iso@ZONE: a date-time without an offset is a local time in the zone, daylight saving included;
+// an explicit offset or Z still wins.
+TEST(Import, NamedTimeZonesReadLocalTimes) {
+  // Berlin is UTC+1 in winter and UTC+2 in summer; the clocks went forward at 2024-03-31 02:00.
+  auto ns = [](const char* text) {
+    auto v = parse_iso_time_ns(text, "Europe/Berlin");
+    EXPECT_TRUE(v.ok()) << text << ": " << (v.ok() ? "" : v.error());
+    return v.ok() ? *v : 0LL;
+  };
+  EXPECT_EQ(ns("2024-01-15T13:00:00"), *parse_iso_time_ns("2024-01-15T12:00:00Z"));
+  EXPECT_EQ(ns("2024-07-15T14:00:00"), *parse_iso_time_ns("2024-07-15T12:00:00Z"));
+  EXPECT_EQ(ns("2024-07-15T14:00:00+00:00"), *parse_iso_time_ns("2024-07-15T14:00:00Z"));
+  // Across the change the local clock jumps 01:59:59 → 03:00:00: one second of real time.
+  EXPECT_EQ(ns("2024-03-31T03:00:00") - ns("2024-03-31T01:59:59"), 1'000'000'000LL);
+  auto gap = parse_iso_time_ns("2024-03-31T02:30:00", "Europe/Berlin");
+  ASSERT_FALSE(gap.ok());
+  EXPECT_NE(gap.error().find("does not exist in Europe/Berlin"), std::string::npos);
+  EXPECT_FALSE(check_time_zone("Europe/Berlln").ok());
+  EXPECT_TRUE(check_time_zone("America/New_York").ok());
+  // Through a mapping: rebased time, and an unknown zone names the mapping key.
+  const Table t = table("when,gyro,angle\n2024-03-31T01:59:59,1,2\n2024-03-31T03:00:00.5,1,2\n");
+  auto d = import_table(t, {{"t", {"when", "iso@Europe/Berlin"}}}, kHeli);
+  ASSERT_TRUE(d.ok()) << d.error();
+  EXPECT_EQ(d->time_origin, "2024-03-31T00:59:59.000000000Z");  // CET, UTC+1
+  EXPECT_DOUBLE_EQ(d->col("t")[1], 1.5);
+  auto bad = import_table(t, {{"t", {"when", "iso@Mars/Olympus"}}}, kHeli);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.error().rfind("f.csv: mapping.t.unit: unknown time zone 'Mars/Olympus'", 0), 0u)
+      << bad.error();
+}
+
 TEST(Import, TimeErrorsNameTheLine) {
   auto err = [](const std::string& text, const Mapping& m = {}) {
     auto d = import_table(table(text), m, kHeli);

@@ -74,7 +74,7 @@ TEST(RadomeRenewal, WithoutRenewalEveryReadingIsThePlainImmAndStaysUnderHalfADeg
   v["sim.amplitude"] = 0.05;
   v["Kp"] = 0.0;
   std::vector<MonteCarloPart> parts;
-  for (double mode : {0.0, 1.0, 2.0}) {
+  for (double mode : {0.0, 1.0, 2.0, 3.0}) {
     v["renewal.mode"] = mode;
     auto part = run_monte_carlo(*p->instance, v, seeds_1_10());
     ASSERT_TRUE(part.ok()) << part.error();
@@ -85,6 +85,7 @@ TEST(RadomeRenewal, WithoutRenewalEveryReadingIsThePlainImmAndStaysUnderHalfADeg
     const Metrics& m = parts[0].runs[i].metrics;
     EXPECT_EQ(m, parts[1].runs[i].metrics);
     EXPECT_EQ(m, parts[2].runs[i].metrics);
+    EXPECT_EQ(m, parts[3].runs[i].metrics);
     under += m.at("refraction_err_max_deg") < 0.5 ? 1 : 0;
     // No renewal: the grid stays at ±0.05, so no edge is further than 0.1 from the estimate.
     EXPECT_LE(m.at("grid_span_psi"), 0.1 + 1e-12);
@@ -100,8 +101,9 @@ TEST(RadomeRenewal, TheReadingsDifferWithRenewal) {
   v["sim.amplitude"] = 0.08;
   v["Kp"] = 0.45;
   v["sim.duration"] = 20.0;
+  v["renewal.start"] = 0.0;
   std::vector<double> top;
-  for (double mode : {0.0, 1.0, 2.0}) {
+  for (double mode : {0.0, 1.0, 2.0, 3.0}) {
     v["renewal.mode"] = mode;
     auto d = p->instance->simulate(v);
     ASSERT_TRUE(d.ok());
@@ -112,6 +114,53 @@ TEST(RadomeRenewal, TheReadingsDifferWithRenewal) {
   }
   EXPECT_NE(top[0], top[1]);
   EXPECT_NE(top[0], top[2]);
+  EXPECT_NE(top[0], top[3]);
+}
+
+// The shift as a mode transition moves μ exactly as the slope remapping does.
+TEST(RadomeRenewal, ShiftTransitionMovesProbabilitiesLikeTheRemapping) {
+  VecX mu(25);
+  for (Eigen::Index i = 0; i < 25; ++i)
+    mu(i) = 1.0 + static_cast<double>((i * 7) % 5);
+  mu /= mu.sum();
+  for (const auto& [dp, dt] : {std::pair{0.0, 0.0}, {0.0125, -0.03}, {-0.07, 0.004}}) {
+    const MatX T = shift_transition(kOff, kOff, dp, dt);
+    EXPECT_TRUE(T.rowwise().sum().isApproxToConstant(1.0, 1e-15));
+    EXPECT_TRUE((T.transpose() * mu).isApprox(remap_probabilities(mu, kOff, kOff, dp, dt), 1e-14));
+  }
+}
+
+// Seed 001, Figs. 7–9, with the reading that carries the mode states with the shift (`mix`, the
+// default) and renewal from 2 s: truth B outside the grid is tracked (slope RMSE ≤ 0.0112, the
+// refraction error under 0.5° in at least 9 of 10 seeds, every grid edge within 0.1 of the
+// estimate), and renewal does not spoil truth A inside the grid (under 0.5° in 9 of 10).
+TEST(RadomeRenewal, CarryingTheModeStatesTracksOutsideTheGridAndKeepsTheInGridCase) {
+  auto p = load_preset(KFW_SOURCE_DIR "/presets/radome.json");
+  ASSERT_TRUE(p.ok()) << p.error();
+  ParamValues v = p->values;
+  ASSERT_EQ(v.at("renewal.mode"), 3.0);  // mix
+  ASSERT_EQ(v.at("renewal.start"), 2.0);
+  v["Kp"] = 0.45;
+  for (double amplitude : {0.08, 0.05}) {
+    v["sim.amplitude"] = amplitude;
+    auto part = run_monte_carlo(*p->instance, v, seeds_1_10());
+    ASSERT_TRUE(part.ok()) << part.error();
+    int under = 0;
+    double rmse_psi = 0.0, rmse_theta = 0.0;
+    for (const auto& run : part->runs) {
+      const Metrics& m = run.metrics;
+      under += m.at("refraction_err_max_deg") < 0.5 ? 1 : 0;
+      rmse_psi += m.at("slope_rmse_psi") / 10.0;
+      rmse_theta += m.at("slope_rmse_theta") / 10.0;
+      EXPECT_LE(m.at("grid_span_psi"), 0.1 + 1e-9);
+      EXPECT_LE(m.at("grid_span_theta"), 0.1 + 1e-9);
+    }
+    EXPECT_GE(under, 9) << "amplitude " << amplitude;
+    if (amplitude == 0.08) {
+      EXPECT_LE(rmse_psi, 0.0112);
+      EXPECT_LE(rmse_theta, 0.0112);
+    }
+  }
 }
 
 }  // namespace

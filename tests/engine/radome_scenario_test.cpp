@@ -93,7 +93,7 @@ TEST(RadomeScenario, FullStructureAgreesWithAxisBlocks) {
 }
 
 TEST(RadomeScenario, ModeProbabilitiesAreADistributionAndRenewalFollowsEq4) {
-  const SimRun r = run_with({{"sim.amplitude", 0.08}, {"Kp", 0.45}});
+  const SimRun r = run_with({{"sim.amplitude", 0.08}, {"Kp", 0.45}, {"renewal.start", 0.0}});
   const auto& res = *r.result;
   ASSERT_EQ(res.modes(), 49);
   for (std::size_t k = 0; k < res.steps(); k += 37) {

@@ -8,10 +8,12 @@
 
 #include <QComboBox>
 #include <QLabel>
+#include <QLineEdit>
 #include <QPushButton>
 #include <QSettings>
 #include <QTableWidget>
 #include <QTemporaryDir>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -105,18 +107,72 @@ TEST_F(ImportGui, OkIsRefusedWhileARoleIsMissingOrTaken) {
   EXPECT_EQ(w.dataset(), before);
 }
 
+// The dialog runs the import itself: its error refuses OK before the load is tried; the plot is
+// over time; an ISO column of local times is read in the zone typed beside its unit.
+TEST_F(ImportGui, TheDialogShowsTheImportsOwnErrorAndReadsLocalTimes) {
+  const QString back = dir.filePath("back.csv");
+  std::ofstream(back.toStdString()) << "t,gyro,angle\n0,1,2\n0.02,1,2\n0.01,1,2\n";
+  w.setImportHook([](ImportDialog& d) {
+    EXPECT_NE(d.problem().indexOf("time is not increasing"), -1) << d.problem().toStdString();
+    EXPECT_FALSE(d.okButton()->isEnabled());
+    return true;  // refused
+  });
+  const auto before = w.dataset();
+  EXPECT_TRUE(w.openDataset(back).ok());
+  EXPECT_EQ(w.dataset(), before);
+
+  const QString local = dir.filePath("local.csv");
+  std::ofstream(local.toStdString()) << "when,gyro,angle\n2024-03-31T01:59:58,1,2\n"
+                                        "2024-03-31T01:59:59,1,2\n2024-03-31T03:00:00,1,2\n";
+  w.setImportHook([](ImportDialog& d) {
+    EXPECT_EQ(d.mapping().at("t").unit, "iso");
+    auto* zone = d.findChild<QLineEdit*>("zone.t");
+    EXPECT_NE(zone, nullptr);
+    if (!zone) return false;
+    zone->setText("Europe/Berlln");
+    EXPECT_NE(d.problem().indexOf("unknown time zone 'Europe/Berlln'"), -1)
+        << d.problem().toStdString();
+    zone->setText("Europe/Berlin");
+    EXPECT_EQ(d.problem(), QString());
+    EXPECT_EQ(d.mapping().at("t").unit, "iso@Europe/Berlin");
+    EXPECT_EQ(d.plot()->xAxis->label(), "t [s]");
+    EXPECT_EQ(d.plot()->graph(0)->data()->size(), 3);
+    EXPECT_DOUBLE_EQ((d.plot()->graph(0)->data()->constEnd() - 1)->key, 2.0);  // 1 s each
+    // KFW_TEST_SHOT_DIR=DIR keeps a picture of the dialog for a human to look at.
+    if (const char* shots = std::getenv("KFW_TEST_SHOT_DIR")) {
+      d.resize(900, 620);
+      d.grab().save(QString(shots) + "/import_dialog.png");
+    }
+    return true;
+  });
+  ASSERT_TRUE(w.openDataset(local).ok()) << w.lastError().toStdString();
+  w.waitForRun();
+  EXPECT_EQ(w.dataset()->source, local.toStdString());
+  EXPECT_EQ(w.dataset()->time_origin, "2024-03-31T00:59:58.000000000Z");
+  EXPECT_EQ(w.document()->data()->mapping.at("t").unit, "iso@Europe/Berlin");
+}
+
 TEST_F(ImportGui, BadFilesKeepThePreviousDataset) {
   const std::string before = w.dataset()->source;
-  w.setImportHook([](ImportDialog&) { return true; });
+  QString shown;  // what the dialog says
+  w.setImportHook([&](ImportDialog& d) {
+    shown = d.problem();
+    EXPECT_EQ(d.okButton()->isEnabled(), shown.isEmpty());
+    return true;
+  });
+  // A file that reads but does not import: the dialog names the problem and refuses OK.
+  std::ofstream(dir.filePath("novalue.csv").toStdString()) << "t,gyro,angle\n0,1,\n1,2,\n";
+  EXPECT_TRUE(w.openDataset(dir.filePath("novalue.csv")).ok());  // refused: nothing changes
+  EXPECT_NE(shown.indexOf("novalue.csv: column 'angle' has no value"), -1) << shown.toStdString();
+  EXPECT_EQ(w.dataset()->source, before);
+  // Files that do not read: an error before any dialog.
   const std::pair<std::string, std::string> cases[] = {
       {"empty.csv", ": empty file"},
       {"header.csv", ": no data rows after the header"},
-      {"novalue.csv", ": column 'angle' has no value"},
       {"binary.csv", "binary.csv:2: not a text file"},
   };
   std::ofstream(dir.filePath("empty.csv").toStdString());
   std::ofstream(dir.filePath("header.csv").toStdString()) << "t,gyro,angle\n";
-  std::ofstream(dir.filePath("novalue.csv").toStdString()) << "t,gyro,angle\n0,1,\n1,2,\n";
   std::ofstream(dir.filePath("binary.csv").toStdString(), std::ios::binary)
       << std::string("t,gyro\n\x00\x01\x02", 10);
   for (const auto& [name, fragment] : cases) {

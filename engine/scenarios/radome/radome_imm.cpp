@@ -71,6 +71,7 @@ Expected<RadomeImm> RadomeImm::create(const FilterParams& p, double T_s) {
   auto chain = MarkovChain::uniform(f.modes(), p.stay);
   if (!chain) return chain.err();
   f.chain_ = *chain;
+  f.chain_matrix_ = chain->matrix();
   auto m = axis_model(p.tau_s, p.Q, T_s);
   if (!m) return m.err();
   f.axis_ = *m;
@@ -100,6 +101,7 @@ void RadomeImm::set_model(double dt_s) {
 }
 
 void RadomeImm::initialize(const Sample& s) {
+  elapsed_s_ = 0.0;
   const Vec<3> Y = pseudo_measurement(s.range_m, undo_slope(s.psi_rad, center_psi_, s.psi_a_rad),
                                       undo_slope(s.theta_rad, center_theta_, s.theta_a_rad));
   const auto r = static_cast<std::size_t>(modes());
@@ -123,13 +125,22 @@ void RadomeImm::initialize(const Sample& s) {
 StepOutput RadomeImm::step(const Sample& s, double dt_s) {
   StepOutput o;
   // Mode-parameter renewal (seed 001, eq. 4): the whole grid moves by Kp (R̂_{k−1} − mean R̄_{k−1}).
-  const double gain = p_.renewal == Renewal::kRate ? std::min(1.0, p_.Kp * dt_s) : p_.Kp;
+  elapsed_s_ += dt_s;
+  const double kp = elapsed_s_ < p_.renewal_start_s ? 0.0 : p_.Kp;
+  const double gain = p_.renewal == Renewal::kRate ? std::min(1.0, kp * dt_s) : kp;
   const double d_psi = gain * (est_psi_ - center_psi_);
   const double d_theta = gain * (est_theta_ - center_theta_);
   if (p_.renewal == Renewal::kSlope && (d_psi != 0.0 || d_theta != 0.0)) {
     const VecX moved =
         remap_probabilities(imm_probabilities(log_mu_), off_psi_, off_theta_, d_psi, d_theta);
     log_mu_ = moved.array().max(1e-300).log().matrix();
+  }
+  moved_chain_.reset();
+  if (p_.renewal == Renewal::kMix && (d_psi != 0.0 || d_theta != 0.0)) {
+    // Old mode i → moved-grid mode i' (shares T), then the Markov chain among the moved modes.
+    auto moved =
+        MarkovChain::dense(shift_transition(off_psi_, off_theta_, d_psi, d_theta) * chain_matrix_);
+    if (moved) moved_chain_ = std::move(*moved);
   }
   center_psi_ += d_psi;
   center_theta_ += d_theta;
@@ -144,7 +155,7 @@ StepOutput RadomeImm::step(const Sample& s, double dt_s) {
 }
 
 void RadomeImm::step_axis(const Sample& s, StepOutput& o) {
-  const ImmMixing w = imm_mixing(chain_, log_mu_);
+  const ImmMixing w = imm_mixing(moved_chain_ ? *moved_chain_ : chain_, log_mu_);
   const auto r = static_cast<std::size_t>(modes());
   for (std::size_t ax = 0; ax < 3; ++ax) {
     imm_mix(w, axis_modes_[ax], axis_mixed_[ax]);
@@ -152,12 +163,12 @@ void RadomeImm::step_axis(const Sample& s, StepOutput& o) {
     // Modes without own weight share one mixed prior (w.own = 0): predict it once.
     std::size_t shared = r;
     for (std::size_t j = 0; j < r; ++j) {
-      if (w.own(static_cast<Eigen::Index>(j)) == 0.0 && shared < r) {
+      if (w.uniform && w.own(static_cast<Eigen::Index>(j)) == 0.0 && shared < r) {
         axis_modes_[ax][j] = axis_modes_[ax][shared];
         continue;
       }
       axis_modes_[ax][j] = predict(axis_mixed_[ax][j], axis_.F, Bu, axis_.Q);
-      if (w.own(static_cast<Eigen::Index>(j)) == 0.0) shared = j;
+      if (w.uniform && w.own(static_cast<Eigen::Index>(j)) == 0.0) shared = j;
     }
   }
   if (!s.has_measurement()) {
@@ -245,18 +256,18 @@ void RadomeImm::step_axis(const Sample& s, StepOutput& o) {
 }
 
 void RadomeImm::step_full(const Sample& s, StepOutput& o) {
-  const ImmMixing w = imm_mixing(chain_, log_mu_);
+  const ImmMixing w = imm_mixing(moved_chain_ ? *moved_chain_ : chain_, log_mu_);
   const auto r = static_cast<std::size_t>(modes());
   imm_mix(w, full_modes_, full_mixed_);
   const Vec<9> Bu = Gamma9_ * s.U;
   std::size_t shared = r;  // as in step_axis: one prediction for all modes without own weight
   for (std::size_t j = 0; j < r; ++j) {
-    if (w.own(static_cast<Eigen::Index>(j)) == 0.0 && shared < r) {
+    if (w.uniform && w.own(static_cast<Eigen::Index>(j)) == 0.0 && shared < r) {
       full_modes_[j] = full_modes_[shared];
       continue;
     }
     full_modes_[j] = predict(full_mixed_[j], F9_, Bu, Q9_);
-    if (w.own(static_cast<Eigen::Index>(j)) == 0.0) shared = j;
+    if (w.uniform && w.own(static_cast<Eigen::Index>(j)) == 0.0) shared = j;
   }
   if (!s.has_measurement()) {
     log_mu_ = w.log_c_bar;
@@ -359,160 +370,6 @@ void RadomeImm::combine_axis_positions(const VecX& mu) {
   }
   combined_pos_ = x;
   combined_P_pos_ = P;
-}
-
-std::vector<double> RadomeResult::mode_probabilities(std::size_t k) const {
-  const auto r = static_cast<std::size_t>(modes());
-  if (k >= steps() || mu.size() < (k + 1) * r) return {};
-  return std::vector<double>(mu.begin() + static_cast<std::ptrdiff_t>(k * r),
-                             mu.begin() + static_cast<std::ptrdiff_t>((k + 1) * r));
-}
-
-std::vector<double> RadomeResult::grid_psi(std::size_t k) const {
-  std::vector<double> g;
-  if (k >= center_psi.size()) return g;
-  for (double o : offsets_psi)
-    g.push_back(center_psi[k] + o);
-  return g;
-}
-
-std::vector<double> RadomeResult::grid_theta(std::size_t k) const {
-  std::vector<double> g;
-  if (k >= center_theta.size()) return g;
-  for (double o : offsets_theta)
-    g.push_back(center_theta[k] + o);
-  return g;
-}
-
-std::vector<int> RadomeResult::top_modes(int count) const {
-  const auto r = static_cast<std::size_t>(modes());
-  std::vector<double> mean(r, 0.0);
-  const std::size_t n = r ? mu.size() / r : 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    for (std::size_t j = 0; j < r; ++j)
-      mean[j] += mu[k * r + j];
-  }
-  std::vector<int> idx(r);
-  std::iota(idx.begin(), idx.end(), 0);
-  std::stable_sort(idx.begin(), idx.end(), [&](int a, int b) {
-    return mean[static_cast<std::size_t>(a)] > mean[static_cast<std::size_t>(b)];
-  });
-  idx.resize(std::min(r, static_cast<std::size_t>(std::max(count, 0))));
-  return idx;
-}
-
-std::vector<InnovationChannel> RadomeResult::channels() const {
-  std::vector<InnovationChannel> out;
-  out.push_back({"position", "position (3-D)", 3.0, nis, {}, {}});
-  const char* names[3] = {"x", "y", "z"};
-  for (int a = 0; a < 3; ++a) {
-    InnovationChannel c;
-    c.name = names[a];
-    c.label = std::string(names[a]) + " axis";
-    c.nis.assign(t.size(), kNoSample);
-    c.normalized.assign(t.size(), kNoSample);
-    for (std::size_t k = 0; k < t.size() && k < innovation[a].size(); ++k) {
-      const double y = innovation[a][k], S_k = S[a][k];
-      if (std::isfinite(y) && S_k > 0) {
-        c.nis[k] = y * y / S_k;
-        c.normalized[k] = y / std::sqrt(S_k);
-      }
-    }
-    out.push_back(std::move(c));
-  }
-  return out;
-}
-
-std::vector<StateSeries> RadomeResult::states() const {
-  const bool truth = x_true.size() == t.size();
-  return {{"x", "x (target position)", "m", &x_est, nullptr, truth ? &x_true : nullptr},
-          {"y", "y (target position)", "m", &y_est, nullptr, truth ? &y_true : nullptr},
-          {"z", "z (target position)", "m", &z_est, nullptr, truth ? &z_true : nullptr}};
-}
-
-Dataset RadomeResult::table() const {
-  Dataset d;
-  d.source = "radome run";
-  d.names = {"t",
-             "slope_psi",
-             "slope_theta",
-             "slope_psi_true",
-             "slope_theta_true",
-             "grid_center_psi",
-             "grid_center_theta",
-             "alpha_true_deg",
-             "alpha_meas_deg",
-             "alpha_est_deg",
-             "psi_los_true_deg",
-             "theta_los_true_deg",
-             "psi_meas_deg",
-             "theta_meas_deg",
-             "psi_los_est_deg",
-             "theta_los_est_deg",
-             "x_est",
-             "y_est",
-             "z_est",
-             "innovation_x",
-             "innovation_y",
-             "innovation_z",
-             "S_x",
-             "S_y",
-             "S_z",
-             "nis",
-             "map_mode"};
-  d.columns = {t,
-               slope_psi,
-               slope_theta,
-               slope_psi_true,
-               slope_theta_true,
-               center_psi,
-               center_theta,
-               alpha_true_deg,
-               alpha_meas_deg,
-               alpha_est_deg,
-               psi_los_true_deg,
-               theta_los_true_deg,
-               psi_meas_deg,
-               theta_meas_deg,
-               psi_los_est_deg,
-               theta_los_est_deg,
-               x_est,
-               y_est,
-               z_est,
-               innovation[0],
-               innovation[1],
-               innovation[2],
-               S[0],
-               S[1],
-               S[2],
-               nis,
-               map_mode};
-  // The combined position variances and the NEES (appended: earlier columns keep their place).
-  const char* var_names[3] = {"var_x", "var_y", "var_z"};
-  for (int ax = 0; ax < 3; ++ax) {
-    std::vector<double> v(t.size(), kNaN);
-    for (std::size_t k = 0; k < v.size() && k < P_pos.size(); ++k)
-      v[k] = P_pos[k](ax, ax);
-    d.names.push_back(var_names[ax]);
-    d.columns.push_back(std::move(v));
-  }
-  d.names.push_back("nees");
-  d.columns.push_back(nees.size() == t.size() ? nees : std::vector<double>(t.size(), kNaN));
-  return d;
-}
-
-void RadomeResult::compute_nees() {
-  const std::size_t n = t.size();
-  nees.assign(n, kNaN);
-  nees_dof = 3.0;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (k >= P_pos.size() || k >= x_true.size() || k >= y_true.size() || k >= z_true.size()) break;
-    const Vec<3> e(x_est[k] - x_true[k], y_est[k] - y_true[k], z_est[k] - z_true[k]);
-    if (!e.allFinite() || !P_pos[k].allFinite()) continue;
-    const Eigen::LLT<Covariance<3>> llt(P_pos[k]);
-    if (llt.info() != Eigen::Success) continue;  // not positive definite: unknown
-    nees[k] = e.dot(llt.solve(e));
-  }
 }
 
 Expected<RadomeResult> run_radome_imm(const Inputs& in, const FilterParams& p,

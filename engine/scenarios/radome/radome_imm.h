@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "core/imm.h"
@@ -22,16 +23,18 @@ namespace kfw::radome {
 
 enum class Structure { kAxisBlocks = 0, kFull = 1 };
 // Readings of eq. 4 (radome_renewal.h): per sample with μ by grid index; per sample with μ by
-// slope value; Kp per second with μ by grid index.
-enum class Renewal { kIndex = 0, kSlope = 1, kRate = 2 };
+// slope value; Kp per second with μ by grid index; per sample with the shift as a mode transition
+// (μ, states and covariances carried to the moved grid together).
+enum class Renewal { kIndex = 0, kSlope = 1, kRate = 2, kMix = 3 };
 
 struct FilterParams {
-  double Q = 100.0;                   // spectral density of w, (m/s²)²/Hz
-  double tau_s = 0.5;                 // target manoeuvre time constant τ
-  double var_angle = 1e-6;            // R: ν_ψ, ν_θ variance, rad²
-  double var_range = 1.0;             // ν_R variance assumed by the filter, m²
-  double Kp = 0.0;                    // mode-parameter renewal gain (eq. 4); 0 = plain IMM
-  Renewal renewal = Renewal::kIndex;  // what eq. 4 does to μ, and Kp's unit (radome_renewal.h)
+  double Q = 100.0;                 // spectral density of w, (m/s²)²/Hz
+  double tau_s = 0.5;               // target manoeuvre time constant τ
+  double var_angle = 1e-6;          // R: ν_ψ, ν_θ variance, rad²
+  double var_range = 1.0;           // ν_R variance assumed by the filter, m²
+  double Kp = 0.0;                  // mode-parameter renewal gain (eq. 4); 0 = plain IMM
+  Renewal renewal = Renewal::kMix;  // what eq. 4 does to μ, and Kp's unit (radome_renewal.h)
+  double renewal_start_s = 2.0;     // no renewal during the IMM's start-up (time since init)
   double grid_min = -0.05, grid_max = 0.05;
   int n_psi = 7, n_theta = 7;
   double stay = 0.99;  // Markov p^{jj}
@@ -98,7 +101,10 @@ class RadomeImm {
   std::vector<double> off_psi_, off_theta_;
   double center_psi_ = 0.0, center_theta_ = 0.0;
   double est_psi_ = 0.0, est_theta_ = 0.0;  // R̂_{k−1}
+  double elapsed_s_ = 0.0;                  // since initialize()
   MarkovChain chain_;
+  MatX chain_matrix_;  // chain_ as a matrix (Renewal::kMix composes it with the grid shift)
+  std::optional<MarkovChain> moved_chain_;  // this step's shift ∘ chain_ (kMix, grid moved)
   VecX log_mu_;
   AxisModel axis_;
   Mat<9> F9_;

@@ -34,6 +34,17 @@ MatX share_matrix(const std::vector<double>& off, double d) {
 
 }  // namespace
 
+MatX shift_transition(const std::vector<double>& off_psi, const std::vector<double>& off_theta,
+                      double d_psi, double d_theta) {
+  const MatX Wp = share_matrix(off_psi, d_psi), Wt = share_matrix(off_theta, d_theta);
+  const Eigen::Index np = Wp.rows(), nt = Wt.rows();
+  MatX T(np * nt, np * nt);
+  for (Eigen::Index b = 0; b < nt; ++b)
+    for (Eigen::Index b2 = 0; b2 < nt; ++b2)
+      T.block(b * np, b2 * np, np, np) = Wt(b, b2) * Wp;
+  return T;
+}
+
 VecX remap_probabilities(const VecX& mu, const std::vector<double>& off_psi,
                          const std::vector<double>& off_theta, double d_psi, double d_theta) {
   const auto np = static_cast<Eigen::Index>(off_psi.size());

@@ -6,7 +6,10 @@
 // jumps with the grid and the next renewal sees the same gap; `slope` shares the mass at each
 // old slope between the two moved grid points around it (linear interpolation; mass beyond an
 // edge goes to that edge), so the renewal moves the grid and not the estimate; `rate` applies Kp
-// per second (ΔR̄ = Kp·Ts·(R̂ − R̄)) with μ by index. README "Scenario radome" compares them.
+// per second (ΔR̄ = Kp·Ts·(R̂ − R̄)) with μ by index; `mix` treats the shift as a mode transition
+// composed with the Markov chain, so μ, the mode states and covariances move to the new grid in
+// one IMM mixing (a mode keeps the state of the slope it now stands for). README "Scenario
+// radome" compares them.
 #pragma once
 
 #include <vector>
@@ -18,6 +21,11 @@ namespace kfw::radome {
 // Probabilities μ (mode j = a + n_ψ b) on the grid with offsets off_psi, off_theta, re-expressed
 // on the same grid moved by (d_psi, d_theta): each old slope's mass goes to the moved grid's
 // neighbours of that slope. Offsets ascending. Σ μ is kept.
+// The grid shift as a mode transition: T(i, i') = share of old mode i (a + n_ψ b) that goes to
+// mode i' of the moved grid, the product of the per-axis shares above. Rows sum to 1.
+MatX shift_transition(const std::vector<double>& off_psi, const std::vector<double>& off_theta,
+                      double d_psi, double d_theta);
+
 VecX remap_probabilities(const VecX& mu, const std::vector<double>& off_psi,
                          const std::vector<double>& off_theta, double d_psi, double d_theta);
 

@@ -58,15 +58,20 @@ ParamTable make_table() {
        "renewal: what μ and Kp mean",
        "",
        0,
-       2,
-       0,
+       3,
+       3,
        Scale::kChoice,
        G,
        "index: eq. 4 every sample, μ stays with the grid index; slope: μ shared between the moved "
        "grid's neighbours of its slope; rate: Kp per second (ΔR̄ = Kp·Ts·(R̂ − R̄)), μ by index. "
-       "README: the reading of eq. 4.",
+       "mix: the shift as a mode transition, μ and the mode states carried to the moved grid. "
+       "README: the reading of eq. 4 (mix, the default, reproduces Figs. 7–9).",
        0,
-       {"index", "slope", "rate"}},
+       {"index", "slope", "rate", "mix"}},
+      {"renewal.start", "renewal starts after", "s", 0.0, 600.0, 2.0, Scale::kLinear, G,
+       "No renewal for this long after the first measurement: the IMM's start-up transient "
+       "(large P0) would steer the grid. The paper does not say when renewal starts.",
+       1},
       {"grid.min", "grid minimum slope", "", -0.5, 0.5, -0.05, Scale::kLinear, G,
        "Smallest slope of the initial grid, both axes (seed 001, eq. 6: −0.05).", 3},
       {"grid.max", "grid maximum slope", "", -0.5, 0.5, 0.05, Scale::kLinear, G,
@@ -241,6 +246,7 @@ class RadomeScenario final : public Scenario {
                                                     : radome::Structure::kAxisBlocks;
     fp.Kp = param(v, "Kp");
     fp.renewal = static_cast<radome::Renewal>(param(v, "renewal.mode"));
+    fp.renewal_start_s = param(v, "renewal.start");
     fp.grid_min = param(v, "grid.min");
     fp.grid_max = param(v, "grid.max");
     fp.n_psi = static_cast<int>(param(v, "grid.n_psi"));

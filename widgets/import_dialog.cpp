@@ -78,6 +78,7 @@ ImportDialog::ImportDialog(std::shared_ptr<const Table> table, const std::vector
     }
   }
   preview_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  preview_->resizeColumnsToContents();
   preview_->setMaximumHeight(200);
   lay->addWidget(preview_);
 
@@ -267,6 +268,9 @@ void ImportDialog::accept() {
 
 void ImportDialog::refresh() {
   const Mapping m = mapping();
+  if (Row* t = row("t"); t && zone_) {
+    zone_->setEnabled(t->unit->currentData().toString() == QString(kIsoTime));
+  }
   import_error_.clear();
   plot_->clearGraphs();
   std::optional<Dataset> d;
@@ -290,7 +294,7 @@ void ImportDialog::refresh() {
     const auto& t = d->col("t");
     const std::size_t n = std::min(t.size(), kPlotRows);
     for (const auto& r : roles_) {
-      if (!m.count(r.name) || d->index(r.name) < 0) continue;
+      if (r.name == "t" || !m.count(r.name) || d->index(r.name) < 0) continue;
       const auto& v = d->col(r.name);
       auto* g = plot_->addGraph();
       g->setData(QVector<double>(t.begin(), t.begin() + static_cast<std::ptrdiff_t>(n)),

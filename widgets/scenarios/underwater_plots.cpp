@@ -105,8 +105,8 @@ class UnderwaterView final : public ScenarioView {
       });
     }
 
-    err_ = makePlot(parent, "Distance error |estimate − truth| (seed 004, Fig. 3b)", "time (s)",
-                    "distance error (m)");
+    err_ = makePlot(parent, "Distance error |estimate − truth| (Han et al. 2016, Fig. 3b)",
+                    "time (s)", "distance error (m)");
     err_y_ = addGraph(err_, "distance error", color::kEstimate, Style::kLine);
     err_cursor_ = addCursor(err_);
 
@@ -238,9 +238,11 @@ class UnderwaterView final : public ScenarioView {
     for (const auto& [name, result] : snapshots) {
       auto r = std::dynamic_pointer_cast<const UnderwaterResult>(result);
       if (!r) continue;
-      const QColor c = plot::color::ghost(i++);
-      ghosts_.push_back({r, addCurve(track_, "estimate " + name, c, plot::Style::kLine),
-                         plot::addGraph(err_, "error " + name, c)});
+      const int c = i++;
+      const QString pinned = " [pinned: " + name + "]";
+      ghosts_.push_back(
+          {r, addCurve(track_, "estimate" + pinned, plot::color::ghost(c), plot::Style::kDashed),
+           plot::addGhost(err_, "error" + pinned, c)});
     }
     if (result_) {
       drawUpTo(cursor_);

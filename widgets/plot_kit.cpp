@@ -38,10 +38,13 @@ namespace {
 // Wraps the legend into as many columns as the plot's width holds (entries fill rows first).
 void fitLegend(QCustomPlot* p) {
   QCPLegend* l = p->legend;
-  if (!l || !l->visible()) return;
+  // Only the legend in makePlot's row (a view may have moved it beside the plot).
+  if (!l || !l->visible() || l->layout() != p->plotLayout()) return;
   int widest = 1;
-  for (int i = 0; i < l->itemCount(); ++i)
-    widest = std::max(widest, l->item(i)->minimumOuterSizeHint().width());
+  for (int i = 0; i < l->itemCount(); ++i) {
+    if (QCPAbstractLegendItem* item = l->item(i))  // null: an empty cell of the grid
+      widest = std::max(widest, item->minimumOuterSizeHint().width());
+  }
   const int room = std::max(1, p->width() - 16);
   const int cols = std::max(1, room / (widest + l->columnSpacing()));
   if (l->wrap() != cols || l->fillOrder() != QCPLayoutGrid::foColumnsFirst) {
@@ -418,6 +421,7 @@ Band addBand(QCustomPlot* p, const QString& name, const QColor& c, bool overlaps
   b.lower->setPen(QPen(edge));
   b.lower->setBrush(QBrush(fill));
   b.lower->setChannelFillGraph(b.upper);
+  b.lower->setName("");  // the band is named by its upper edge
   b.lower->removeFromLegend();
   return b;
 }
@@ -606,6 +610,14 @@ void setUserZoom(QCustomPlot* p, bool x, bool y) {
   p->setProperty(kZoomX, x);
   p->setProperty(kZoomY, y);
 }
+int axisRectRow(QCustomPlot* p) {
+  QCPLayoutGrid* layout = p->plotLayout();
+  for (int row = 0; row < layout->rowCount(); ++row) {
+    if (layout->element(row, 0) == p->axisRect()) return row;
+  }
+  return layout->rowCount() - 1;
+}
+
 bool isTimePlot(const QCustomPlot* p) {
   return p && p->property(kTime).toBool();
 }

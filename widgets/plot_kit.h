@@ -101,6 +101,8 @@ void setHLine(QCPItemStraightLine* line, double y);
 bool userZoomedX(const QCustomPlot* p);
 bool userZoomedY(const QCustomPlot* p);
 void setUserZoom(QCustomPlot* p, bool x, bool y);
+// The plot layout's row that holds the axis rect (makePlot puts a title and a legend row above).
+int axisRectRow(QCustomPlot* p);
 // True for a plot whose x axis is the run's time (rescale() was given [x0, x1]).
 bool isTimePlot(const QCustomPlot* p);
 

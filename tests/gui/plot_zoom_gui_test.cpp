@@ -6,6 +6,7 @@
 #include <QApplication>
 #include <QDir>
 #include <QKeyEvent>
+#include <QMouseEvent>
 #include <QWheelEvent>
 #include <cmath>
 
@@ -99,6 +100,38 @@ TEST(PlotZoom, WheelZoomIsLinkedSurvivesARerunAndHomeResets) {
   }
 }
 
+// Ctrl+drag zooms to the dragged box; the other time plots follow in x.
+TEST(PlotZoom, CtrlDragZoomsToABox) {
+  MainWindow w;
+  w.resize(1400, 900);
+  w.show();
+  std::string skip;
+  if (!load(w, QString(KFW_SOURCE_DIR) + "/presets/helicopter.json", skip)) GTEST_SKIP() << skip;
+  const auto plots = timePlots(w);
+  ASSERT_GE(plots.size(), 2);
+  QCustomPlot* a = plots.front();
+  a->replot();
+  const QRect r = a->axisRect()->rect();
+  const QPointF from(r.left() + 0.25 * r.width(), r.top() + 0.25 * r.height());
+  const QPointF to(r.left() + 0.5 * r.width(), r.top() + 0.75 * r.height());
+  const double k0 = a->xAxis->pixelToCoord(from.x()), k1 = a->xAxis->pixelToCoord(to.x());
+  auto send = [&](QEvent::Type type, const QPointF& at, Qt::MouseButtons buttons) {
+    QMouseEvent ev(type, at, a->mapToGlobal(at), Qt::LeftButton, buttons, Qt::ControlModifier);
+    QApplication::sendEvent(a, &ev);
+  };
+  send(QEvent::MouseButtonPress, from, Qt::LeftButton);
+  send(QEvent::MouseMove, (from + to) / 2, Qt::LeftButton);
+  send(QEvent::MouseMove, to, Qt::LeftButton);
+  send(QEvent::MouseButtonRelease, to, Qt::NoButton);
+  QApplication::processEvents();
+  for (QCustomPlot* p : plots) {
+    // Within 3 % of the box (the axis rect's width changes with the new tick labels).
+    EXPECT_NEAR(p->xAxis->range().lower, k0, 0.03 * (k1 - k0)) << p->objectName().toStdString();
+    EXPECT_NEAR(p->xAxis->range().upper, k1, 0.03 * (k1 - k0)) << p->objectName().toStdString();
+  }
+  EXPECT_TRUE(plot::userZoomedY(a));
+}
+
 TEST(PlotZoom, ZoomIsPartOfTheViewState) {
   MainWindow w;
   std::string skip;
@@ -126,7 +159,7 @@ TEST_P(Readout, ReportsTheRunsValues) {
   std::string skip;
   if (!load(w, QString(KFW_SOURCE_DIR) + "/presets/" + GetParam() + ".json", skip))
     GTEST_SKIP() << skip;
-  auto r = std::dynamic_pointer_cast<const HelicopterResult>(w.result());
+  auto r = std::dynamic_pointer_cast<const helicopter::HelicopterResult>(w.result());
   ASSERT_TRUE(r);
   QCustomPlot* angle = testing::plotNamed(w, "angle");
   ASSERT_NE(angle, nullptr);
@@ -192,7 +225,9 @@ TEST(PlotLegends, NamedAndOffTheData) {
           if (legend.contains(px)) ++inside;
         }
       }
-      if (total > 0) EXPECT_LE(inside, total / 50) << where << ": legend covers data";
+      if (total > 0) {
+        EXPECT_LE(inside, total / 50) << where << ": legend covers data";
+      }
     }
   }
 }

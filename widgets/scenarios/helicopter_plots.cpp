@@ -51,6 +51,7 @@ class HelicopterView final : public ScenarioView {
     curve_op_p11_->setLineStyle(QCPGraph::lsNone);
     curve_op_p11_->setScatterStyle(QCPScatterStyle(
         QCPScatterStyle::ssDiamond, QPen(color::kThird, 2), QBrush(color::kThird), 9));
+    curve_op_p11_->setName("");  // one legend entry for both operating points
     curve_op_p11_->removeFromLegend();
     curve_label_ = addNote(curve_);
 

@@ -47,20 +47,6 @@ void setGridTicks(QCPAxis* axis, const std::vector<double>& grid,
   if (axis->ticker() != text) axis->setTicker(text);
 }
 
-// A legend-only entry drawn as a filled swatch with an edge (a graph's own icon is a line, which
-// for a faint band is nearly invisible). It holds no data.
-class SwatchGraph final : public QCPGraph {
- public:
-  using QCPGraph::QCPGraph;
-
- protected:
-  void drawLegendIcon(QCPPainter* painter, const QRectF& rect) const override {
-    painter->setPen(pen());
-    painter->setBrush(brush());
-    painter->drawRect(rect.adjusted(1.0, 3.0, -1.0, -3.0));
-  }
-};
-
 // The IMM grid editor: one spin box per grid key, and the grid's slope values.
 class ImmGridEditor final : public QGroupBox {
  public:
@@ -170,14 +156,6 @@ class RadomeView final : public ScenarioView {
               .arg(sym),
           "time (s)", QString("slope R_%1 (–)").arg(sym));
       s.envelope = addBand(s.plot, "grid envelope", color::kSensor);
-      s.envelope.upper->removeFromLegend();
-      auto* key = new SwatchGraph(s.plot->xAxis, s.plot->yAxis);
-      key->setName("grid envelope");
-      QColor fill = color::kSensor;
-      fill.setAlpha(110);
-      key->setBrush(fill);
-      key->setPen(QPen(color::kBound));
-      key->addToLegend();
       s.center = addGraph(s.plot, "grid centre", color::kBound, Style::kDashed);
       s.truth = addGraph(s.plot, "truth", color::kTruth);
       s.est = addGraph(s.plot, QString("estimate Σ μ^j R̄_%1^j").arg(sym), color::kEstimate);

@@ -33,6 +33,7 @@
 #include "monte_carlo_dialog.h"
 #include "param_panel.h"
 #include "plot_export.h"
+#include "plot_zoom.h"
 #include "run_controller.h"
 #include "sweep_dialog.h"
 #include "transport_bar.h"
@@ -52,6 +53,11 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   setWindowTitle("kfw — Kalman filter tuning workbench");
   resize(1600, 1000);
   runner_ = new RunController(this);
+  addViewStatePart(
+      "zoom", [this] { return zoom_ ? zoom_->save() : QJsonValue(); },
+      [this](const QJsonValue& v) {
+        if (zoom_) zoom_->restore(v);
+      });
   connect(runner_, &RunController::finished, this, &MainWindow::applyResult);
   connect(runner_, &RunController::failed, this, [this](const QString& m) {
     applied_latest_ = !runner_->busy();
@@ -338,6 +344,10 @@ Status MainWindow::adoptDocument(Document doc) {
   return Ok{};
 }
 
+plot::ZoomGroup* MainWindow::zoom() const {
+  return zoom_.data();
+}
+
 void MainWindow::rebuildScenarioUi() {
   delete panel_;
   delete controls_;
@@ -380,6 +390,12 @@ void MainWindow::rebuildScenarioUi() {
     grid->addWidget(plots_[i].plot, i / 2, i % 2);
   }
   plot_area_->setWidget(plot_host_);
+  zoom_ = new plot::ZoomGroup(
+      plots_,
+      [this] {
+        if (view_ && result_) view_->setCursor(transport_->cursor());
+      },
+      plot_host_);
   updateDataLabel();
 }
 

@@ -7,6 +7,7 @@
 #include <QJsonValue>
 #include <QList>
 #include <QMainWindow>
+#include <QPointer>
 #include <QString>
 #include <QStringList>
 #include <functional>
@@ -38,6 +39,9 @@ class ConsistencyPanel;
 class ImportDialog;
 class ParamPanel;
 class RunController;
+namespace plot {
+class ZoomGroup;
+}
 class TransportBar;
 
 class MainWindow : public QMainWindow {
@@ -118,6 +122,8 @@ class MainWindow : public QMainWindow {
   // What --export writes: the scenario's plots, then the consistency panel's (when it has data).
   QList<PlotPanel> exportedPlots() const;
   TransportBar* transport() const { return transport_; }
+  // The user's zoom and the readout over the scenario's plots (widgets/plot_zoom.h).
+  plot::ZoomGroup* zoom() const;
   ConsistencyPanel* consistency() const { return consistency_; }
   std::shared_ptr<const RunResult> result() const { return result_; }
   std::shared_ptr<const Dataset> dataset() const;
@@ -196,6 +202,7 @@ class MainWindow : public QMainWindow {
   QScrollArea* plot_area_ = nullptr;
   ConsistencyPanel* consistency_ = nullptr;
   QWidget* plot_host_ = nullptr;
+  QPointer<plot::ZoomGroup> zoom_;  // a child of plot_host_
   QTableWidget* metrics_ = nullptr;
   QLabel* error_ = nullptr;
   QLabel* status_ = nullptr;

@@ -37,7 +37,6 @@ QCPItemText* addNote(QCustomPlot* p) {
   note->setTextAlignment(Qt::AlignLeft);
   note->setPadding(QMargins(4, 2, 4, 2));
   note->setBrush(QBrush(QColor(255, 255, 255, 210)));
-  p->axisRect()->insetLayout()->setInsetAlignment(0, Qt::AlignBottom | Qt::AlignRight);
   return note;
 }
 
@@ -88,7 +87,7 @@ void EstimatePlot::setGhosts(const QList<GhostSeries>& ghosts) {
   int i = 0;
   for (const auto& s : ghosts) {
     if (!s.t || !s.y) continue;
-    ghosts_.push_back({s, addGraph(plot_, s.name, color::ghost(i++))});
+    ghosts_.push_back({s, addGhost(plot_, s.name, i++)});
   }
 }
 

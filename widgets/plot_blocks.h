@@ -112,8 +112,7 @@ class NisPlot {
   double lo_v_ = 0.0, hi_v_ = 0.0, avg_lo_v_ = 0.0, avg_hi_v_ = 0.0;
 };
 
-// A boxed note in the top-left corner of the axis rect (an operating point's numbers, say); the
-// legend moves to the bottom right, out of its way.
+// A boxed note in the top-left corner of the axis rect (an operating point's numbers, say).
 QCPItemText* addNote(QCustomPlot* p);
 
 // A horizontal line over [t0, tc] as two points (a dashed pen over thousands of vertices is slow

@@ -34,6 +34,26 @@ void removePlottables(std::initializer_list<QCPAbstractPlottable*> plottables) {
   }
 }
 
+namespace {
+// Wraps the legend into as many columns as the plot's width holds (entries fill rows first).
+void fitLegend(QCustomPlot* p) {
+  QCPLegend* l = p->legend;
+  // Only the legend in makePlot's row (a view may have moved it beside the plot).
+  if (!l || !l->visible() || l->layout() != p->plotLayout()) return;
+  int widest = 1;
+  for (int i = 0; i < l->itemCount(); ++i) {
+    if (QCPAbstractLegendItem* item = l->item(i))  // null: an empty cell of the grid
+      widest = std::max(widest, item->minimumOuterSizeHint().width());
+  }
+  const int room = std::max(1, p->width() - 16);
+  const int cols = std::max(1, room / (widest + l->columnSpacing()));
+  if (l->wrap() != cols || l->fillOrder() != QCPLayoutGrid::foColumnsFirst) {
+    l->setWrap(cols);
+    l->setFillOrder(QCPLayoutGrid::foColumnsFirst, true);
+  }
+}
+}  // namespace
+
 QCustomPlot* makePlot(QWidget* parent, const QString& title, const QString& xLabel,
                       const QString& yLabel) {
   auto* p = new QCustomPlot(parent);
@@ -63,10 +83,19 @@ QCustomPlot* makePlot(QWidget* parent, const QString& title, const QString& xLab
   QFont lf = base;
   lf.setPointSizeF(8.0);
   p->legend->setFont(lf);
-  p->legend->setBrush(QBrush(QColor(255, 255, 255, 210)));
-  p->legend->setBorderPen(QPen(QColor(180, 180, 180)));
-  p->legend->setRowSpacing(-2);
-  p->axisRect()->insetLayout()->setInsetAlignment(0, Qt::AlignTop | Qt::AlignRight);
+  p->legend->setBrush(Qt::NoBrush);
+  p->legend->setBorderPen(Qt::NoPen);
+  p->legend->setRowSpacing(-4);
+  p->legend->setColumnSpacing(10);
+  p->legend->setMargins(QMargins(4, 0, 4, 0));
+  // The legend leaves the axis rect for a row of its own under the title: it never hides data.
+  p->axisRect()->insetLayout()->take(p->legend);
+  p->axisRect()->insetLayout()->simplify();
+  p->plotLayout()->insertRow(1);
+  p->plotLayout()->addElement(1, 0, p->legend);
+  p->plotLayout()->setRowStretchFactor(1, 0.001);
+  p->plotLayout()->setRowSpacing(0);
+  QObject::connect(p, &QCustomPlot::beforeReplot, p, [p] { fitLegend(p); });
   return p;
 }
 
@@ -122,6 +151,15 @@ QCPGraph* addGraph(QCustomPlot* p, const QString& name, const QColor& c, Style s
   return g;
 }
 
+QCPGraph* addGhost(QCustomPlot* p, const QString& name, int i, Style s) {
+  QCPGraph* g = addGraph(p, name, color::ghost(i), s, 2.0);
+  QPen pen = g->pen();
+  pen.setDashPattern({4.0, 2.0});
+  g->setPen(pen);
+  g->setProperty("kfwGhost", true);
+  return g;
+}
+
 QCPGraph* addGraphRight(QCustomPlot* p, const QString& name, const QColor& c,
                         const QString& rightLabel) {
   QCPGraph* g = p->addGraph(p->xAxis, p->yAxis2);
@@ -169,9 +207,9 @@ double fastLog2(double y) {
 
 // The finite, drawable points among the first n, visited in order.
 template <typename F>
-void forEachPoint(const std::vector<double>& x, const std::vector<double>& y, std::size_t n,
-                  bool logY, F&& f) {
-  for (std::size_t i = 0; i < n; ++i) {
+void forEachPoint(const std::vector<double>& x, const std::vector<double>& y, std::size_t begin,
+                  std::size_t n, bool logY, F&& f) {
+  for (std::size_t i = begin; i < n; ++i) {
     const double xi = x[i], yi = y[i];
     if (std::isfinite(xi) && std::isfinite(yi) && (!logY || yi > 0.0)) f(xi, yi);
   }
@@ -181,11 +219,11 @@ void forEachPoint(const std::vector<double>& x, const std::vector<double>& y, st
 struct Extent {
   double x0, x1, y0, y1;
 };
-Extent extent(const std::vector<double>& x, const std::vector<double>& y, std::size_t n,
-              bool logY) {
+Extent extent(const std::vector<double>& x, const std::vector<double>& y, std::size_t begin,
+              std::size_t n, bool logY) {
   const double inf = std::numeric_limits<double>::infinity();
   Extent e{inf, -inf, inf, -inf};
-  forEachPoint(x, y, n, logY, [&](double xi, double yi) {
+  forEachPoint(x, y, begin, n, logY, [&](double xi, double yi) {
     e.x0 = std::min(e.x0, xi);
     e.x1 = std::max(e.x1, xi);
     e.y0 = std::min(e.y0, yi);
@@ -196,8 +234,9 @@ Extent extent(const std::vector<double>& x, const std::vector<double>& y, std::s
 
 // Keeps what a raster of `cols` columns can show of a line: per column the first, lowest,
 // highest and last point in time order. Exact on screen, and 55k points become a few thousand.
-void decimateLine(const std::vector<double>& x, const std::vector<double>& y, std::size_t n,
-                  bool logY, double x0, double x1, int cols, QVector<QCPGraphData>& out) {
+void decimateLine(const std::vector<double>& x, const std::vector<double>& y, std::size_t begin,
+                  std::size_t n, bool logY, double x0, double x1, int cols,
+                  QVector<QCPGraphData>& out) {
   const double scale = x1 > x0 ? cols / (x1 - x0) : 0.0;
   long col = -1;
   QCPGraphData first, lo, hi, last;
@@ -212,7 +251,7 @@ void decimateLine(const std::vector<double>& x, const std::vector<double>& y, st
     if (b.key != a.key || b.value != a.value) out.append(b);
     if (count > 1 && (last.key != b.key || last.value != b.value)) out.append(last);
   };
-  forEachPoint(x, y, n, logY, [&](double xi, double yi) {
+  forEachPoint(x, y, begin, n, logY, [&](double xi, double yi) {
     const long c = static_cast<long>((xi - x0) * scale);
     const QCPGraphData p(xi, yi);
     if (c != col) {
@@ -232,16 +271,16 @@ void decimateLine(const std::vector<double>& x, const std::vector<double>& y, st
 
 // Keeps one dot per occupied cell of a cols × rows raster: the same picture with fewer dots
 // (a dot is 2 px wide, so cells of 2 × 2 px lose nothing visible).
-void decimateDots(const std::vector<double>& x, const std::vector<double>& y, std::size_t n,
-                  bool logY, int cols, int rows, QVector<QCPGraphData>& out) {
+void decimateDots(const std::vector<double>& x, const std::vector<double>& y, std::size_t begin,
+                  std::size_t n, bool logY, int cols, int rows, QVector<QCPGraphData>& out) {
   auto fy = [logY](double v) { return logY ? fastLog2(v) : v; };
-  const auto [x0, x1, y0, y1] = extent(x, y, n, logY);
+  const auto [x0, x1, y0, y1] = extent(x, y, begin, n, logY);
   if (x0 > x1) return;
   const double fy0 = fy(y0), fspan = fy(y1) - fy0;
   const double cscale = x1 > x0 ? cols / (x1 - x0) : 0.0;
   const double rscale = fspan > 0 ? rows / fspan : 0.0;
   std::vector<unsigned char> seen(static_cast<std::size_t>(cols + 1) * (rows + 1), 0);
-  forEachPoint(x, y, n, logY, [&](double xi, double yi) {
+  forEachPoint(x, y, begin, n, logY, [&](double xi, double yi) {
     const auto c = std::clamp(static_cast<long>((xi - x0) * cscale), 0L, static_cast<long>(cols));
     const auto r =
         std::clamp(static_cast<long>((fy(yi) - fy0) * rscale), 0L, static_cast<long>(rows));
@@ -255,11 +294,33 @@ void decimateDots(const std::vector<double>& x, const std::vector<double>& y, st
 
 // The dot raster of a graph: 2 × 2-pixel cells of its axis rect.
 void decimateDotsFor(const QCPGraph* g, const std::vector<double>& x, const std::vector<double>& y,
-                     std::size_t n, bool logY, QVector<QCPGraphData>& out) {
-  decimateDots(x, y, n, logY, std::max(columnsFor(g) / 2, 300), std::max(rowsFor(g) / 2, 150), out);
+                     std::size_t begin, std::size_t n, bool logY, QVector<QCPGraphData>& out) {
+  decimateDots(x, y, begin, n, logY, std::max(columnsFor(g) / 2, 300),
+               std::max(rowsFor(g) / 2, 150), out);
 }
 
 }  // namespace
+
+namespace {
+const char* const kSrcX = "kfwSrcX";
+const char* const kSrcY = "kfwSrcY";
+const char* const kSrcN = "kfwSrcN";
+void setSource(QCPGraph* g, const std::vector<double>* x, const std::vector<double>* y,
+               std::size_t n) {
+  g->setProperty(kSrcX, QVariant::fromValue(reinterpret_cast<quintptr>(x)));
+  g->setProperty(kSrcY, QVariant::fromValue(reinterpret_cast<quintptr>(y)));
+  g->setProperty(kSrcN, QVariant::fromValue(static_cast<qulonglong>(n)));
+}
+}  // namespace
+
+SeriesSource seriesSource(const QCPGraph* g) {
+  SeriesSource s;
+  s.x = reinterpret_cast<const std::vector<double>*>(g->property(kSrcX).value<quintptr>());
+  s.y = reinterpret_cast<const std::vector<double>*>(g->property(kSrcY).value<quintptr>());
+  s.n = static_cast<std::size_t>(g->property(kSrcN).toULongLong());
+  if (!s.x || !s.y) return {};
+  return s;
+}
 
 void setSeries(QCPGraph* g, const std::vector<double>& x, const std::vector<double>& y,
                std::size_t n, bool skipNaN) {
@@ -277,15 +338,32 @@ void setSeries(QCPGraph* g, const std::vector<double>& x, const std::vector<doub
       --b;
     if (b > a) {
       data.reserve(static_cast<qsizetype>(4 * cols + 4));
+      // Zoomed in: the columns of the visible range (and a point beyond each edge).
+      double x0 = x[a], x1 = x[b - 1];
+      if (userZoomedX(g->parentPlot())) {
+        const QCPRange r = g->keyAxis()->range();
+        const auto first = x.begin() + static_cast<std::ptrdiff_t>(a);
+        const auto last = x.begin() + static_cast<std::ptrdiff_t>(b);
+        auto lo = std::lower_bound(first, last, r.lower);
+        auto hi = std::upper_bound(lo, last, r.upper);
+        if (lo != first) --lo;
+        if (hi != last) ++hi;
+        a = static_cast<std::size_t>(lo - x.begin());
+        b = static_cast<std::size_t>(hi - x.begin());
+        x0 = r.lower;
+        x1 = r.upper;
+      }
       if (dots) {
-        decimateDotsFor(g, x, y, n, logY, data);
+        decimateDotsFor(g, x, y, a, b, logY, data);
       } else {
-        decimateLine(x, y, n, logY, x[a], x[b - 1], cols, data);
+        decimateLine(x, y, a, b, logY, x0, x1, cols, data);
       }
       g->data()->set(data, true);
+      setSource(g, &x, &y, n);
       return;
     }
   }
+  setSource(g, nullptr, nullptr, 0);
   data.reserve(static_cast<qsizetype>(n));
   for (std::size_t i = 0; i < n; ++i) {
     const double v = y[i];
@@ -307,20 +385,43 @@ QColor overWhite(const QColor& c, int alpha) {
 }
 }  // namespace
 
+namespace {
+// A band's upper edge, whose legend icon is the band's fill with its edge (a line icon would not
+// tell one translucent band from another).
+class BandEdge final : public QCPGraph {
+ public:
+  BandEdge(QCPAxis* key, QCPAxis* value, const QColor& fill) : QCPGraph(key, value), fill_(fill) {}
+
+ protected:
+  void drawLegendIcon(QCPPainter* painter, const QRectF& rect) const override {
+    QColor f = fill_;
+    f.setAlpha(std::max(f.alpha(), 120));
+    painter->setPen(QPen(pen().color().darker(130)));
+    painter->setBrush(f);
+    painter->drawRect(rect.adjusted(1.0, 2.0, -1.0, -2.0));
+  }
+
+ private:
+  QColor fill_;
+};
+}  // namespace
+
 Band addBand(QCustomPlot* p, const QString& name, const QColor& c, bool overlaps) {
   // A translucent fill costs several milliseconds a replot on a dense band (alpha blending over
   // the whole area); a band that stands alone is drawn in the same colour made opaque.
   const QColor fill = overlaps ? QColor(c.red(), c.green(), c.blue(), 50) : overWhite(c, 50);
   const QColor edge = overlaps ? QColor(c.red(), c.green(), c.blue(), 90) : overWhite(c, 90);
   Band b;
-  b.upper = p->addGraph();
+  b.upper = new BandEdge(p->xAxis, p->yAxis, fill);
   b.upper->setName(name);
+  b.upper->addToLegend();
   b.upper->setPen(QPen(edge));
   b.upper->setBrush(Qt::NoBrush);
   b.lower = p->addGraph();
   b.lower->setPen(QPen(edge));
   b.lower->setBrush(QBrush(fill));
   b.lower->setChannelFillGraph(b.upper);
+  b.lower->setName("");  // the band is named by its upper edge
   b.lower->removeFromLegend();
   return b;
 }
@@ -330,10 +431,11 @@ void setDots(QCPGraph* g, const std::vector<double>& x, const std::vector<double
   const bool logY = g->valueAxis()->scaleType() == QCPAxis::stLogarithmic;
   QVector<QCPGraphData> data;
   if (n > static_cast<std::size_t>(4 * columnsFor(g))) {
-    decimateDotsFor(g, x, y, n, logY, data);
+    decimateDotsFor(g, x, y, 0, n, logY, data);
   } else {
     data.reserve(static_cast<qsizetype>(n));
-    forEachPoint(x, y, n, logY, [&](double xi, double yi) { data.append(QCPGraphData(xi, yi)); });
+    forEachPoint(x, y, 0, n, logY,
+                 [&](double xi, double yi) { data.append(QCPGraphData(xi, yi)); });
   }
   g->data()->set(data, false);
 }
@@ -341,7 +443,7 @@ void setDots(QCPGraph* g, const std::vector<double>& x, const std::vector<double
 void setCurve(QCPCurve* c, const std::vector<double>& keys, const std::vector<double>& values,
               std::size_t n) {
   n = std::min({n, keys.size(), values.size()});
-  const auto [k0, k1, v0, v1] = extent(keys, values, n, false);
+  const auto [k0, k1, v0, v1] = extent(keys, values, 0, n, false);
   // A point is kept when it leaves the last kept point's cell of a grid finer than any pixel
   // raster (1000 cells over the larger extent, about a pixel of an export).
   const double cell = std::max(k1 - k0, v1 - v0) / 1000.0;
@@ -350,7 +452,7 @@ void setCurve(QCPCurve* c, const std::vector<double>& keys, const std::vector<do
   long last_k = std::numeric_limits<long>::min(), last_v = last_k;
   double last_key = 0.0, last_value = 0.0;
   bool pending = false;
-  forEachPoint(keys, values, n, false, [&](double k, double v) {
+  forEachPoint(keys, values, 0, n, false, [&](double k, double v) {
     const long ck = static_cast<long>((k - k0) * inv), cv = static_cast<long>((v - v0) * inv);
     if (ck == last_k && cv == last_v) {
       last_key = k;
@@ -379,10 +481,24 @@ void fillBand(const Band& b, const std::vector<double>& x, std::size_t n, Lo&& l
   const qsizetype cap = static_cast<qsizetype>(dense ? cols + 2 : n);
   u.reserve(cap);
   l.reserve(cap);
-  const double x0 = n ? x.front() : 0.0, span = n ? x[n - 1] - x0 : 0.0;
+  double x0 = n ? x.front() : 0.0, span = n ? x[n - 1] - x0 : 0.0;
+  std::size_t begin = 0, end = n;
+  if (dense && userZoomedX(b.upper->parentPlot())) {
+    // Zoomed in: the columns of the visible range (and a point beyond each edge).
+    const QCPRange r = b.upper->keyAxis()->range();
+    const auto last = x.begin() + static_cast<std::ptrdiff_t>(n);
+    auto from = std::lower_bound(x.begin(), last, r.lower);
+    auto to = std::upper_bound(from, last, r.upper);
+    if (from != x.begin()) --from;
+    if (to != last) ++to;
+    begin = static_cast<std::size_t>(from - x.begin());
+    end = static_cast<std::size_t>(to - x.begin());
+    x0 = r.lower;
+    span = r.size();
+  }
   const double scale = dense && span > 0 ? cols / span : 0.0;
   long col = -1;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = begin; i < end; ++i) {
     const double lo_i = lo(i), hi_i = hi(i);
     if (!std::isfinite(lo_i) || !std::isfinite(hi_i) || !std::isfinite(x[i])) continue;
     const long c = scale > 0 ? static_cast<long>((x[i] - x0) * scale) : -2;
@@ -478,7 +594,48 @@ QCPRange valueRangeIn(QCustomPlot* p, QCPAxis* axis, double k0, double k1, bool&
 }
 }  // namespace
 
+namespace {
+const char* const kZoomX = "kfwZoomX";
+const char* const kZoomY = "kfwZoomY";
+const char* const kTime = "kfwTime";
+}  // namespace
+
+bool userZoomedX(const QCustomPlot* p) {
+  return p && p->property(kZoomX).toBool();
+}
+bool userZoomedY(const QCustomPlot* p) {
+  return p && p->property(kZoomY).toBool();
+}
+void setUserZoom(QCustomPlot* p, bool x, bool y) {
+  p->setProperty(kZoomX, x);
+  p->setProperty(kZoomY, y);
+}
+int axisRectRow(QCustomPlot* p) {
+  QCPLayoutGrid* layout = p->plotLayout();
+  for (int row = 0; row < layout->rowCount(); ++row) {
+    if (layout->element(row, 0) == p->axisRect()) return row;
+  }
+  return layout->rowCount() - 1;
+}
+
+bool isTimePlot(const QCustomPlot* p) {
+  return p && p->property(kTime).toBool();
+}
+
 void rescale(QCustomPlot* p, double x0, double x1, double settle) {
+  if (x1 > x0) p->setProperty(kTime, true);
+  const bool keep_x = userZoomedX(p), keep_y = userZoomedY(p);
+  if (keep_x && keep_y) return;
+  const QCPRange xr = p->xAxis->range(), yr = p->yAxis->range(), y2r = p->yAxis2->range();
+  rescaleAuto(p, x0, x1, settle);
+  if (keep_x) p->xAxis->setRange(xr);
+  if (keep_y) {
+    p->yAxis->setRange(yr);
+    p->yAxis2->setRange(y2r);
+  }
+}
+
+void rescaleAuto(QCustomPlot* p, double x0, double x1, double settle) {
   p->rescaleAxes(true);
   if (x1 > x0 && settle > x0) {
     for (QCPAxis* a : {p->yAxis, p->yAxis2}) {

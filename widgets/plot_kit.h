@@ -35,7 +35,10 @@ QColor cycle(int i);  // a distinct colour for series i
 QColor ghost(int i);
 }  // namespace color
 
-// A plot with title, axis labels (units in them), legend and the house fonts.
+// A plot with title, axis labels (units in them), legend and the house fonts. The legend sits in
+// its own row between the title and the axis rect (it never covers data), wrapped into as many
+// columns as the plot's width holds.
+
 QCustomPlot* makePlot(QWidget* parent, const QString& title, const QString& xLabel,
                       const QString& yLabel);
 enum class Style { kLine, kDots, kStep, kDashed };
@@ -78,6 +81,10 @@ void setBand(const Band& b, const std::vector<double>& x, const std::vector<doub
 void setBandLimits(const Band& b, const std::vector<double>& x, const std::vector<double>& lo,
                    const std::vector<double>& hi, std::size_t n);
 
+// The curve of pinned snapshot i (0, 1, ...): 2 px, dashed, its own faded colour; `name` is its
+// legend entry and should name the snapshot.
+QCPGraph* addGhost(QCustomPlot* p, const QString& name, int i, Style s = Style::kLine);
+
 // Removes plottables (ghost curves, ...) from whichever plot holds each.
 void removePlottables(std::initializer_list<QCPAbstractPlottable*> plottables);
 
@@ -89,11 +96,33 @@ QCPItemStraightLine* addHLine(QCustomPlot* p, double y, const QColor& c,
                               Qt::PenStyle s = Qt::DashLine);
 void setHLine(QCPItemStraightLine* line, double y);
 
-// Rescales both axes to the visible data with a small margin; keeps x fixed to [x0, x1] when
+// The user's view: an axis the user zoomed or panned keeps its range through rescale() until
+// the zoom is reset (widgets/plot_zoom.h links the time axes and handles the mouse).
+bool userZoomedX(const QCustomPlot* p);
+bool userZoomedY(const QCustomPlot* p);
+void setUserZoom(QCustomPlot* p, bool x, bool y);
+// The plot layout's row that holds the axis rect (makePlot puts a title and a legend row above).
+int axisRectRow(QCustomPlot* p);
+// True for a plot whose x axis is the run's time (rescale() was given [x0, x1]).
+bool isTimePlot(const QCustomPlot* p);
+
+// The source arrays behind a graph that setSeries() reduced for drawing (the readout reads
+// exact values from them); null when the graph holds every point itself.
+struct SeriesSource {
+  const std::vector<double>* x = nullptr;
+  const std::vector<double>* y = nullptr;
+  std::size_t n = 0;
+};
+SeriesSource seriesSource(const QCPGraph* g);
+
+// Rescales both axes to the visible data with a small margin (an axis the user zoomed keeps its
+// range); keeps x fixed to [x0, x1] when
 // x1 > x0 (so replay does not squeeze the time axis). With settle > x0 the value axes hold only
 // the data from `settle` on, so a start-up transient does not flatten the rest (the transient
 // runs off the top).
 void rescale(QCustomPlot* p, double x0 = 0.0, double x1 = 0.0, double settle = 0.0);
+// rescale() ignoring the user's zoom.
+void rescaleAuto(QCustomPlot* p, double x0 = 0.0, double x1 = 0.0, double settle = 0.0);
 // Where a start-up transient is over, for rescale(): 5 % into [t0, t1].
 inline double settleTime(double t0, double t1) {
   return t0 + 0.05 * (t1 - t0);

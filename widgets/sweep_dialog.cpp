@@ -336,7 +336,7 @@ void SweepDialog::showResult(const SweepResult& r, const QString& metric) {
       plot_->yAxis->setLabel("log10 " + QString::fromStdString(r.axes[1].key));
     }
     auto* scale = new QCPColorScale(plot_);
-    plot_->plotLayout()->addElement(1, 1, scale);
+    plot_->plotLayout()->addElement(plot::axisRectRow(plot_), 1, scale);
     scale->setLabel(metric);
     map->setColorScale(scale);
     map->setGradient(QCPColorGradient::gpThermal);

@@ -147,8 +147,8 @@ TEST_F(BallbeamWindow, PinnedTuningLeavesGhostsCutAtTheCursor) {
   ASSERT_EQ(w.snapshotCount(), 1);
   QCustomPlot* pos = plotNamed(w, "position");
   QCustomPlot* step = plotNamed(w, "step");
-  QCPGraph* est = graphNamed(pos, "estimate of x, tight");
-  QCPGraph* resp = graphNamed(step, "tight (detection on)");
+  QCPGraph* est = graphNamed(pos, "estimate of x [pinned: tight]");
+  QCPGraph* resp = graphNamed(step, "[pinned: tight] (detection on)");
   ASSERT_TRUE(est && resp);
   EXPECT_LT(est->pen().color().alpha(), 255);  // faded
   // The ghosts hold the pinned run, not the live one.
@@ -168,15 +168,15 @@ TEST_F(BallbeamWindow, PinnedTuningLeavesGhostsCutAtTheCursor) {
   w.setParam("detection", 0.0);
   ASSERT_TRUE(w.waitForRun());
   w.pinSnapshot("no circuit");
-  EXPECT_NE(graphNamed(pos, "estimate of x, tight"), nullptr);
-  QCPGraph* off = graphNamed(step, "no circuit (detection off)");
+  EXPECT_NE(graphNamed(pos, "estimate of x [pinned: tight]"), nullptr);
+  QCPGraph* off = graphNamed(step, "[pinned: no circuit] (detection off)");
   ASSERT_NE(off, nullptr);
   EXPECT_EQ(values(off), result()->x_detect_off);
   const int graphs = step->graphCount();
   w.clearSnapshots();
   EXPECT_EQ(step->graphCount(), graphs - 2);
-  EXPECT_EQ(graphNamed(pos, "estimate of x, tight"), nullptr);
-  EXPECT_EQ(graphNamed(step, "no circuit (detection off)"), nullptr);
+  EXPECT_EQ(graphNamed(pos, "estimate of x [pinned: tight]"), nullptr);
+  EXPECT_EQ(graphNamed(step, "[pinned: no circuit] (detection off)"), nullptr);
 }
 
 TEST_F(BallbeamWindow, LegendsUsePlainLabels) {

@@ -218,7 +218,7 @@ TEST(ModelView, PinnedSnapshotsDrawAsGhosts) {
   for (const char* s : {"state.x", "state.v"}) {
     QCustomPlot* p = plotNamed(w, s);
     ASSERT_NE(p, nullptr);
-    QCPGraph* ghost = graphNamed(p, QString(s).mid(6) + " base");
+    QCPGraph* ghost = graphNamed(p, QString(s).mid(6) + " [pinned: base]");
     ASSERT_NE(ghost, nullptr) << s;
     EXPECT_GT(ghost->data()->size(), 10u);
   }

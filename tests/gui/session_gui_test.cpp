@@ -30,7 +30,7 @@ TEST(Snapshots, GhostAndMetricsColumnFollowThePinnedTuning) {
   w.setParam("R", 100.0);
   ASSERT_TRUE(w.waitForRun());
   EXPECT_EQ(w.snapshotCount(), 1);
-  QCPGraph* ghost = graphNamed(plotNamed(w, "angle"), "θ loose");
+  QCPGraph* ghost = graphNamed(plotNamed(w, "angle"), "estimate of θ [pinned: loose]");
   ASSERT_NE(ghost, nullptr);
   EXPECT_GT(ghost->data()->size(), 100);
   auto* table = w.findChild<QTableWidget*>("metrics");
@@ -42,7 +42,7 @@ TEST(Snapshots, GhostAndMetricsColumnFollowThePinnedTuning) {
     EXPECT_NE(table->item(r, 1)->text(), table->item(r, 2)->text());
   }
   w.clearSnapshots();
-  EXPECT_EQ(graphNamed(plotNamed(w, "angle"), "θ loose"), nullptr);
+  EXPECT_EQ(graphNamed(plotNamed(w, "angle"), "estimate of θ [pinned: loose]"), nullptr);
   EXPECT_EQ(table->columnCount(), 2);
 }
 
@@ -97,7 +97,7 @@ TEST_F(Files, SessionRestoresValuesDataMappingAndSnapshots) {
   EXPECT_EQ(w.values().at("Q"), 10.0);
   EXPECT_EQ(w.dataset()->source, csv.toStdString());
   EXPECT_EQ(w.snapshotCount(), 1);
-  EXPECT_NE(graphNamed(plotNamed(w, "angle"), "θ base"), nullptr);
+  EXPECT_NE(graphNamed(plotNamed(w, "angle"), "estimate of θ [pinned: base]"), nullptr);
 
   QFile bad(dir.filePath("bad.json"));
   ASSERT_TRUE(bad.open(QIODevice::WriteOnly));

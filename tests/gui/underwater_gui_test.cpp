@@ -98,8 +98,8 @@ TEST_F(UnderwaterWindow, SnapshotsDrawGhostTrackAndErrorCutAtTheCursor) {
   w.pinSnapshot("SC");
   w.setParam("scheme", 0.0);
   ASSERT_TRUE(w.waitForRun());
-  QCPCurve* ghost_track = curveNamed(track, "estimate SC");
-  QCPGraph* ghost_err = graphNamed(err, "error SC");
+  QCPCurve* ghost_track = curveNamed(track, "estimate [pinned: SC]");
+  QCPGraph* ghost_err = graphNamed(err, "error [pinned: SC]");
   ASSERT_TRUE(ghost_track && ghost_err);
   EXPECT_GT(ghost_track->data()->size(), 100);
   EXPECT_GT(ghost_err->data()->size(), 100);
@@ -116,15 +116,15 @@ TEST_F(UnderwaterWindow, SnapshotsDrawGhostTrackAndErrorCutAtTheCursor) {
   EXPECT_GT(ghost_track->data()->size(), cut);
   // A new list replaces the ghosts; clearing removes them.
   w.pinSnapshot("AS");
-  EXPECT_NE(curveNamed(track, "estimate AS"), nullptr);
-  EXPECT_NE(curveNamed(track, "estimate SC"), nullptr);
+  EXPECT_NE(curveNamed(track, "estimate [pinned: AS]"), nullptr);
+  EXPECT_NE(curveNamed(track, "estimate [pinned: SC]"), nullptr);
   const int plottables = track->plottableCount();
   w.pinSnapshot("AS again");
   EXPECT_EQ(track->plottableCount(), plottables + 1);
   w.clearSnapshots();
-  EXPECT_EQ(curveNamed(track, "estimate SC"), nullptr);
-  EXPECT_EQ(curveNamed(track, "estimate AS"), nullptr);
-  EXPECT_EQ(graphNamed(err, "error SC"), nullptr);
+  EXPECT_EQ(curveNamed(track, "estimate [pinned: SC]"), nullptr);
+  EXPECT_EQ(curveNamed(track, "estimate [pinned: AS]"), nullptr);
+  EXPECT_EQ(graphNamed(err, "error [pinned: SC]"), nullptr);
 }
 
 TEST_F(UnderwaterWindow, TopViewIsEqualScaleAtAnySizeWithBeaconsAndLabelsInside) {

@@ -44,7 +44,7 @@ class BallbeamView final : public ScenarioView {
     pos_cursor_ = addCursor(pos_);
     pos_fell_ = addFellMarker(pos_);
 
-    volt_ = makePlot(parent, "Contact sensor voltage (seed 003, Fig. 7)", "time (s)",
+    volt_ = makePlot(parent, "Contact sensor voltage (Jang et al. 2014, Fig. 7)", "time (s)",
                      "sensor output voltage (V)");
     volt_raw_ = addGraph(volt_, "without circuit (a)", color::kSecond, Style::kLine);
     volt_circ_ = addGraph(volt_, "with circuit (b)", color::kEstimate, Style::kLine);
@@ -60,8 +60,9 @@ class BallbeamView final : public ScenarioView {
     innov_ = std::make_unique<InnovationPlot>(parent, "Innovation with ± 2√S", "innovation (m)",
                                               "innovation x̃ − x̄");
 
-    curve_ = makePlot(parent, "α-β gains vs tracking index λ = Ts²√(Q/R) (seed 003, eq. 16)",
-                      "λ (–)", "gain (–)");
+    curve_ =
+        makePlot(parent, "α-β gains vs tracking index λ = Ts²√(Q/R) (Jang et al. 2014, eq. 16)",
+                 "λ (–)", "gain (–)");
     setLog(curve_->xAxis);
     setLog(curve_->yAxis);
     curve_alpha_ = addGraph(curve_, "α(λ)", color::kEstimate, Style::kLine, 1.8);
@@ -72,8 +73,9 @@ class BallbeamView final : public ScenarioView {
                                                QBrush(color::kSecond), 9));
     curve_label_ = addNote(curve_);
 
-    step_ = makePlot(parent, "Step response: noise-free vs detection on / off (Figs. 8, 9)",
-                     "time (s)", "ball position x (m)");
+    step_ = makePlot(
+        parent, "Step response: noise-free vs detection on / off (Jang et al. 2014, Figs. 8, 9)",
+        "time (s)", "ball position x (m)");
     step_setpoint_ = addGraph(step_, "set-point", color::kFourth, Style::kDashed);
     step_off_ = addGraph(step_, "detection off", color::kSecond, Style::kLine, 1.2);
     step_on_ = addGraph(step_, "detection on", color::kEstimate, Style::kLine, 1.6);
@@ -129,10 +131,10 @@ class BallbeamView final : public ScenarioView {
                               .arg(r->alpha_dare, 0, 'f', 4)
                               .arg(r->beta_dare, 0, 'f', 4)
                               .arg(r->Ts_s, 0, 'g', 3));
-    curve_->xAxis->setRange(lo, hi);
+    if (!plot::userZoomedX(curve_)) curve_->xAxis->setRange(lo, hi);
     // Down to the smallest β drawn (no empty decade under the curves).
     const double beta_lo = curve.beta.empty() ? 1e-5 : curve.beta.front();
-    curve_->yAxis->setRange(std::min(beta_lo, r->beta) / 2, 3.0);
+    if (!plot::userZoomedY(curve_)) curve_->yAxis->setRange(std::min(beta_lo, r->beta) / 2, 3.0);
     plot::replot(curve_);
     drawUpTo(cursor_);
   }
@@ -152,12 +154,12 @@ class BallbeamView final : public ScenarioView {
     for (const auto& [name, result] : snapshots) {
       auto r = std::dynamic_pointer_cast<const BallbeamResult>(result);
       if (!r) continue;
-      const QColor c = plot::color::ghost(i++);
+      const int c = i++;
       const QString run = !r->closed_loop   ? "truth"
                           : r->detection_on ? "detection on"
                                             : "detection off";
-      ghosts_.push_back({r, plot::addGraph(pos_, "estimate of x, " + name, c),
-                         plot::addGraph(step_, name + " (" + run + ")", c)});
+      ghosts_.push_back({r, plot::addGhost(pos_, "estimate of x [pinned: " + name + "]", c),
+                         plot::addGhost(step_, "[pinned: " + name + "] (" + run + ")", c)});
     }
     if (result_) drawUpTo(cursor_);
   }
@@ -218,7 +220,7 @@ class BallbeamView final : public ScenarioView {
       v_hi = std::max(v_hi, tr.V[i]);
     }
     const double v_pad = 0.08 * (v_hi - v_lo);
-    beam_->yAxis2->setRange(v_lo - v_pad, v_hi + v_pad);
+    if (!plot::userZoomedY(beam_)) beam_->yAxis2->setRange(v_lo - v_pad, v_hi + v_pad);
     for (auto* c : {pos_cursor_, volt_cursor_, beam_cursor_, step_cursor_})
       plot::setCursorAt(c, tc, !all);
     for (QCustomPlot* p : {pos_, volt_, beam_, step_})

@@ -35,8 +35,9 @@ class HelicopterView final : public ScenarioView {
     gain_ss_ = addGraph(gain_, "k1 steady state (DARE)", color::kSecond, Style::kDashed);
     gain_cursor_ = addCursor(gain_);
 
-    curve_ = makePlot(parent, "Steady-state gain vs β = m·Ts²·N_ω/N_θ (seed 000, Fig. 3)", "β (–)",
-                      "gain k1 (–)");
+    curve_ = makePlot(
+        parent, "Steady-state gain vs β = m·Ts²·N_ω/N_θ (Kim et al., helicopter attitude, Fig. 3)",
+        "β (–)", "gain k1 (–)");
     setLog(curve_->xAxis);
     setLog(curve_->yAxis);
     curve_k1_ = addGraph(curve_, "k1(β)", color::kEstimate, Style::kLine);
@@ -50,6 +51,7 @@ class HelicopterView final : public ScenarioView {
     curve_op_p11_->setLineStyle(QCPGraph::lsNone);
     curve_op_p11_->setScatterStyle(QCPScatterStyle(
         QCPScatterStyle::ssDiamond, QPen(color::kThird, 2), QBrush(color::kThird), 9));
+    curve_op_p11_->setName("");  // one legend entry for both operating points
     curve_op_p11_->removeFromLegend();
     curve_label_ = addNote(curve_);
 
@@ -89,9 +91,11 @@ class HelicopterView final : public ScenarioView {
             .arg(r->k1_steady, 0, 'f', 4)
             .arg(values.count("m") ? values.at("m") : 1.0)
             .arg(values.count("gamma") ? values.at("gamma") : 0.0));
-    curve_->xAxis->setRange(lo, hi);
-    curve_->yAxis->setRange(curve.k1.front() / 1.5, 1.5);
-    curve_->yAxis2->setRange(curve.p11_over_R.front() / 1.5, curve.p11_over_R.back() * 1.5);
+    if (!plot::userZoomedX(curve_)) curve_->xAxis->setRange(lo, hi);
+    if (!plot::userZoomedY(curve_)) {
+      curve_->yAxis->setRange(curve.k1.front() / 1.5, 1.5);
+      curve_->yAxis2->setRange(curve.p11_over_R.front() / 1.5, curve.p11_over_R.back() * 1.5);
+    }
     plot::replot(curve_);
 
     drawUpTo(cursor_);
@@ -107,10 +111,11 @@ class HelicopterView final : public ScenarioView {
     for (const auto& [name, result] : snapshots) {
       auto r = std::dynamic_pointer_cast<const HelicopterResult>(result);
       if (!r) continue;
-      angle.push_back({"θ " + name, &r->t, &r->theta});
-      bias.push_back({"b " + name, &r->t, &r->bias});
+      angle.push_back({"estimate of θ [pinned: " + name + "]", &r->t, &r->theta});
+      bias.push_back({"bias [pinned: " + name + "]", &r->t, &r->bias});
       ghosts_.push_back(
-          {r, plot::addGraph(gain_, "k1 " + name, plot::color::ghost(i++), plot::Style::kStep)});
+          {r, plot::addGhost(gain_, "k1 [pinned: " + name + "]", i, plot::Style::kStep)});
+      ++i;
     }
     angle_->setGhosts(angle);
     bias_->setGhosts(bias);
@@ -137,8 +142,12 @@ class HelicopterView final : public ScenarioView {
     }
     plot::rescale(gain_, f.t0, f.t1, f.settle());
     // Keep the gain axis readable: the start-up transient (k1 ≈ 1) would flatten the steady part.
-    const double k_ss = std::isfinite(r.k1_steady) ? r.k1_steady : 0.5;
-    gain_->yAxis->setRange(0.0, std::clamp(2.5 * k_ss, 1e-6, 1.05));
+    // Pinned tunings' steady gains stay inside the axis too.
+    double k_ss = std::isfinite(r.k1_steady) ? r.k1_steady : 0.5;
+    for (const auto& g : ghosts_) {
+      if (std::isfinite(g.result->k1_steady)) k_ss = std::max(k_ss, g.result->k1_steady);
+    }
+    if (!plot::userZoomedY(gain_)) gain_->yAxis->setRange(0.0, std::clamp(2.5 * k_ss, 1e-6, 1.05));
     plot::setCursorAt(gain_cursor_, f.tc, !f.all);
     plot::replot(gain_);
   }

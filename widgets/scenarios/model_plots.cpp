@@ -170,7 +170,8 @@ class ModelView final : public ScenarioView {
       if (!r || r->n() != states_.size()) continue;
       ghosts_.push_back(r);
       for (std::size_t i = 0; i < states_.size(); ++i)
-        per_state[i].push_back({q(layout_->states[i].name) + " " + name, &r->t, &r->x[i]});
+        per_state[i].push_back(
+            {q(layout_->states[i].name) + " [pinned: " + name + "]", &r->t, &r->x[i]});
     }
     for (std::size_t i = 0; i < states_.size(); ++i)
       states_[i]->setGhosts(per_state[i]);

@@ -47,25 +47,11 @@ void setGridTicks(QCPAxis* axis, const std::vector<double>& grid,
   if (axis->ticker() != text) axis->setTicker(text);
 }
 
-// A legend-only entry drawn as a filled swatch with an edge (a graph's own icon is a line, which
-// for a faint band is nearly invisible). It holds no data.
-class SwatchGraph final : public QCPGraph {
- public:
-  using QCPGraph::QCPGraph;
-
- protected:
-  void drawLegendIcon(QCPPainter* painter, const QRectF& rect) const override {
-    painter->setPen(pen());
-    painter->setBrush(brush());
-    painter->drawRect(rect.adjusted(1.0, 3.0, -1.0, -3.0));
-  }
-};
-
 // The IMM grid editor: one spin box per grid key, and the grid's slope values.
 class ImmGridEditor final : public QGroupBox {
  public:
   ImmGridEditor(ScenarioView* view, QWidget* parent)
-      : QGroupBox("IMM grid (seed 001, eq. 4, 6)", parent) {
+      : QGroupBox("IMM grid (Kim & Back 2017, eqs. 4, 6)", parent) {
     setObjectName("radome.gridEditor");
     auto sc = make_scenario("radome");
     auto* form = new QFormLayout;
@@ -166,25 +152,17 @@ class RadomeView final : public ScenarioView {
       SlopePlot& s = slope_[axis];
       s.plot = makePlot(
           parent,
-          QString("Radome slope R_%1: estimate, truth and grid (seed 001, Figs. 3, 5, 7, 9)")
+          QString("Radome slope R_%1: estimate, truth and grid (Kim & Back 2017, Figs. 3, 5, 7, 9)")
               .arg(sym),
           "time (s)", QString("slope R_%1 (–)").arg(sym));
       s.envelope = addBand(s.plot, "grid envelope", color::kSensor);
-      s.envelope.upper->removeFromLegend();
-      auto* key = new SwatchGraph(s.plot->xAxis, s.plot->yAxis);
-      key->setName("grid envelope");
-      QColor fill = color::kSensor;
-      fill.setAlpha(110);
-      key->setBrush(fill);
-      key->setPen(QPen(color::kBound));
-      key->addToLegend();
       s.center = addGraph(s.plot, "grid centre", color::kBound, Style::kDashed);
       s.truth = addGraph(s.plot, "truth", color::kTruth);
       s.est = addGraph(s.plot, QString("estimate Σ μ^j R̄_%1^j").arg(sym), color::kEstimate);
       s.cursor = addCursor(s.plot);
     }
-    alpha_ = makePlot(parent, "Spatial refraction error α (seed 001, Figs. 4, 6, 8)", "time (s)",
-                      "α (deg)");
+    alpha_ = makePlot(parent, "Spatial refraction error α (Kim & Back 2017, Figs. 4, 6, 8)",
+                      "time (s)", "α (deg)");
     alpha_meas_ = addGraph(alpha_, "measured (vs true LOS)", color::kSensor, Style::kDots);
     alpha_true_ = addGraph(alpha_, "true", color::kTruth);
     alpha_est_ = addGraph(alpha_, "estimated", color::kEstimate);
@@ -235,7 +213,7 @@ class RadomeView final : public ScenarioView {
     for (int i = 0; i < kTopModes; ++i)
       top_graphs_.push_back(addGraph(top_, "", color::cycle(i)));
     top_cursor_ = addCursor(top_);
-    // Probability ticks only (the axis runs above 1 to make room for the legend).
+    // Probability ticks only.
     QSharedPointer<QCPAxisTickerText> mu_ticks(new QCPAxisTickerText);
     for (double v : {0.0, 0.25, 0.5, 0.75, 1.0})
       mu_ticks->addTick(v, QString::number(v));
@@ -317,14 +295,12 @@ class RadomeView final : public ScenarioView {
       if (i < top_ids_.size()) {
         const int j = top_ids_[i];
         const int a = j % r->n_psi, b = j / r->n_psi;
-        g->setName(
-            QString("mode (a=%1, b=%2): R̄ = (%3, %4) at t=0")
-                .arg(a + 1)
-                .arg(b + 1)
-                .arg(r->grid_psi(0).empty() ? 0.0 : r->grid_psi(0)[static_cast<std::size_t>(a)], 0,
-                     'f', 3)
-                .arg(r->grid_theta(0).empty() ? 0.0 : r->grid_theta(0)[static_cast<std::size_t>(b)],
-                     0, 'f', 3));
+        // Named by its slopes (at t = 0: the grid moves when Kp > 0), not by grid indices.
+        const auto gp = r->grid_psi(0), gt = r->grid_theta(0);
+        const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
+        g->setName(QString("μ of R̄_ψ = %1, R̄_θ = %2")
+                       .arg(ua < gp.size() ? gp[ua] : 0.0, 0, 'f', 3)
+                       .arg(ub < gt.size() ? gt[ub] : 0.0, 0, 'f', 3));
         g->setVisible(true);
         g->addToLegend();
       } else {
@@ -352,11 +328,12 @@ class RadomeView final : public ScenarioView {
     for (const auto& [name, result] : snapshots) {
       auto r = std::dynamic_pointer_cast<const RadomeResult>(result);
       if (!r) continue;
-      const QColor c = plot::color::ghost(i++);
+      const int c = i++;
+      const QString pinned = " [pinned: " + name + "]";
       ghosts_.push_back({r,
-                         {plot::addGraph(slope_[0].plot, "estimate [" + name + "]", c),
-                          plot::addGraph(slope_[1].plot, "estimate [" + name + "]", c)},
-                         plot::addGraph(alpha_, "estimated [" + name + "]", c)});
+                         {plot::addGhost(slope_[0].plot, "estimate" + pinned, c),
+                          plot::addGhost(slope_[1].plot, "estimate" + pinned, c)},
+                         plot::addGhost(alpha_, "estimated" + pinned, c)});
     }
     if (result_) drawUpTo(cursor_);
   }
@@ -392,8 +369,8 @@ class RadomeView final : public ScenarioView {
         }
       }
     }
-    heat_->xAxis->setRange(gp.front() - hp, gp.back() + hp);
-    heat_->yAxis->setRange(gt.front() - ht, gt.back() + ht);
+    if (!plot::userZoomedX(heat_)) heat_->xAxis->setRange(gp.front() - hp, gp.back() + hp);
+    if (!plot::userZoomedY(heat_)) heat_->yAxis->setRange(gt.front() - ht, gt.back() + ht);
     setGridTicks(heat_->xAxis, gp, heat_text_ticker_[0], heat_normal_ticker_[0]);
     setGridTicks(heat_->yAxis, gt, heat_text_ticker_[1], heat_normal_ticker_[1]);
     const double tp = k < r.slope_psi_true.size() ? r.slope_psi_true[k] : kNoSample;
@@ -462,8 +439,7 @@ class RadomeView final : public ScenarioView {
     // steady part: scale them from the settled data on.
     for (QCustomPlot* p : {alpha_, los_, innov_})
       plot::rescale(p, t0, t1, plot::settleTime(t0, t1));
-    // Room above μ = 1 for the legend, which would otherwise hide the winning mode.
-    top_->yAxis->setRange(-0.02, 1.32);
+    if (!plot::userZoomedY(top_)) top_->yAxis->setRange(-0.03, 1.05);
     QCPItemStraightLine* cursors[] = {slope_[0].cursor, slope_[1].cursor, alpha_cursor_,
                                       los_cursor_,      top_cursor_,      innov_cursor_};
     for (auto* c : cursors)

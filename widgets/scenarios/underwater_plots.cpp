@@ -44,22 +44,6 @@ QCPGraph* addMarks(QCustomPlot* p, const QString& name, const QColor& c,
   return g;
 }
 
-// Moves a plot's legend out of the axis rect into one row between the title and the plot, where
-// it covers no data (the raster and the innovations fill their whole rect).
-void legendAbove(QCustomPlot* p) {
-  p->axisRect()->insetLayout()->take(p->legend);
-  p->plotLayout()->insertRow(1);
-  auto* row = new QCPLayoutGrid;
-  p->plotLayout()->addElement(1, 0, row);
-  p->plotLayout()->setRowStretchFactor(1, 0.001);
-  row->setMargins(QMargins(0, 0, 0, 0));
-  row->addElement(0, 0, new QCPLayoutElement(p));
-  row->addElement(0, 1, p->legend);
-  row->addElement(0, 2, new QCPLayoutElement(p));
-  row->setColumnStretchFactor(1, 0.001);
-  p->legend->setFillOrder(QCPLegend::foColumnsFirst);
-}
-
 class UnderwaterView final : public ScenarioView {
  public:
   QList<PlotPanel> createPlots(QWidget* parent) override {
@@ -88,12 +72,13 @@ class UnderwaterView final : public ScenarioView {
     // The legend goes beside the axis rect: an equal-scale top view leaves spare width, and inside
     // it would cover the track or a beacon. A spacer row under it keeps the legend at its own
     // height, level with the top of the plot.
-    track_->axisRect()->insetLayout()->take(track_->legend);
     auto* side = new QCPLayoutGrid;
-    track_->plotLayout()->addElement(1, 1, side);
-    track_->plotLayout()->setColumnStretchFactor(1, 0.001);
     side->setMargins(QMargins(0, 6, 6, 6));
-    side->addElement(0, 0, track_->legend);
+    side->addElement(0, 0, track_->legend);  // out of makePlot's legend row, which goes
+    track_->plotLayout()->simplify();
+    track_->plotLayout()->addElement(axisRectRow(track_), 1, side);
+    track_->plotLayout()->setColumnStretchFactor(1, 0.001);
+    track_->legend->setWrap(1);
     side->addElement(1, 0, new QCPLayoutElement(track_));
     side->setRowStretchFactor(0, 0.001);
     // Equal scale on both axes at whatever size the plot is drawn (window, export): the ranges
@@ -105,8 +90,8 @@ class UnderwaterView final : public ScenarioView {
       });
     }
 
-    err_ = makePlot(parent, "Distance error |estimate − truth| (seed 004, Fig. 3b)", "time (s)",
-                    "distance error (m)");
+    err_ = makePlot(parent, "Distance error |estimate − truth| (Han et al. 2016, Fig. 3b)",
+                    "time (s)", "distance error (m)");
     err_y_ = addGraph(err_, "distance error", color::kEstimate, Style::kLine);
     err_cursor_ = addCursor(err_);
 
@@ -119,7 +104,6 @@ class UnderwaterView final : public ScenarioView {
     innov_injected_ =
         addMarks(innov_, "injected outlier", color::kTruth, QCPScatterStyle::ssCircle, 8);
     innov_cursor_ = addCursor(innov_);
-    legendAbove(innov_);
 
     raster_ =
         makePlot(parent, "Sensor timing: sampled, rejected, invalid, missing", "time (s)", "");
@@ -137,7 +121,6 @@ class UnderwaterView final : public ScenarioView {
     raster_missing_ =
         addMarks(raster_, "missing", color::kFourth, QCPScatterStyle::ssTriangleInverted, 6);
     raster_cursor_ = addCursor(raster_);
-    legendAbove(raster_);
 
     cov_ = makePlot(parent, "Covariance of simulated errors (left) vs design (right)", "", "");
     cov_title_ = qobject_cast<QCPTextElement*>(cov_->plotLayout()->element(0, 0));
@@ -155,7 +138,7 @@ class UnderwaterView final : public ScenarioView {
     cov_design_->data()->setRange(QCPRange(6, 10), QCPRange(0, 4));
     auto* scale = new QCPColorScale(cov_);
     cov_scale_ = scale;
-    cov_->plotLayout()->addElement(1, 1, scale);
+    cov_->plotLayout()->addElement(axisRectRow(cov_), 1, scale);
     QCPColorGradient g;
     g.setColorStopAt(0.0, QColor(33, 102, 172));
     g.setColorStopAt(0.5, QColor(247, 247, 247));
@@ -238,9 +221,11 @@ class UnderwaterView final : public ScenarioView {
     for (const auto& [name, result] : snapshots) {
       auto r = std::dynamic_pointer_cast<const UnderwaterResult>(result);
       if (!r) continue;
-      const QColor c = plot::color::ghost(i++);
-      ghosts_.push_back({r, addCurve(track_, "estimate " + name, c, plot::Style::kLine),
-                         plot::addGraph(err_, "error " + name, c)});
+      const int c = i++;
+      const QString pinned = " [pinned: " + name + "]";
+      ghosts_.push_back(
+          {r, addCurve(track_, "estimate" + pinned, plot::color::ghost(c), plot::Style::kDashed),
+           plot::addGhost(err_, "error" + pinned, c)});
     }
     if (result_) {
       drawUpTo(cursor_);

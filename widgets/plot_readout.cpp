@@ -1,0 +1,223 @@
+#include "plot_readout.h"
+
+#include <qcustomplot.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "plot_kit.h"
+
+namespace kfw::plot {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+QString number(double v) {
+  if (!std::isfinite(v)) return "—";
+  return QString::number(v, 'g', 5);
+}
+
+// The band whose upper edge is `upper` (the graph filled to it), if any.
+const QCPGraph* bandLower(const QCustomPlot* p, const QCPGraph* upper) {
+  for (int i = 0; i < p->graphCount(); ++i) {
+    if (p->graph(i)->channelFillGraph() == upper) return p->graph(i);
+  }
+  return nullptr;
+}
+
+// Linear interpolation in a graph's own points (a curve over a parameter).
+double interpolate(const QCPGraph* g, double x) {
+  const auto d = g->data();
+  if (d->isEmpty()) return kNaN;
+  auto it = std::lower_bound(d->constBegin(), d->constEnd(), x,
+                             [](const QCPGraphData& a, double k) { return a.key < k; });
+  if (it == d->constEnd() || it == d->constBegin()) {
+    if (it != d->constEnd() && it->key == x) return it->value;
+    return kNaN;
+  }
+  const auto prev = it - 1;
+  const bool log = g->keyAxis()->scaleType() == QCPAxis::stLogarithmic && prev->key > 0;
+  const double f = log ? std::log(x / prev->key) / std::log(it->key / prev->key)
+                       : (x - prev->key) / (it->key - prev->key);
+  return prev->value + f * (it->value - prev->value);
+}
+
+}  // namespace
+
+double valueAt(const QCPGraph* g, double t) {
+  const SeriesSource s = seriesSource(g);
+  if (s.x && s.y) {
+    const std::size_t n = std::min({s.n, s.x->size(), s.y->size()});
+    const auto end = s.x->begin() + static_cast<std::ptrdiff_t>(n);
+    const auto it = std::upper_bound(s.x->begin(), end, t);
+    if (it == s.x->begin()) return kNaN;
+    return (*s.y)[static_cast<std::size_t>(it - s.x->begin()) - 1];
+  }
+  const auto d = g->data();
+  auto it = std::upper_bound(d->constBegin(), d->constEnd(), t,
+                             [](double k, const QCPGraphData& a) { return k < a.key; });
+  if (it == d->constBegin()) return kNaN;
+  return (it - 1)->value;
+}
+
+QList<QPair<QString, double>> curveValuesAt(const QCustomPlot* p, double t) {
+  QList<QPair<QString, double>> out;
+  for (int i = 0; i < p->graphCount(); ++i) {
+    const QCPGraph* g = p->graph(i);
+    if (!g->visible() || g->name().isEmpty() || g->data()->isEmpty()) continue;
+    if (const QCPGraph* lower = bandLower(p, g)) {
+      out.append({g->name() + " (low)", valueAt(lower, t)});
+      out.append({g->name() + " (high)", valueAt(g, t)});
+      continue;
+    }
+    out.append({g->name(), valueAt(g, t)});
+  }
+  return out;
+}
+
+PlotReadout::PlotReadout(const QList<PlotPanel>& plots, QObject* parent) : QObject(parent) {
+  for (const PlotPanel& panel : plots) {
+    QCustomPlot* p = panel.plot;
+    if (!p) continue;
+    Marks m;
+    m.plot = p;
+    if (!p->layer("readout")) p->addLayer("readout", nullptr, QCustomPlot::limAbove);
+    m.layer = p->layer("readout");
+    m.layer->setMode(QCPLayer::lmBuffered);
+    const QString previous = p->currentLayer()->name();
+    p->setCurrentLayer(m.layer);
+    m.line = new QCPItemStraightLine(p);
+    m.line->setPen(QPen(QColor(40, 40, 40, 170), 1.0, Qt::DotLine));
+    m.line->point1->setTypeY(QCPItemPosition::ptAxisRectRatio);
+    m.line->point2->setTypeY(QCPItemPosition::ptAxisRectRatio);
+    m.line->setSelectable(false);
+    m.line->setVisible(false);
+    m.label = new QCPItemText(p);
+    m.label->position->setType(QCPItemPosition::ptAbsolute);
+    m.label->setPositionAlignment(Qt::AlignLeft | Qt::AlignTop);
+    m.label->setTextAlignment(Qt::AlignLeft);
+    m.label->setFont(QFont(p->font().family(), 8));
+    m.label->setPadding(QMargins(4, 2, 4, 2));
+    m.label->setBrush(QColor(255, 255, 240, 235));
+    m.label->setPen(QPen(QColor(160, 160, 160)));
+    m.label->setClipToAxisRect(false);
+    m.label->setSelectable(false);
+    m.label->setVisible(false);
+    p->setCurrentLayer(previous);
+    marks_.push_back(m);
+  }
+}
+
+PlotReadout::Marks* PlotReadout::find(const QCustomPlot* p) {
+  for (Marks& m : marks_) {
+    if (m.plot == p) return &m;
+  }
+  return nullptr;
+}
+
+void PlotReadout::place(Marks& m, const QString& text, double x_px) {
+  m.label->setText(text);
+  m.label->setVisible(!text.isEmpty());
+  if (text.isEmpty()) return;
+  // Right of the cursor, or left of it near the right edge.
+  const QRect r = m.plot->axisRect()->rect();
+  const double w = QFontMetricsF(m.label->font()).horizontalAdvance(text.section('\n', 0, 0)) + 40;
+  const bool left = x_px + 8 + w > r.right();
+  m.label->setPositionAlignment((left ? Qt::AlignRight : Qt::AlignLeft) | Qt::AlignTop);
+  m.label->position->setCoords(left ? x_px - 8 : x_px + 8, r.top() + 4);
+}
+
+void PlotReadout::showTime(double t, QCustomPlot* hovered) {
+  for (Marks& m : marks_) {
+    if (!isTimePlot(m.plot)) {
+      if (m.line->visible() || m.label->visible()) {
+        m.line->setVisible(false);
+        m.label->setVisible(false);
+        m.layer->replot();
+      }
+      continue;
+    }
+    m.line->point1->setCoords(t, 0);
+    m.line->point2->setCoords(t, 1);
+    m.line->setVisible(true);
+    if (m.plot == hovered) {
+      QString text = QString("t = %1 s").arg(number(t));
+      for (const auto& [name, v] : curveValuesAt(m.plot, t))
+        text += QString("\n%1: %2").arg(name, number(v));
+      place(m, text, m.plot->xAxis->coordToPixel(t));
+    } else {
+      m.label->setVisible(false);
+    }
+    m.layer->replot();
+  }
+}
+
+void PlotReadout::showPoint(QCustomPlot* p, const QPointF& pos) {
+  Marks* m = find(p);
+  if (!m) return;
+  const double x = p->xAxis->pixelToCoord(pos.x()), y = p->yAxis->pixelToCoord(pos.y());
+  QString text;
+  for (int i = 0; i < p->plottableCount(); ++i) {
+    auto* map = qobject_cast<QCPColorMap*>(p->plottable(i));
+    if (!map) continue;
+    int a = 0, b = 0;
+    map->data()->coordToCell(x, y, &a, &b);
+    if (a < 0 || b < 0 || a >= map->data()->keySize() || b >= map->data()->valueSize()) continue;
+    const QString scale = map->colorScale() ? map->colorScale()->axis()->label() : "value";
+    text = QString("%1 = %2\n%3 = %4\n%5 = %6")
+               .arg(p->xAxis->label(), number(x), p->yAxis->label(), number(y), scale,
+                    number(map->data()->cell(a, b)));
+  }
+  if (text.isEmpty() && p->graphCount() > 0) {
+    text = QString("%1 = %2").arg(p->xAxis->label(), number(x));
+    for (int i = 0; i < p->graphCount(); ++i) {
+      const QCPGraph* g = p->graph(i);
+      if (!g->visible() || g->name().isEmpty() || g->data()->size() < 2) continue;
+      text += QString("\n%1: %2").arg(g->name(), number(interpolate(g, x)));
+    }
+    m->line->point1->setCoords(x, 0);
+    m->line->point2->setCoords(x, 1);
+    m->line->setVisible(true);
+  }
+  place(*m, text, pos.x());
+  m->layer->replot();
+}
+
+void PlotReadout::mouseMoved(QCustomPlot* p, const QPointF& pos) {
+  if (!p->axisRect()->rect().contains(pos.toPoint())) {
+    hide();
+    return;
+  }
+  if (isTimePlot(p)) {
+    showTime(p->xAxis->pixelToCoord(pos.x()), p);
+  } else {
+    for (Marks& m : marks_) {
+      if (m.plot != p && (m.line->visible() || m.label->visible())) {
+        m.line->setVisible(false);
+        m.label->setVisible(false);
+        m.layer->replot();
+      }
+    }
+    showPoint(p, pos);
+  }
+}
+
+void PlotReadout::hide() {
+  for (Marks& m : marks_) {
+    if (!m.line->visible() && !m.label->visible()) continue;
+    m.line->setVisible(false);
+    m.label->setVisible(false);
+    m.layer->replot();
+  }
+}
+
+QString PlotReadout::text(const QCustomPlot* p) const {
+  for (const Marks& m : marks_) {
+    if (m.plot == p) return m.label->visible() ? m.label->text() : QString();
+  }
+  return {};
+}
+
+}  // namespace kfw::plot

@@ -21,8 +21,9 @@ class ValueSpinBox : public QDoubleSpinBox {
   ValueSpinBox(bool log, QWidget* parent) : QDoubleSpinBox(parent), log_(log) {
     setDecimals(12);
     setKeyboardTracking(false);
-    setMinimumWidth(92);
     setAlignment(Qt::AlignRight);
+    // Sized for what textFromValue shows ("-1.23457e+06"), not for 12 decimals of the maximum.
+    setFixedWidth(fontMetrics().horizontalAdvance("-1.23457e+06") + 34);
   }
   QString textFromValue(double v) const override { return QString::number(v, 'g', 6); }
   double valueFromText(const QString& text) const override { return text.trimmed().toDouble(); }
@@ -140,19 +141,18 @@ ParamPanel::ParamPanel(const ParamTable& table, const Ranges& ranges, QWidget* p
       } else if (s.scale == Scale::kLinear) {
         row.spin->setSingleStep(std::pow(10.0, -std::min(s.decimals, 6)));
       }
-      // The unit sits on the label's row, so the slider gets the width (a log slider's four
-      // decades over ~200 px: a 90-px drag moves the value by under two decades).
-      if (!unit.isEmpty()) {
-        grid->removeWidget(label);
-        grid->addWidget(label, r, 0, 1, 2);
-        auto* unit_label = new QLabel(unit, box);
-        unit_label->setObjectName("unit." + key);
-        unit_label->setAlignment(Qt::AlignRight | Qt::AlignVCenter);
-        unit_label->setStyleSheet("color: #666;");
-        grid->addWidget(unit_label, r, 2);
-      }
-      grid->addWidget(row.slider, r + 1, 0);
-      grid->addWidget(row.spin, r + 1, 1, 1, 2);
+      // The label with its unit on one row, the slider and the value below: the slider gets
+      // ~190 px, so a log slider's three decades make a 90-px drag about 1.5 decades.
+      grid->removeWidget(label);
+      label->setWordWrap(true);
+      grid->addWidget(label, r, 0, 1, 2);
+      auto* unit_label = new QLabel(unit, box);
+      unit_label->setObjectName("unit." + key);
+      unit_label->setAlignment(Qt::AlignRight | Qt::AlignVCenter);
+      unit_label->setStyleSheet("color: #666;");
+      grid->addWidget(unit_label, r, 2);
+      grid->addWidget(row.slider, r + 1, 0, 1, 2);
+      grid->addWidget(row.spin, r + 1, 2);
       if (s.scale == Scale::kLog) {
         row.slider->setToolTip(label->toolTip() +
                                QString("\nThe slider spans %1 decades around the value (re-centred "

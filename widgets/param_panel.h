@@ -40,7 +40,7 @@ class ParamPanel : public QWidget {
   static constexpr int kSliderSteps = 1000;
   // A log slider spans at most this many decades around the current value (re-centred when the
   // drag ends or the value changes otherwise); the spin box takes the whole range.
-  static constexpr double kLogWindowDecades = 4.0;
+  static constexpr double kLogWindowDecades = 3.0;
   // The range a slider spans now: the window of a log slider, else [lo, hi].
   std::pair<double, double> sliderRange(const std::string& key) const;
 

@@ -196,6 +196,8 @@ TEST_F(WindowGui, LogSliderDragOfNinetyPixelsStaysWithinTwoDecades) {
   const QRect handle =
       slider->style()->subControlRect(QStyle::CC_Slider, &opt, QStyle::SC_SliderHandle, slider);
   ASSERT_TRUE(handle.isValid());
+  // The drag stays on the slider (a drag past its end would only show the clamp).
+  ASSERT_GT(slider->width(), 150);
   const QPoint start = handle.center();
   QTest::mousePress(slider, Qt::LeftButton, Qt::NoModifier, start);
   for (int dx = 10; dx <= 90; dx += 10)
@@ -206,10 +208,26 @@ TEST_F(WindowGui, LogSliderDragOfNinetyPixelsStaysWithinTwoDecades) {
   const double decades = std::log10(after / before);
   EXPECT_GT(decades, 0.3) << "the drag did not move the value";
   EXPECT_LE(decades, 2.0) << before << " -> " << after;
+  EXPECT_LE(ParamPanel::kLogWindowDecades, 4.0);
+  std::printf("90-px drag: %.3g decades (slider %d px)\n", decades, slider->width());
   // Re-centred on release: the window is around the new value.
   const auto [lo2, hi2] = w.paramPanel()->sliderRange("R");
   EXPECT_NEAR(std::log10(after / lo2), ParamPanel::kLogWindowDecades / 2, 0.01);
   EXPECT_NEAR(std::log10(hi2 / after), ParamPanel::kLogWindowDecades / 2, 0.01);
+  // Shift + drag: ten times finer.
+  {
+    const double v0 = w.values().at("R");
+    const QPoint c(slider->width() / 2, slider->height() / 2);
+    QTest::mousePress(slider, Qt::LeftButton, Qt::ShiftModifier, c);
+    for (int dx = 10; dx <= 90; dx += 10) {
+      QTest::mouseMove(slider, c + QPoint(dx, 0));
+    }
+    QTest::mouseRelease(slider, Qt::LeftButton, Qt::ShiftModifier, c + QPoint(90, 0));
+    ASSERT_TRUE(w.waitForRun());
+    const double fine = std::log10(w.values().at("R") / v0);
+    EXPECT_GT(fine, 0.0);
+    EXPECT_LT(fine, 0.2 * decades + 0.05) << "normal " << decades << " decades, fine " << fine;
+  }
   // The spin box still takes the declared extremes.
   const ParamSpec* spec = nullptr;
   for (const auto& s : w.scenario()->params().specs())

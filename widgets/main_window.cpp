@@ -30,6 +30,7 @@
 #include "consistency_panel.h"
 #include "core/statistics.h"
 #include "core/workspace.h"
+#include "metrics_panel.h"
 #include "monte_carlo_dialog.h"
 #include "param_panel.h"
 #include "plot_export.h"
@@ -51,7 +52,6 @@ QString q(const std::string& s) {
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   setWindowTitle("kfw — Kalman filter tuning workbench");
-  resize(1600, 1000);
   runner_ = new RunController(this);
   addViewStatePart(
       "zoom", [this] { return zoom_ ? zoom_->save() : QJsonValue(); },
@@ -73,8 +73,20 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   presets_->setToolTip("Presets in " + q(preset_dir()));
   left_->addWidget(new QLabel("<b>Preset</b>"));
   left_->addWidget(presets_);
+  description_ = new QLabel;
+  description_->setObjectName("presetDescription");
+  description_->setWordWrap(true);
+  description_->setTextFormat(Qt::PlainText);
+  description_->setStyleSheet("QLabel { color: #444; }");
+  left_->addWidget(description_);
   connect(presets_, &QComboBox::activated, this, [this](int i) {
     const QString path = presets_->itemData(i).toString();
+    // The preset already open: back to its values (pinned snapshots stay, one undo step).
+    if (doc_ && !preset().path.empty() &&
+        QFileInfo(path).absoluteFilePath() == QFileInfo(q(preset().path)).absoluteFilePath()) {
+      resetToPreset();
+      return;
+    }
     if (!confirmDiscard("Switch preset")) {
       refreshPresetList();
       return;
@@ -112,24 +124,28 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   sweep->setToolTip("Plot any metric over one or two parameters");
   auto* pin = new QPushButton("Pin");
   pin->setObjectName("pinButton");
-  pin->setToolTip("Keep the current tuning as a faded ghost and a metrics column to compare");
+  pin->setToolTip("Keep the current tuning, under a name, as a ghost and a metrics column");
+  auto* reset = new QPushButton("Reset");
+  reset->setObjectName("resetButton");
+  reset->setToolTip("Back to the preset's values (one undo step; pinned snapshots stay)");
   tool_row->addWidget(tune);
   tool_row->addWidget(sweep);
   tool_row->addWidget(pin);
-  connect(pin, &QPushButton::clicked, this,
-          [this] { pinSnapshot(QString("snapshot %1").arg(snapshots_.size() + 1)); });
+  tool_row->addWidget(reset);
+  connect(reset, &QPushButton::clicked, this, &MainWindow::resetToPreset);
+  connect(pin, &QPushButton::clicked, this, [this] {
+    bool ok = false;
+    const QString name =
+        QInputDialog::getText(this, "Pin snapshot", "Name of this tuning:", QLineEdit::Normal,
+                              QString("snapshot %1").arg(snapshots_.size() + 1), &ok);
+    if (ok && !name.trimmed().isEmpty()) pinSnapshot(name.trimmed());
+  });
   left_->addLayout(tool_row);
   connect(tune, &QPushButton::clicked, this, [this] { openTuneDialog(); });
   connect(sweep, &QPushButton::clicked, this, [this] { openSweepDialog(); });
   // The panel and scenario controls are inserted here by rebuildScenarioUi().
   left_->addStretch(0);
-  metrics_ = new QTableWidget(0, 2);
-  metrics_->setObjectName("metrics");
-  metrics_->setHorizontalHeaderLabels({"metric", "value"});
-  metrics_->horizontalHeader()->setStretchLastSection(true);
-  metrics_->verticalHeader()->setVisible(false);
-  metrics_->setEditTriggers(QAbstractItemView::NoEditTriggers);
-  metrics_->setMinimumHeight(160);
+  metrics_ = new MetricsPanel;
 
   auto* left_scroll = new QScrollArea;
   left_scroll->setWidget(left_host);
@@ -139,8 +155,8 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   left_split->setObjectName("leftSplit");
   left_split->addWidget(left_scroll);
   left_split->addWidget(metrics_);
-  left_split->setStretchFactor(0, 4);
-  left_split->setStretchFactor(1, 1);
+  left_split->setStretchFactor(0, 3);
+  left_split->setStretchFactor(1, 2);
 
   plot_area_ = new QScrollArea;
   plot_area_->setWidgetResizable(true);
@@ -177,10 +193,14 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   split->setSizes({380, 1220});
   setCentralWidget(split);
   status_ = new QLabel;
+  status_->setObjectName("status");
   statusBar()->addWidget(status_, 1);
   buildMenus();
   buildDataMenu();  // main_window_data.cpp
+  buildHelpMenu();  // main_window_help.cpp
+  setupReplay();    // main_window_replay.cpp
   refreshPresetList();
+  fitToScreen();
 }
 
 MainWindow::~MainWindow() = default;
@@ -237,11 +257,7 @@ void MainWindow::buildMenus() {
                                  [this] { redo(); });
   redo_action_->setObjectName("redoAction");
   edit->addSeparator();
-  edit->addAction("Reset to &preset values", this, [this] {
-    if (!doc_) return;
-    doc_->reset_to_preset();
-    syncFromDocument();
-  });
+  edit->addAction("Reset to &preset values", this, &MainWindow::resetToPreset);
   updateUndoActions();
   QMenu* tools = menuBar()->addMenu("&Tools");
   tools->addAction("Auto-&tune…", this, [this] { openTuneDialog(); });
@@ -266,9 +282,15 @@ void MainWindow::buildMenus() {
     if (ok && !name.isEmpty()) pinSnapshot(name);
   });
   tools->addAction("&Clear snapshots", this, &MainWindow::clearSnapshots);
+  // The replay keys (Space, ←, →, Home, End) work with any focus but text entry:
+  // main_window_replay.cpp; the menu names them.
   QMenu* replay = menuBar()->addMenu("&Replay");
-  replay->addAction("&Play / pause", QKeySequence(Qt::Key_Space), this,
-                    [this] { transport_->playing() ? transport_->pause() : transport_->play(); });
+  replay->addAction("&Play / pause\tSpace", this, [this] { transport_->togglePlay(); });
+  replay->addAction("Step &back\t←", this, [this] { transport_->stepBy(-1); });
+  replay->addAction("Step &forward\t→", this, [this] { transport_->stepBy(1); });
+  replay->addAction("To the &start\tHome", this, [this] { transport_->seek(0); });
+  replay->addAction("To the &end\tEnd", this,
+                    [this] { transport_->seek(static_cast<std::size_t>(-1)); });
   replay->addAction("Show &all", this, [this] { transport_->setShowAll(true); });
 }
 
@@ -339,6 +361,7 @@ Status MainWindow::adoptDocument(Document doc) {
   clearError();
   const Preset& p = doc_->preset();
   setWindowTitle("kfw — " + q(p.title.empty() ? scenario_->title() : p.title));
+  updateDescription();
   updateUndoActions();
   requestRun();
   return Ok{};
@@ -377,7 +400,7 @@ void MainWindow::rebuildScenarioUi() {
   connect(view_.get(), &ScenarioView::parameterEdited, this,
           [this](const QString& key, double v) { setParam(key.toStdString(), v); });
 
-  // Plots: two columns in a scroll area; three rows fit the default 1000-px window.
+  // Plots: two columns in a scroll area; at 1366×768 the first two rows are in view.
   delete plot_host_;
   plot_host_ = new QWidget;
   auto* grid = new QGridLayout(plot_host_);
@@ -386,7 +409,9 @@ void MainWindow::rebuildScenarioUi() {
   plots_ = view_->createPlots(plot_host_);
   for (int i = 0; i < plots_.size(); ++i) {
     plots_[i].plot->setObjectName("plot." + plots_[i].name);
-    plots_[i].plot->setMinimumHeight(260);
+    // An explicit minimum: a long title's width must not widen the grid past the viewport
+    // (the plots then scroll sideways and the second column is off screen at 1366×768).
+    plots_[i].plot->setMinimumSize(200, 240);
     grid->addWidget(plots_[i].plot, i / 2, i % 2);
   }
   plot_area_->setWidget(plot_host_);
@@ -422,6 +447,8 @@ void MainWindow::requestRun() {
   if (!scenario_ || !panel_) return;
   if (applied_latest_) since_request_.start();
   applied_latest_ = false;
+  // An error shown before this request is cleared when the request succeeds.
+  if (error_->isVisible()) error_->setProperty("fromRun", true);
   runner_->request(doc_->values());
 }
 
@@ -448,14 +475,16 @@ void MainWindow::applyResult(std::shared_ptr<const RunResult> r, const ParamValu
   }
   applied_latest_ = !runner_->busy();
   if (applied_latest_) last_latency_ms_ = static_cast<double>(since_request_.nsecsElapsed()) / 1e6;
-  QString msg = QString("%1 steps · run %2 ms · request→plots %3 ms")
-                    .arg(r->steps())
-                    .arg(ms, 0, 'f', 1)
-                    .arg(last_latency_ms_, 0, 'f', 1);
-  for (const auto& w : r->warnings)
-    msg += " · ⚠ " + q(w);
-  status_->setText(msg);
+  // The status bar: results and warnings (a screenshot stays the same run to run); the
+  // timings in its tooltip.
+  status_->setText(statusText());
+  status_->setToolTip(QString("%1 steps · run %2 ms · request→plots %3 ms")
+                          .arg(r->steps())
+                          .arg(ms, 0, 'f', 1)
+                          .arg(last_latency_ms_, 0, 'f', 1));
+  status_->setStyleSheet(r->warnings.empty() ? QString() : QString("QLabel { color: #8a4b00; }"));
   if (applied_latest_) {
+    // A later success clears the error banner (a run error, or one shown before the request).
     if (error_->isVisible() && error_->property("fromRun").toBool()) clearError();
     emit resultApplied();
   }

@@ -32,11 +32,13 @@ class QTableWidget;
 class QVBoxLayout;
 class QGridLayout;
 class QPushButton;
+class QKeyEvent;
 
 namespace kfw {
 
 class ConsistencyPanel;
 class ImportDialog;
+class MetricsPanel;
 class ParamPanel;
 class RunController;
 namespace plot {
@@ -135,6 +137,24 @@ class MainWindow : public QMainWindow {
   std::string primaryParameter() const;
   // Request → plots replotted, for the last run, ms.
   double lastLatencyMs() const { return last_latency_ms_; }
+  // The metrics table (metrics_panel.h).
+  MetricsPanel* metricsPanel() const { return metrics_; }
+  // The metric shown first in the table (the last tuning's objective); "" for the default.
+  void setPrimaryMetric(const std::string& key);
+  // Back to the preset's values as one undo step; pinned snapshots stay.
+  void resetToPreset();
+  // The status bar's text: results and run warnings (timings are in its tooltip).
+  QString statusText() const;
+  // The preset's description as shown under the picker.
+  QString presetDescription() const;
+  // The README's usage section (Help → Usage) as Markdown; empty when no README is found.
+  static QString usageText();
+  // The README: in the source tree beside presets/, else installed beside the executable.
+  static QString readmePath();
+  // The About text: version and licences.
+  static QString aboutText();
+  // The time range every time plot shows (the replay's following window); x1 <= x0: no change.
+  void applyTimeWindow(double t0, double t1);
 
  signals:
   void resultApplied();
@@ -145,6 +165,13 @@ class MainWindow : public QMainWindow {
 
  private:
   void buildMenus();
+  void buildHelpMenu();  // main_window_help.cpp, with the window's size and the description
+  void fitToScreen();    // initial size from the screen (or the last size)
+  void saveWindowSize() const;
+  void updateDescription();
+  void setupReplay();  // main_window_replay.cpp: keys with any focus, following window
+  bool replayKey(QObject* target, QKeyEvent* event);
+  friend class ReplayKeys;
   void rebuildScenarioUi();
   void requestRun();
   void applyResult(std::shared_ptr<const RunResult> r, const ParamValues& v, double ms);
@@ -203,7 +230,9 @@ class MainWindow : public QMainWindow {
   ConsistencyPanel* consistency_ = nullptr;
   QWidget* plot_host_ = nullptr;
   QPointer<plot::ZoomGroup> zoom_;  // a child of plot_host_
-  QTableWidget* metrics_ = nullptr;
+  MetricsPanel* metrics_ = nullptr;
+  std::string primary_metric_;  // the last tuning's objective ("" until one)
+  QLabel* description_ = nullptr;
   QLabel* error_ = nullptr;
   QLabel* status_ = nullptr;
   QString last_error_;

@@ -5,14 +5,15 @@
 #include <QFileInfo>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QLabel>
 #include <QSettings>
 #include <QSplitter>
-#include <QTableWidget>
 #include <algorithm>
 #include <cmath>
 
 #include "core/workspace.h"
 #include "main_window.h"
+#include "metrics_panel.h"
 #include "param_panel.h"
 #include "run_controller.h"
 
@@ -113,76 +114,41 @@ void MainWindow::refreshSnapshots() {
   fillMetrics();
 }
 
-// Grouped (accuracy, consistency, gains, scenario), each row the metric's label and unit, its
-// description as a tooltip, undefined metrics as "—" with the reason.
+// The metrics table (metrics_panel.cpp): the live run and one column per snapshot.
 void MainWindow::fillMetrics() {
-  const int cols = 2 + static_cast<int>(snapshots_.size());
-  metrics_->setColumnCount(cols);
-  QStringList headers{"metric", "live"};
+  if (!scenario_) return;
+  MetricsPanel::Columns cols;
   for (const auto& p : snapshots_)
-    headers << q(p.snap.name);
-  metrics_->setHorizontalHeaderLabels(headers);
-  if (!result_) {
-    metrics_->setRowCount(0);
-    return;
+    cols.append({q(p.snap.name), p.result});
+  metrics_->setRuns(*scenario_, result_, cols, primary_metric_);
+  status_->setText(statusText());
+}
+
+void MainWindow::setPrimaryMetric(const std::string& key) {
+  primary_metric_ = key;
+  fillMetrics();
+}
+
+QString MainWindow::statusText() const {
+  if (!result_ || !scenario_) return {};
+  QString msg = QString("%1 steps").arg(result_->steps());
+  const QString primary = metrics_->primaryKey();
+  if (!primary.isEmpty()) {
+    const std::string k = primary.toStdString();
+    const MetricSpec spec = describe_metric(*scenario_, k, result_.get());
+    msg += QString(" · %1 = %2").arg(q(spec.label), MetricsPanel::format(result_->metrics.at(k)));
+    if (!spec.unit.empty()) msg += " " + q(spec.unit);
   }
-  struct Row {
-    MetricSpec spec;
-    int group_order;
-  };
-  std::vector<Row> rows;
-  auto add = [&](const std::string& key) {
-    MetricSpec spec = describe_metric(*scenario_, key, result_.get());
-    rows.push_back({spec, static_cast<int>(spec.group)});
-  };
-  for (const auto& [k, x] : result_->metrics)
-    add(k);
-  for (const auto& [k, why] : result_->undefined)
-    add(k);
-  std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
-    if (a.group_order != b.group_order) return a.group_order < b.group_order;
-    if ((a.spec.key == "rmse") != (b.spec.key == "rmse")) return a.spec.key == "rmse";
-    return a.spec.key < b.spec.key;
-  });
-  metrics_->setRowCount(static_cast<int>(rows.size()));
-  auto cell = [](const RunResult* r, const MetricSpec& spec) {
-    auto* item = new QTableWidgetItem;
-    if (!r) {
-      item->setText("–");
-      return item;
-    }
-    auto it = r->metrics.find(spec.key);
-    if (it != r->metrics.end()) {
-      item->setText(QString::number(it->second, 'g', 6));
-      const std::string verdict = judge(spec, it->second);
-      if (verdict == "bad") item->setForeground(QColor(170, 30, 20));
-      if (!verdict.empty()) item->setToolTip(q(verdict));
-    } else {
-      item->setText("—");
-      auto u = r->undefined.find(spec.key);
-      item->setToolTip(u == r->undefined.end() ? "not reported" : "undefined: " + q(u->second));
-    }
-    return item;
-  };
-  for (int row = 0; row < static_cast<int>(rows.size()); ++row) {
-    const MetricSpec& spec = rows[static_cast<std::size_t>(row)].spec;
-    QString label = q(spec.label);
-    if (!spec.unit.empty()) label += " (" + q(spec.unit) + ")";
-    auto* name = new QTableWidgetItem(label);
-    name->setData(Qt::UserRole, q(spec.key));
-    QString sense = QString(direction_name(spec.direction)) + " is better";
-    if (spec.direction == Direction::kTarget)
-      sense = "target " + QString::number(spec.target, 'g', 4);
-    if (spec.direction == Direction::kNone) sense = "informational";
-    QString tip = "<b>" + q(spec.key) + "</b> · " + group_name(spec.group) + " · " + sense;
-    if (!spec.description.empty()) tip += "<br>" + q(spec.description).toHtmlEscaped();
-    name->setToolTip(tip);
-    metrics_->setItem(row, 0, name);
-    metrics_->setItem(row, 1, cell(result_.get(), spec));
-    for (std::size_t j = 0; j < snapshots_.size(); ++j) {
-      metrics_->setItem(row, 2 + static_cast<int>(j), cell(snapshots_[j].result.get(), spec));
-    }
-  }
+  if (!snapshots_.empty()) msg += QString(" · %1 pinned").arg(snapshots_.size());
+  for (const auto& w : result_->warnings)
+    msg += " · ⚠ " + q(w);
+  return msg;
+}
+
+void MainWindow::resetToPreset() {
+  if (!doc_) return;
+  doc_->reset_to_preset();  // one undo step; the snapshots stay
+  syncFromDocument();
 }
 
 QString MainWindow::viewState() const {

@@ -5,6 +5,7 @@
 #include <QFileInfo>
 #include <QMessageBox>
 
+#include "core/tuning.h"
 #include "main_window.h"
 #include "param_panel.h"
 #include "run_controller.h"
@@ -38,7 +39,13 @@ TuneDialog* MainWindow::openTuneDialog() {
       showError(QString::fromStdString(st.error()));
     }
   }
-  connect(d, &TuneDialog::tuned, this, [this](const ParamValues& v) { applyValuesAs(v, "tune"); });
+  connect(d, &TuneDialog::tuned, this, [this, d](const ParamValues& v) {
+    // The tuned objective's metric goes first in the metrics table (rmse+nis ranks rmse).
+    if (auto obj = make_objective(*scenario_, d->objective().toStdString(), result_.get())) {
+      primary_metric_ = obj->spec.key;
+    }
+    applyValuesAs(v, "tune");
+  });
   connect(d, &TuneDialog::reverted, this,
           [this](const ParamValues& v) { applyValuesAs(v, "revert tuning"); });
   connect(d, &TuneDialog::tuningSetChanged, this, [this](const QStringList& paths) {
@@ -80,6 +87,7 @@ bool MainWindow::confirmDiscard(const QString& action) {
 
 void MainWindow::closeEvent(QCloseEvent* event) {
   if (confirmDiscard("Quit")) {
+    saveWindowSize();
     event->accept();
   } else {
     event->ignore();

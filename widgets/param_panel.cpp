@@ -6,6 +6,7 @@
 #include <QGridLayout>
 #include <QGroupBox>
 #include <QLabel>
+#include <QMouseEvent>
 #include <QSignalBlocker>
 #include <QSlider>
 #include <QVBoxLayout>
@@ -20,8 +21,9 @@ class ValueSpinBox : public QDoubleSpinBox {
   ValueSpinBox(bool log, QWidget* parent) : QDoubleSpinBox(parent), log_(log) {
     setDecimals(12);
     setKeyboardTracking(false);
-    setMinimumWidth(92);
     setAlignment(Qt::AlignRight);
+    // Sized for what textFromValue shows ("-1.23457e+06"), not for 12 decimals of the maximum.
+    setFixedWidth(fontMetrics().horizontalAdvance("-1.23457e+06") + 34);
   }
   QString textFromValue(double v) const override { return QString::number(v, 'g', 6); }
   double valueFromText(const QString& text) const override { return text.trimmed().toDouble(); }
@@ -139,14 +141,32 @@ ParamPanel::ParamPanel(const ParamTable& table, const Ranges& ranges, QWidget* p
       } else if (s.scale == Scale::kLinear) {
         row.spin->setSingleStep(std::pow(10.0, -std::min(s.decimals, 6)));
       }
+      // The label with its unit on one row, the slider and the value below: the slider gets
+      // ~190 px, so a log slider's three decades make a 90-px drag about 1.5 decades.
+      grid->removeWidget(label);
+      label->setWordWrap(true);
+      grid->addWidget(label, r, 0, 1, 2);
       auto* unit_label = new QLabel(unit, box);
-      unit_label->setMinimumWidth(56);
-      grid->addWidget(row.slider, r + 1, 0);
-      grid->addWidget(row.spin, r + 1, 1);
-      grid->addWidget(unit_label, r + 1, 2);
+      unit_label->setObjectName("unit." + key);
+      unit_label->setAlignment(Qt::AlignRight | Qt::AlignVCenter);
+      unit_label->setStyleSheet("color: #666;");
+      grid->addWidget(unit_label, r, 2);
+      grid->addWidget(row.slider, r + 1, 0, 1, 2);
+      grid->addWidget(row.spin, r + 1, 2);
+      if (s.scale == Scale::kLog) {
+        row.slider->setToolTip(label->toolTip() +
+                               QString("\nThe slider spans %1 decades around the value (re-centred "
+                                       "when you let go); type any value in the box.")
+                                   .arg(kLogWindowDecades));
+      }
       connect(row.slider, &QSlider::valueChanged, this, [this, k = s.key](int pos) {
         Row& rw = rows_.at(k);
-        commit(rw, fromSlider(rw.spec, rw.lo, rw.hi, pos));
+        commit(rw, fromSlider(rw.spec, rw.wlo, rw.whi, pos));
+      });
+      row.slider->installEventFilter(this);
+      connect(row.slider, &QSlider::sliderReleased, this, [this, k = s.key] {
+        Row& rw = rows_.at(k);
+        show(rw, values_.count(k) ? values_.at(k) : rw.spec.def);
       });
       connect(row.spin, &QDoubleSpinBox::valueChanged, this, [this, k = s.key](double v) {
         Row& rw = rows_.at(k);
@@ -160,9 +180,35 @@ ParamPanel::ParamPanel(const ParamTable& table, const Ranges& ranges, QWidget* p
   setValues(values_);
 }
 
+void ParamPanel::centre(Row& row, double v) {
+  row.wlo = row.lo;
+  row.whi = row.hi;
+  if (row.spec.scale != Scale::kLog || row.lo <= 0 || !(v > 0)) return;
+  const double span = std::pow(10.0, kLogWindowDecades);
+  if (row.hi / row.lo <= span) return;
+  const double half = std::pow(10.0, kLogWindowDecades / 2);
+  row.wlo = v / half;
+  row.whi = v * half;
+  if (row.wlo < row.lo) {
+    row.wlo = row.lo;
+    row.whi = row.lo * span;
+  } else if (row.whi > row.hi) {
+    row.whi = row.hi;
+    row.wlo = row.hi / span;
+  }
+}
+
+std::pair<double, double> ParamPanel::sliderRange(const std::string& key) const {
+  auto it = rows_.find(key);
+  if (it == rows_.end()) return {0.0, 0.0};
+  return {it->second.wlo, it->second.whi};
+}
+
 void ParamPanel::show(Row& row, double v) {
   const QSignalBlocker b1(row.slider), b2(row.spin), b3(row.combo), b4(row.check);
-  if (row.slider) row.slider->setValue(toSlider(row.spec, row.lo, row.hi, v));
+  // While the slider is dragged its window stays put (the thumb follows the hand).
+  if (row.slider && !row.slider->isSliderDown()) centre(row, v);
+  if (row.slider) row.slider->setValue(toSlider(row.spec, row.wlo, row.whi, v));
   if (row.spin) row.spin->setValue(v);
   if (row.combo) row.combo->setCurrentIndex(static_cast<int>(v));
   if (row.check) row.check->setChecked(v != 0.0);
@@ -175,6 +221,55 @@ void ParamPanel::commit(Row& row, double v) {
   if (it != values_.end() && it->second == v) return;
   values_[row.spec.key] = v;
   emit valueChanged(QString::fromStdString(row.spec.key), v);
+}
+
+bool ParamPanel::eventFilter(QObject* watched, QEvent* event) {
+  auto* slider = qobject_cast<QSlider*>(watched);
+  if (!slider || !slider->objectName().startsWith("slider."))
+    return QWidget::eventFilter(watched, event);
+  const std::string key = slider->objectName().mid(7).toStdString();
+  auto it = rows_.find(key);
+  if (it == rows_.end()) return QWidget::eventFilter(watched, event);
+  Row& row = it->second;
+  auto* me = static_cast<QMouseEvent*>(event);
+  switch (event->type()) {
+    case QEvent::MouseButtonPress:
+      if (me->button() == Qt::LeftButton && (me->modifiers() & Qt::ShiftModifier)) {
+        fine_ = FineDrag{key, qRound(me->position().x()), slider->value()};
+        return true;
+      }
+      break;
+    case QEvent::MouseMove:
+      if (fine_ && fine_->key == key) {
+        // One slider step per ten pixels' worth of the normal drag.
+        const int span = std::max(1, slider->width() - 20);
+        const double steps = (me->position().x() - fine_->x0) * slider->maximum() / span / 10.0;
+        const double f = std::clamp((fine_->pos0 + steps) / slider->maximum(), 0.0, 1.0);
+        double v = 0.0;
+        if (row.spec.scale == Scale::kLog && row.wlo > 0) {
+          v = std::pow(10.0, std::log10(row.wlo) + f * (std::log10(row.whi) - std::log10(row.wlo)));
+        } else {
+          v = row.wlo + f * (row.whi - row.wlo);
+          if (row.spec.scale == Scale::kInteger) v = std::round(v);
+        }
+        const QSignalBlocker b(slider);
+        slider->setSliderDown(true);  // the window stays put while the hand moves
+        commit(row, v);
+        return true;
+      }
+      break;
+    case QEvent::MouseButtonRelease:
+      if (fine_ && fine_->key == key) {
+        fine_.reset();
+        slider->setSliderDown(false);
+        show(row, values_.count(key) ? values_.at(key) : row.spec.def);
+        return true;
+      }
+      break;
+    default:
+      break;
+  }
+  return QWidget::eventFilter(watched, event);
 }
 
 void ParamPanel::setValues(const ParamValues& values) {

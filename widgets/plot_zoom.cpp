@@ -103,6 +103,11 @@ void ZoomGroup::scheduleRedraw() {
 }
 
 void ZoomGroup::zoomTime(double t0, double t1) {
+  followTime(t0, t1);
+  if (redraw_) redraw_();
+}
+
+void ZoomGroup::followTime(double t0, double t1) {
   linking_ = true;
   for (const PlotPanel& panel : plots_) {
     QCustomPlot* q = panel.plot;
@@ -112,7 +117,6 @@ void ZoomGroup::zoomTime(double t0, double t1) {
     setUserZoom(q, true, userZoomedY(q));
   }
   linking_ = false;
-  if (redraw_) redraw_();
 }
 
 void ZoomGroup::resetAll() {

@@ -31,6 +31,9 @@ class ZoomGroup final : public QObject {
   void resetAll();
   // Sets the linked time range of every time plot as a user zoom would.
   void zoomTime(double t0, double t1);
+  // The same without redrawing the data (replay's following window: the next cursor step
+  // redraws them for the new range).
+  void followTime(double t0, double t1);
   QJsonValue save() const;
   void restore(const QJsonValue& v);
   PlotReadout* readout() const { return readout_; }

@@ -62,7 +62,7 @@ TEST_F(HelicopterWindow, MovingTheRSliderChangesEstimateAndOperatingPoint) {
 
   auto* slider = w.findChild<QSlider*>("slider.R");
   ASSERT_NE(slider, nullptr);
-  slider->setValue(slider->value() + 150);  // R up by 1.5 decades
+  slider->setValue(slider->value() + 500);  // R up by 1.5 decades (3 decades over 1000 steps)
   ASSERT_TRUE(w.waitForRun());
   EXPECT_GT(w.values().at("R"), 1.96 * 20);
   const auto after = graphValues(est);

@@ -13,6 +13,7 @@
 #include "common/plot_probe.h"
 #include "core/dataset.h"
 #include "main_window.h"
+#include "metrics_panel.h"
 
 namespace kfw {
 namespace {
@@ -38,7 +39,9 @@ TEST(Snapshots, GhostAndMetricsColumnFollowThePinnedTuning) {
   EXPECT_EQ(table->horizontalHeaderItem(2)->text(), "loose");
   for (int r = 0; r < table->rowCount(); ++r) {
     if (table->item(r, 0)->data(Qt::UserRole).toString() != "rmse") continue;
-    EXPECT_NEAR(table->item(r, 2)->text().toDouble(), rmse_pinned, 1e-4 * rmse_pinned);
+    EXPECT_NEAR(table->item(r, 2)->data(MetricsPanel::kValueRole).toDouble(), rmse_pinned,
+                1e-12 * rmse_pinned);
+    EXPECT_NEAR(table->item(r, 2)->text().toDouble(), rmse_pinned, 1e-3 * rmse_pinned);
     EXPECT_NE(table->item(r, 1)->text(), table->item(r, 2)->text());
   }
   w.clearSnapshots();

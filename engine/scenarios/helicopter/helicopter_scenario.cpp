@@ -19,29 +19,29 @@ ParamTable make_table() {
   const std::string F = "Filter", S = "Simulator";
   return ParamTable({
       {"Q", "Q = N_ω, gyro noise variance", "(deg/s)²", 1e-6, 1e6, 67.24, Scale::kLog, F,
-       "Gyro white-noise variance N_ω driving the angle error (seed 000, eq. 7)."},
+       "Gyro white-noise variance N_ω driving the angle error (Kim et al., eq. 7)."},
       {"R", "R = N_θ, angle noise variance", "deg²", 1e-6, 1e6, 1.96, Scale::kLog, F,
-       "Absolute angle sensor noise variance N_θ (seed 000, eq. 8)."},
+       "Absolute angle sensor noise variance N_θ (Kim et al., eq. 8)."},
       {"m", "m, gyro samples per angle update", "", 1, 200, 1, Scale::kInteger, F,
-       "The angle sensor updates every m-th gyro sample (seed 000, eq. 10)."},
+       "The angle sensor updates every m-th gyro sample (Kim et al., eq. 10)."},
       {"gamma", "γ, bias cutoff ratio", "", 0.0, 0.1, 0.0, Scale::kLinear, F,
-       "b_k = (1-γ) b_{k-1} + γ ω_m (seed 000, eq. 12); 0 = constant bias.", 4},
+       "b_k = (1-γ) b_{k-1} + γ ω_m (Kim et al., eq. 12); 0 = constant bias.", 4},
       {"P0_theta", "P0 angle variance", "deg²", 1e-6, 1e6, 100.0, Scale::kLog, F,
-       "Initial P11 (seed 000: 100 deg²)."},
+       "Initial P11 (Kim et al.: 100 deg²)."},
       {"P0_bias", "P0 bias variance", "(deg/s)²", 1e-6, 1e6, 4.0, Scale::kLog, F,
-       "Initial P22 (seed 000: 4 (deg/s)²)."},
+       "Initial P22 (Kim et al.: 4 (deg/s)²)."},
       {"window", "consistency window", "updates", 1, 1000, 50, Scale::kInteger, "Consistency",
        "Moving-average window of NIS and NEES, in angle updates (the χ² bounds follow it)."},
       {"sim.seed", "seed", "", 0, 1e6, 1, Scale::kInteger, S, "Random seed of the simulator."},
       {"sim.duration", "duration", "s", 1, 3600, 120, Scale::kLinear, S, "Length of the run.", 0},
       {"sim.Ts", "gyro period Ts", "s", 0.001, 0.1, 0.02, Scale::kLinear, S,
-       "Sample period of gyro and angle sensor (seed 000: 20 ms).", 3},
+       "Sample period of gyro and angle sensor (Kim et al.: 20 ms).", 3},
       {"sim.amplitude", "attitude amplitude", "deg", 0, 45, 10, Scale::kLinear, S,
        "Size of the hover sway.", 1},
       {"sim.sigma_gyro", "σ gyro", "deg/s", 0, 20, 8.2, Scale::kLinear, S,
-       "Gyro white noise per sample (seed 000, engine on: 7.72–8.71 deg/s).", 2},
+       "Gyro white noise per sample (Kim et al., engine on: 7.72–8.71 deg/s).", 2},
       {"sim.sigma_angle", "σ angle", "deg", 0, 10, 1.4, Scale::kLinear, S,
-       "Angle sensor noise (seed 000, engine on: 1.37–1.45 deg).", 2},
+       "Angle sensor noise (Kim et al., engine on: 1.37–1.45 deg).", 2},
       {"sim.bias0", "initial gyro bias", "deg/s", -10, 10, 1.5, Scale::kLinear, S, "", 2},
       {"sim.bias_walk", "bias random walk", "(deg/s)/√s", 0, 1, 0.05, Scale::kLinear, S,
        "Bias drift density: the slowly varying bias that γ tracks.", 3},
@@ -64,10 +64,10 @@ std::vector<MetricSpec> make_metric_specs() {
        "steady-state angle gain of the m-step model from the DARE, at the data's Ts", G::kGains,
        D::kNone},
       {"k1_closed_form", "k1 (closed form)", "",
-       "steady-state angle gain k1(β) of the constant-bias model (seed 000, eq. 11)", G::kGains,
+       "steady-state angle gain k1(β) of the constant-bias model (Kim et al., eq. 11)", G::kGains,
        D::kNone},
       {"beta", "β, operating point", "",
-       "β = m Ts² N_ω / N_θ, the one number k1 depends on (seed 000, eq. 11)", G::kGains, D::kNone},
+       "β = m Ts² N_ω / N_θ, the one number k1 depends on (Kim et al., eq. 11)", G::kGains, D::kNone},
   };
 }
 
@@ -80,7 +80,7 @@ class HelicopterScenario final : public Scenario {
   }
   std::string name() const override { return "helicopter"; }
   std::string title() const override {
-    return "Helicopter attitude: indirect KF, gyro + angle sensor (seed 000)";
+    return "Helicopter attitude: indirect KF, gyro + angle sensor (Kim et al.)";
   }
   const ParamTable& params() const override {
     static const ParamTable table = make_table();

@@ -25,13 +25,13 @@ ParamTable make_table() {
   const std::string F = "Filter", G = "IMM grid", S = "Simulator";
   return ParamTable({
       {"Q", "Q, target manoeuvre noise density", "(m/s²)²/Hz", 1e-3, 1e6, 100.0, Scale::kLog, F,
-       "Spectral density of w driving A_T through D = I/τ (seed 001, eq. 1); same per axis."},
+       "Spectral density of w driving A_T through D = I/τ (Kim & Back 2017, eq. 1); same per axis."},
       {"tau", "τ, target manoeuvre time constant", "s", 0.05, 100.0, 0.5, Scale::kLog, F,
-       "A = [[0, I, 0], [0, 0, I], [0, 0, −I/τ]] (seed 001, eq. 1)."},
+       "A = [[0, I, 0], [0, 0, I], [0, 0, −I/τ]] (Kim & Back 2017, eq. 1)."},
       {"R", "R, angle noise variance", "rad²", 1e-10, 1e-2, 1e-6, Scale::kLog, F,
-       "Variance of ν_ψ and ν_θ (seed 001, Sec. 3.1: 1e-6)."},
+       "Variance of ν_ψ and ν_θ (Kim & Back 2017, Sec. 3.1: 1e-6)."},
       {"R_range", "range noise variance", "m²", 1e-8, 1e4, 1.0, Scale::kLog, F,
-       "Variance of ν_R in the filter. The data have 1e-6 (seed 001), but the linearised "
+       "Variance of ν_R in the filter. The data have 1e-6 (Kim & Back 2017), but the linearised "
        "pseudo-measurement is off by r σ_ψ²/2 ≈ 5 mm along the LOS at 10 km, so the filter "
        "assumes 1 m² (matters for the full structure)."},
       {"P0_pos", "P0 position variance", "m²", 1e-2, 1e8, 1e4, Scale::kLog, F,
@@ -53,7 +53,7 @@ ParamTable make_table() {
        0,
        {"axis", "full"}},
       {"Kp", "Kp, mode-parameter renewal gain", "", 0.0, 1.0, 0.0, Scale::kLinear, G,
-       "ΔR̄_k = Kp (R̂_{k−1} − mean R̄_{k−1}) moves the grid (seed 001, eq. 4); 0 = plain IMM.", 3},
+       "ΔR̄_k = Kp (R̂_{k−1} − mean R̄_{k−1}) moves the grid (Kim & Back 2017, eq. 4); 0 = plain IMM.", 3},
       {"renewal.mode",
        "renewal: what μ and Kp mean",
        "",
@@ -73,13 +73,13 @@ ParamTable make_table() {
        "(large P0) would steer the grid. The paper does not say when renewal starts.",
        1},
       {"grid.min", "grid minimum slope", "", -0.5, 0.5, -0.05, Scale::kLinear, G,
-       "Smallest slope of the initial grid, both axes (seed 001, eq. 6: −0.05).", 3},
+       "Smallest slope of the initial grid, both axes (Kim & Back 2017, eq. 6: −0.05).", 3},
       {"grid.max", "grid maximum slope", "", -0.5, 0.5, 0.05, Scale::kLinear, G,
-       "Largest slope of the initial grid, both axes (seed 001, eq. 6: +0.05).", 3},
+       "Largest slope of the initial grid, both axes (Kim & Back 2017, eq. 6: +0.05).", 3},
       {"grid.n_psi", "n_ψ, azimuth slopes", "", 1, 15, 7, Scale::kInteger, G,
-       "Number of R̄_ψ values (seed 001: 7)."},
+       "Number of R̄_ψ values (Kim & Back 2017: 7)."},
       {"grid.n_theta", "n_θ, elevation slopes", "", 1, 15, 7, Scale::kInteger, G,
-       "Number of R̄_θ values (seed 001: 7); n_ψ × n_θ modes."},
+       "Number of R̄_θ values (Kim & Back 2017: 7); n_ψ × n_θ modes."},
       {"markov.stay", "Markov stay probability", "", 0.001, 1.0, 0.99, Scale::kLinear, G,
        "p^{jj}; the rest spread equally over the other modes, so mixing is O(r).", 4},
       {"sim.seed", "seed", "", 0, 1e6, 1, Scale::kInteger, S, "Random seed of the simulator."},
@@ -87,11 +87,11 @@ ParamTable make_table() {
        "R_ψ = A sin(0.03πt − 0.25π), R_θ = A sin(0.03πt): 0.05 eq. 5 (inside the grid), 0.08 "
        "eq. 7 (outside).",
        3},
-      {"sim.duration", "duration", "s", 1, 600, 60, Scale::kLinear, S, "seed 001: 60 s.", 0},
+      {"sim.duration", "duration", "s", 1, 600, 60, Scale::kLinear, S, "Kim & Back 2017: 60 s.", 0},
       {"sim.Ts", "sample period", "s", 0.005, 1.0, 0.05, Scale::kLinear, S,
        "Seeker sample period (not in the paper; 20 Hz).", 3},
       {"sim.range0", "initial range", "m", 1000, 50000, 10000, Scale::kLinear, S,
-       "seed 001: 10 km.", 0},
+       "Kim & Back 2017: 10 km.", 0},
       {"sim.az0", "initial LOS azimuth", "deg", -60, 60, 0, Scale::kLinear, S,
        "The target flies so the LOS direction (without its weave) stays at (az0, el0).", 1},
       {"sim.el0", "initial LOS elevation", "deg", -60, 60, 0, Scale::kLinear, S, "", 1},
@@ -101,11 +101,11 @@ ParamTable make_table() {
        1},
       {"sim.weave_period", "weave period P", "s", 0.5, 60, 4, Scale::kLinear, S, "", 1},
       {"sim.target_g", "target manoeuvre", "g", 0, 9, 1, Scale::kLinear, S,
-       "Target weave a_T = g_T [0, cos(2πt/20 s), cos(2πt/14 s)] (seed 001: 1 g in y and z).", 2},
+       "Target weave a_T = g_T [0, cos(2πt/20 s), cos(2πt/14 s)] (Kim & Back 2017: 1 g in y and z).", 2},
       {"sim.R", "angle noise variance", "rad²", 0, 1e-2, 1e-6, Scale::kLinear, S,
-       "ν_ψ, ν_θ ~ N(0, 1e-6) (seed 001).", 8},
+       "ν_ψ, ν_θ ~ N(0, 1e-6) (Kim & Back 2017).", 8},
       {"sim.R_range", "range noise variance", "m²", 0, 1e4, 1e-6, Scale::kLinear, S,
-       "ν_R ~ N(0, 1e-6) (seed 001).", 8},
+       "ν_R ~ N(0, 1e-6) (Kim & Back 2017).", 8},
   });
 }
 
@@ -136,7 +136,7 @@ std::vector<MetricSpec> make_metric_specs() {
        "RMS distance between the estimated and true relative position, t ≥ 10 s", G::kAccuracy,
        D::kLower},
       {"refraction_err_max_deg", "largest refraction-angle error", "deg",
-       "largest |α̂ − α| of the boresight refraction angle, t ≥ 10 s (seed 001: within 0.5°)",
+       "largest |α̂ − α| of the boresight refraction angle, t ≥ 10 s (Kim & Back 2017: within 0.5°)",
        G::kAccuracy, D::kLower},
       {"refraction_err_rmse_deg", "refraction-angle RMSE", "deg",
        "RMS of α̂ − α, the boresight refraction angle, t ≥ 10 s", G::kAccuracy, D::kLower},
@@ -161,18 +161,18 @@ std::vector<MetricSpec> make_metric_specs() {
                  G::kScenario, D::kLower});
     v.push_back({"grid_span_" + a, "grid span around the estimate " + y, "",
                  "furthest a grid edge along " + y +
-                     " was from the slope estimate R̂ (seed 001, Figs. 7–9: about 0.07 with "
+                     " was from the slope estimate R̂ (Kim & Back 2017, Figs. 7–9: about 0.07 with "
                      "Kp = 0.45)",
                  G::kScenario, D::kNone});
     v.push_back({"grid_" + a + "_min_reached", "lowest grid slope " + y, "",
-                 "smallest slope any grid edge reached along " + y + " (seed 001, Fig. 9)",
+                 "smallest slope any grid edge reached along " + y + " (Kim & Back 2017, Fig. 9)",
                  G::kScenario, D::kLower});
     v.push_back({"grid_" + a + "_max_reached", "highest grid slope " + y, "",
-                 "largest slope any grid edge reached along " + y + " (seed 001, Fig. 9)",
+                 "largest slope any grid edge reached along " + y + " (Kim & Back 2017, Fig. 9)",
                  G::kScenario, D::kLower});
     v.push_back({"los_err_max_" + a + "_deg", "largest measured LOS error " + y, "deg",
                  "largest |measured − true| LOS angle " + y +
-                     ", whole run: what the radome does to the seeker (seed 001, Fig. 3)",
+                     ", whole run: what the radome does to the seeker (Kim & Back 2017, Fig. 3)",
                  G::kScenario, D::kLower});
     v.push_back({"los_est_err_max_" + a + "_deg", "largest estimated LOS error " + y, "deg",
                  "largest |estimated − true| LOS angle " + y + ", t ≥ 10 s", G::kAccuracy,
@@ -189,7 +189,7 @@ class RadomeScenario final : public Scenario {
     return specs;
   }
   std::string title() const override {
-    return "Radome slope: IMM over a slope grid with mode-parameter renewal (seed 001)";
+    return "Radome slope: IMM over a slope grid with mode-parameter renewal (Kim & Back 2017)";
   }
   const ParamTable& params() const override {
     static const ParamTable table = make_table();

@@ -1,0 +1,124 @@
+// MainWindow, the replay side: the transport keys with any focus but text entry, the following
+// time window applied to every time plot, and the replay state in the session.
+#include <qcustomplot.h>
+
+#include <QApplication>
+#include <QJsonObject>
+#include <QKeyEvent>
+#include <QLineEdit>
+#include <QPlainTextEdit>
+#include <QTextEdit>
+
+#include "consistency_panel.h"
+#include "main_window.h"
+#include "transport_bar.h"
+
+namespace kfw {
+
+// Space, ←, →, Home and End for the replay, seen before the focused widget sees them.
+class ReplayKeys : public QObject {
+ public:
+  explicit ReplayKeys(MainWindow* w) : QObject(w), window_(w) {}
+  bool eventFilter(QObject* target, QEvent* event) override {
+    if (event->type() == QEvent::KeyPress || event->type() == QEvent::ShortcutOverride) {
+      auto* key = static_cast<QKeyEvent*>(event);
+      if (window_->replayKey(target, key)) {
+        // ShortcutOverride accepted: the key comes back as a KeyPress, handled there.
+        if (event->type() == QEvent::ShortcutOverride) return false;
+        return true;
+      }
+    }
+    return QObject::eventFilter(target, event);
+  }
+
+ private:
+  MainWindow* window_;
+};
+
+namespace {
+
+// Where a typed key is text: line edits (not a spin box's own), text editors.
+bool isTextEntry(const QWidget* w) {
+  if (!w) return false;
+  if (qobject_cast<const QTextEdit*>(w) || qobject_cast<const QPlainTextEdit*>(w)) return true;
+  if (auto* e = qobject_cast<const QLineEdit*>(w)) {
+    return !qobject_cast<const QAbstractSpinBox*>(e->parentWidget());
+  }
+  return false;
+}
+
+bool isTimePlot(const QCustomPlot* p) {
+  return p && p->xAxis && p->xAxis->label().startsWith("time");
+}
+
+}  // namespace
+
+bool MainWindow::replayKey(QObject* target, QKeyEvent* event) {
+  auto* w = qobject_cast<QWidget*>(target);
+  if (!w || w->window() != this || !transport_) return false;
+  const Qt::KeyboardModifiers mods = event->modifiers() & ~Qt::KeypadModifier;
+  if (mods != Qt::NoModifier) return false;
+  const int k = event->key();
+  if (k != Qt::Key_Space && k != Qt::Key_Left && k != Qt::Key_Right && k != Qt::Key_Home &&
+      k != Qt::Key_End) {
+    return false;
+  }
+  QWidget* focus = QApplication::focusWidget();
+  if (isTextEntry(focus) || isTextEntry(w)) return false;
+  // Home and End on a plot are the plot's (reset the zoom).
+  if ((k == Qt::Key_Home || k == Qt::Key_End) && qobject_cast<QCustomPlot*>(focus)) return false;
+  if (event->type() == QEvent::ShortcutOverride) {
+    event->accept();
+    return true;
+  }
+  switch (k) {
+    case Qt::Key_Space:
+      if (!event->isAutoRepeat()) transport_->togglePlay();
+      break;
+    case Qt::Key_Left:
+      transport_->stepBy(-1);
+      break;
+    case Qt::Key_Right:
+      transport_->stepBy(1);
+      break;
+    case Qt::Key_Home:
+      transport_->seek(0);
+      break;
+    case Qt::Key_End:
+      transport_->seek(static_cast<std::size_t>(-1));
+      break;
+    default:
+      return false;
+  }
+  return true;
+}
+
+void MainWindow::applyTimeWindow(double t0, double t1) {
+  if (!(t1 > t0)) return;
+  if (zoom_) {
+    // As a zoom of the linked time axes, so the next redraw keeps (and reduces data for) it.
+    zoom_->followTime(t0, t1);
+    for (const auto& p : plots_)
+      p.plot->replot(QCustomPlot::rpQueuedReplot);
+  }
+  QList<PlotPanel> all = plots_;
+  if (consistency_) all << consistency_->plots();
+  for (const auto& p : all) {
+    if (!isTimePlot(p.plot)) continue;
+    p.plot->xAxis->setRange(t0, t1);
+    p.plot->replot(QCustomPlot::rpQueuedReplot);
+  }
+}
+
+void MainWindow::setupReplay() {
+  qApp->installEventFilter(new ReplayKeys(this));
+  connect(transport_, &TransportBar::timeWindowChanged, this, &MainWindow::applyTimeWindow);
+  addViewStatePart(
+      "replay", [this] { return QJsonValue(transport_->saveState()); },
+      [this](const QJsonValue& v) {
+        transport_->restoreState(v.toObject());
+        if (view_) view_->setCursor(transport_->cursor());
+      });
+}
+
+}  // namespace kfw

@@ -1,0 +1,231 @@
+#include "metrics_panel.h"
+
+#include <QBrush>
+#include <QColor>
+#include <QFont>
+#include <QHeaderView>
+#include <QPainter>
+#include <QPixmap>
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+namespace kfw {
+
+namespace {
+
+QString q(const std::string& s) {
+  return QString::fromStdString(s);
+}
+
+// Where a key is declared: the shared vocabulary first (its order), then the scenario's own.
+int declaredIndex(const Scenario& s, const std::string& key) {
+  const auto& shared = shared_metric_specs();
+  for (std::size_t i = 0; i < shared.size(); ++i) {
+    const std::string& k = shared[i].key;
+    const auto lt = k.find('<');
+    if (lt == std::string::npos ? k == key : key.size() > lt && key.compare(0, lt, k, 0, lt) == 0) {
+      return static_cast<int>(i);
+    }
+  }
+  const auto own = s.metric_specs();
+  for (std::size_t i = 0; i < own.size(); ++i) {
+    if (own[i].key == key) return 1000 + static_cast<int>(i);
+  }
+  return 100000;
+}
+
+QIcon mark(bool good) {
+  QPixmap pm(10, 10);
+  pm.fill(Qt::transparent);
+  QPainter p(&pm);
+  p.setRenderHint(QPainter::Antialiasing);
+  p.setPen(Qt::NoPen);
+  p.setBrush(good ? QColor(40, 150, 60) : QColor(190, 40, 30));
+  p.drawEllipse(1, 1, 8, 8);
+  return QIcon(pm);
+}
+
+QString bounds(const MetricSpec& spec) {
+  return QString("[%1, %2]")
+      .arg(spec.good_lo ? MetricsPanel::format(*spec.good_lo) : QString("−∞"),
+           spec.good_hi ? MetricsPanel::format(*spec.good_hi) : QString("∞"));
+}
+
+QTableWidgetItem* valueItem(const RunResult* r, const MetricSpec& spec) {
+  auto* item = new QTableWidgetItem;
+  item->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
+  if (!r) {
+    item->setText("–");
+    item->setToolTip("no run");
+    return item;
+  }
+  auto it = r->metrics.find(spec.key);
+  if (it == r->metrics.end()) {
+    item->setText("—");
+    auto u = r->undefined.find(spec.key);
+    item->setToolTip(u == r->undefined.end() ? "not reported" : "undefined: " + q(u->second));
+    return item;
+  }
+  const double v = it->second;
+  item->setText(MetricsPanel::format(v));
+  item->setData(MetricsPanel::kValueRole, v);
+  QString tip = QString::number(v, 'g', 10);
+  const std::string verdict = judge(spec, v);
+  if (!verdict.empty()) {
+    const bool good = verdict == "good";
+    item->setIcon(mark(good));
+    if (!good) item->setForeground(QColor(170, 30, 20));
+    tip += QString(" · %1: %2 %3").arg(q(verdict), good ? "inside" : "outside", bounds(spec));
+  }
+  item->setToolTip(tip);
+  return item;
+}
+
+}  // namespace
+
+MetricsPanel::MetricsPanel(QWidget* parent) : QTableWidget(0, 2, parent) {
+  setObjectName("metrics");
+  setHorizontalHeaderLabels({"metric", "live"});
+  verticalHeader()->setVisible(false);
+  // Compact rows; a name too long for its column wraps instead of being cut ("nees_in_bou…").
+  verticalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  verticalHeader()->setMinimumSectionSize(fontMetrics().height() + 2);
+  setWordWrap(true);
+  setTextElideMode(Qt::ElideNone);
+  horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  horizontalHeader()->setSectionResizeMode(0, QHeaderView::Stretch);
+  setEditTriggers(QAbstractItemView::NoEditTriggers);
+  setSelectionMode(QAbstractItemView::NoSelection);
+  setFocusPolicy(Qt::NoFocus);
+  setMinimumHeight(120);
+}
+
+QString MetricsPanel::format(double v) {
+  if (v == 0.0) return "0";
+  const double a = std::abs(v);
+  if (a >= 1e-3 && a < 1e5) {
+    // Fixed notation with four significant digits, trailing zeros dropped.
+    const int decimals = std::max(0, 3 - static_cast<int>(std::floor(std::log10(a))));
+    QString s = QString::number(v, 'f', decimals);
+    if (s.contains('.')) {
+      while (s.endsWith('0'))
+        s.chop(1);
+      if (s.endsWith('.')) s.chop(1);
+    }
+    return s;
+  }
+  return QString::number(v, 'g', 4);
+}
+
+void MetricsPanel::setRuns(const Scenario& scenario, std::shared_ptr<const RunResult> live,
+                           const Columns& snapshots, const std::string& primary) {
+  QStringList headers{"metric", "live"};
+  for (const auto& c : snapshots)
+    headers << c.first;
+  setColumnCount(static_cast<int>(headers.size()));
+  setHorizontalHeaderLabels(headers);
+  for (int c = 1; c < columnCount(); ++c)
+    horizontalHeader()->setSectionResizeMode(c, QHeaderView::ResizeToContents);
+  if (!live) {
+    setRowCount(0);
+    primary_.clear();
+    return;
+  }
+  struct Row {
+    MetricSpec spec;
+    int order;
+  };
+  std::vector<Row> rows;
+  for (const auto& [k, x] : live->metrics)
+    rows.push_back({describe_metric(scenario, k, live.get()), declaredIndex(scenario, k)});
+  for (const auto& [k, why] : live->undefined)
+    rows.push_back({describe_metric(scenario, k, live.get()), declaredIndex(scenario, k)});
+  std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
+    if (a.spec.group != b.spec.group) return a.spec.group < b.spec.group;
+    if (a.order != b.order) return a.order < b.order;
+    return a.spec.key < b.spec.key;
+  });
+  // The primary metric: the one asked for when the run reports it, else the first declared
+  // shared metric it reports.
+  std::string first;
+  if (!primary.empty() && live->metrics.count(primary)) {
+    first = primary;
+  } else {
+    for (const auto& spec : shared_metric_specs()) {
+      if (spec.key.find('<') == std::string::npos && live->metrics.count(spec.key)) {
+        first = spec.key;
+        break;
+      }
+    }
+  }
+  primary_ = q(first);
+
+  setRowCount(0);                                  // drops the old items and spans
+  setRowCount(static_cast<int>(rows.size()) + 4);  // + one header per group at most
+
+  auto nameItem = [](const MetricSpec& spec) {
+    QString label = q(spec.label);
+    if (!spec.unit.empty()) label += " (" + q(spec.unit) + ")";
+    auto* name = new QTableWidgetItem(label);
+    name->setData(kKeyRole, q(spec.key));
+    QString sense = QString(direction_name(spec.direction)) + " is better";
+    if (spec.direction == Direction::kTarget) sense = "target " + format(spec.target);
+    if (spec.direction == Direction::kNone) sense = "informational";
+    QString tip = "<b>" + q(spec.key) + "</b> · " + group_name(spec.group) + " · " + sense;
+    if (spec.good_lo || spec.good_hi) tip += " · good inside " + bounds(spec);
+    if (!spec.description.empty()) tip += "<br>" + q(spec.description).toHtmlEscaped();
+    name->setToolTip(tip);
+    return name;
+  };
+  auto fill = [&](int row, const MetricSpec& spec) {
+    setItem(row, 0, nameItem(spec));
+    setItem(row, 1, valueItem(live.get(), spec));
+    for (int j = 0; j < snapshots.size(); ++j)
+      setItem(row, 2 + j, valueItem(snapshots[j].second.get(), spec));
+  };
+  int row = 0;
+  for (const auto& r : rows) {
+    if (r.spec.key != first) continue;
+    fill(row, r.spec);
+    QFont bold = font();
+    bold.setBold(true);
+    for (int c = 0; c < columnCount(); ++c) {
+      QTableWidgetItem* it = item(row, c);
+      it->setFont(bold);
+      it->setBackground(QColor(255, 244, 196));
+      it->setData(kPrimaryRole, true);
+    }
+    item(row, 0)->setToolTip("★ primary (the tuned objective, else the first declared metric)<br>" +
+                             item(row, 0)->toolTip());
+    item(row, 0)->setText("★ " + item(row, 0)->text());
+    ++row;
+  }
+  std::optional<MetricGroup> group;
+  for (const auto& r : rows) {
+    const MetricSpec& spec = r.spec;
+    if (spec.key == first) continue;
+    if (group != spec.group) {
+      group = spec.group;
+      // A group header: the group's name across the table.
+      auto* head = new QTableWidgetItem(QString(group_name(spec.group)).toUpper());
+      head->setData(kGroupRole, QString(group_name(spec.group)));
+      QFont f = font();
+      f.setBold(true);
+      f.setPointSizeF(f.pointSizeF() * 0.85);
+      head->setFont(f);
+      head->setForeground(QColor(90, 90, 90));
+      head->setBackground(QColor(236, 236, 236));
+      head->setToolTip(QString("%1 metrics").arg(group_name(spec.group)));
+      setItem(row, 0, head);
+      if (columnCount() > 1) setSpan(row, 0, 1, columnCount());
+      ++row;
+    }
+    fill(row, spec);
+    ++row;
+  }
+  setRowCount(row);
+}
+
+}  // namespace kfw

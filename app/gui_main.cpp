@@ -2,6 +2,7 @@
 #include <QApplication>
 #include <QFont>
 #include <QFontDatabase>
+#include <QHashFunctions>
 #include <QRegularExpression>
 #include <cstdio>
 #include <cstdlib>
@@ -122,7 +123,12 @@ int main(int argc, char** argv) {
     qputenv("QT_QPA_PLATFORM", "offscreen");
   }
   ensure_runtime_dir();
-  if (offscreen) g_previous = qInstallMessageHandler(quiet_platform_notices);
+  if (offscreen) {
+    g_previous = qInstallMessageHandler(quiet_platform_notices);
+    // Qt's PDF writer emits its fonts in QHash order, which follows a per-process random seed:
+    // two processes wrote the same PDF with its objects in another order.
+    QHashSeed::setDeterministicGlobalSeed();
+  }
   QApplication app(argc, argv);
   QApplication::setApplicationName("kfw");
   QApplication::setApplicationVersion(KFW_VERSION);  // Help → About reads it
@@ -155,8 +161,13 @@ int main(int argc, char** argv) {
   if (spec->theme != kfw::Theme::kLight) w.setTheme(spec->theme);
   if (opt->screenshot) {
     w.setScreenshotMode(true);  // no live timings: two screenshots are identical
-    w.resize(1600, 1000);
-    if (opt->present) w.setPresentation(true);
+    // Presentation mode is shot at a projector's 1366 × 768 (offscreen it is not full screen).
+    if (opt->present) {
+      w.resize(1366, 768);
+      w.setPresentation(true);
+    } else {
+      w.resize(1600, 1000);
+    }
     w.show();
     if (!w.waitForRun()) {
       std::fprintf(stderr, "kfw: the run did not finish\n");

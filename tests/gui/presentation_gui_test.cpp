@@ -117,8 +117,9 @@ TEST(Presentation, ChosenPlotsScaleAndBandsForAProjector) {
   QCustomPlot* p = w.plots()[0].plot;
   bool band = false;
   for (int i = 0; i < p->graphCount(); ++i) {
-    if (p->graph(i)->pen().style() != Qt::NoPen && p->graph(i)->visible())
+    if (p->graph(i)->pen().style() != Qt::NoPen && p->graph(i)->visible()) {
       EXPECT_GE(p->graph(i)->pen().widthF(), 2.0);
+    }
     if (p->graph(i)->brush().style() != Qt::NoBrush) {
       band = true;
       EXPECT_LT(p->graph(i)->brush().color().lightness(), 215);
@@ -128,8 +129,9 @@ TEST(Presentation, ChosenPlotsScaleAndBandsForAProjector) {
   w.setPresentation(false);
   QSettings("kfw", "kfw").remove("present");
   for (int i = 0; i < p->graphCount(); ++i) {
-    if (p->graph(i)->brush().style() != Qt::NoBrush)
+    if (p->graph(i)->brush().style() != Qt::NoBrush) {
       EXPECT_GT(p->graph(i)->brush().color().lightness(), 215);
+    }
   }
 }
 

@@ -169,7 +169,8 @@ void ConsistencyPanel::refresh() {
   const InnovationChannel& c = channels_[static_cast<std::size_t>(ci)];
   // The channel in the titles: exported plots of several channels tell which is which.
   const QString cname = QString::fromStdString(c.display());
-  if (nis_title_) nis_title_->setText("NIS of " + cname + " per update with two-sided 95 % χ² bounds");
+  if (nis_title_)
+    nis_title_->setText("NIS of " + cname + " per update with two-sided 95 % χ² bounds");
   if (acf_title_) {
     acf_title_->setText(c.normalized.empty()
                             ? QString("Whiteness: autocorrelation of y/√S of each scalar channel")

@@ -46,7 +46,8 @@ void MainWindow::buildViewMenu() {
   });
   addAction(leave);
   QAction* larger = view->addAction("&Larger text");
-  larger->setShortcuts({QKeySequence(Qt::CTRL | Qt::Key_Equal), QKeySequence(Qt::CTRL | Qt::Key_Plus)});
+  larger->setShortcuts(
+      {QKeySequence(Qt::CTRL | Qt::Key_Equal), QKeySequence(Qt::CTRL | Qt::Key_Plus)});
   connect(larger, &QAction::triggered, this,
           [this] { setPresentationScale(presentationScale() * Presentation::kStep); });
   QAction* smaller = view->addAction("&Smaller text");

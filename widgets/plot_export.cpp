@@ -44,6 +44,17 @@ class ExportLook {
         ticks_.push_back({a, f});
       }
     }
+    // A column-wide figure has room for fewer tick labels along x than the screen's (labels
+    // ran into each other): about one per inch.
+    const int room = std::max(3, static_cast<int>(spec.width_in / std::max(1.0, spec.font_scale)));
+    for (QCPAxisRect* r : p_->axisRects()) {
+      for (QCPAxis* a : r->axes(QCPAxis::atBottom | QCPAxis::atTop)) {
+        QSharedPointer<QCPAxisTicker> t = a->ticker();
+        if (!t || t->tickCount() <= room) continue;
+        tick_counts_.push_back({t, t->tickCount()});
+        t->setTickCount(room);
+      }
+    }
     for (QCPLayoutElement* e : p_->plotLayout()->elements(true)) {
       auto* t = qobject_cast<QCPTextElement*>(e);
       if (!t) continue;
@@ -54,6 +65,8 @@ class ExportLook {
     }
   }
   ~ExportLook() {
+    for (const auto& [t, count] : tick_counts_)
+      t->setTickCount(count);
     for (const auto& [t, text] : titles_)
       t->setText(text);
     for (const auto& [a, f] : ticks_)
@@ -70,6 +83,7 @@ class ExportLook {
   PlotLook before_;
   std::vector<std::pair<QCPTextElement*, QString>> titles_;
   std::vector<std::pair<QCPAxis*, QFont>> ticks_;
+  std::vector<std::pair<QSharedPointer<QCPAxisTicker>, int>> tick_counts_;
 };
 
 // The PDF's creation date: from SOURCE_DATE_EPOCH (reproducible builds), else none.
@@ -104,8 +118,8 @@ QByteArray xmpMetadata(const QString& title) {
   QString dates;
   if (auto d = sourceDate()) {
     const QString iso = d->toString(Qt::ISODate);
-    dates = QString("<xmp:CreateDate>%1</xmp:CreateDate><xmp:ModifyDate>%1</xmp:ModifyDate>")
-                .arg(iso);
+    dates =
+        QString("<xmp:CreateDate>%1</xmp:CreateDate><xmp:ModifyDate>%1</xmp:ModifyDate>").arg(iso);
   }
   return QString(
              "<?xpacket begin='' id='W5M0MpCehiHzreSzNTczkc9d'?>"
@@ -152,8 +166,8 @@ Expected<QByteArray> renderPdf(QCustomPlot* plot, const ExportSpec& spec) {
     buf.open(QIODevice::WriteOnly);
     QPdfWriter pdf(&buf);
     pdf.setResolution(static_cast<int>(kLayoutDpi));  // one device pixel per layout pixel
-    pdf.setPageSize(QPageSize(QSizeF(spec.width_in * 72.0, spec.height_in * 72.0),
-                              QPageSize::Point, QString(), QPageSize::ExactMatch));
+    pdf.setPageSize(QPageSize(QSizeF(spec.width_in * 72.0, spec.height_in * 72.0), QPageSize::Point,
+                              QString(), QPageSize::ExactMatch));
     pdf.setPageMargins(QMarginsF(0, 0, 0, 0));
     pdf.setCreator("kfw");
     pdf.setTitle(plot->objectName());
@@ -288,8 +302,7 @@ Expected<QStringList> parseFormats(const QString& list) {
   return out;
 }
 
-Expected<QList<ExportItem>> selectItems(const QList<ExportItem>& items,
-                                        const QStringList& wanted) {
+Expected<QList<ExportItem>> selectItems(const QList<ExportItem>& items, const QStringList& wanted) {
   if (wanted.isEmpty()) return items;
   std::vector<std::string> names;
   for (const auto& i : items)

@@ -107,22 +107,22 @@ QFont scaled(const QFont& f, double s) {
   return g;
 }
 
-#define KFW_FONT(obj, key, getter, setter)                                           \
-  restyleValue<QFont>(                                                               \
+#define KFW_FONT(obj, key, getter, setter)                                                  \
+  restyleValue<QFont>(                                                                      \
       obj, key, [obj] { return obj->getter(); }, [obj](const QFont& f) { obj->setter(f); }, \
       [&l](const QFont& f) { return scaled(f, l.font_scale); })
-#define KFW_COLOR(obj, key, getter, setter)                                            \
-  restyleValue<QColor>(                                                              \
+#define KFW_COLOR(obj, key, getter, setter)                                                  \
+  restyleValue<QColor>(                                                                      \
       obj, key, [obj] { return obj->getter(); }, [obj](const QColor& c) { obj->setter(c); }, \
       [&l](const QColor& c) { return ink(c, l.theme); })
-#define KFW_PEN(obj, key, getter, setter, width)                                    \
-  restyleValue<QPen>(                                                              \
+#define KFW_PEN(obj, key, getter, setter, width)                                           \
+  restyleValue<QPen>(                                                                      \
       obj, key, [obj] { return obj->getter(); }, [obj](const QPen& v) { obj->setter(v); }, \
       [&l](const QPen& v) { return linePen(v, l, width); })
 
+// The legend's own font and text colour are left alone: their setters overwrite every item's,
+// and items added later (a pinned snapshot's) start from them unscaled, then get restyled.
 void styleLegend(QCPLegend* lg, const Look& l) {
-  KFW_FONT(lg, "kfwFont", font, setFont);
-  KFW_COLOR(lg, "kfwText", textColor, setTextColor);
   restyleValue<QBrush>(
       lg, "kfwBrush", [lg] { return lg->brush(); }, [lg](const QBrush& b) { lg->setBrush(b); },
       [&l](const QBrush& b) {
@@ -202,6 +202,13 @@ void restyle(QCustomPlot* p) {
     } else if (auto* t = qobject_cast<QCPItemText*>(it)) {
       KFW_FONT(t, "kfwFont", font, setFont);
       KFW_COLOR(t, "kfwColor", color, setColor);
+      restyleValue<QBrush>(
+          t, "kfwBrush", [t] { return t->brush(); }, [t](const QBrush& b) { t->setBrush(b); },
+          [&l](QBrush b) {
+            if (l.theme == Theme::kDark && b.style() != Qt::NoBrush && b.color().lightness() > 150)
+              b.setColor(QColor(40, 42, 46, b.color().alpha()));
+            return b;
+          });
     }
   }
 }

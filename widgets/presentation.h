@@ -8,9 +8,9 @@
 #include <QHash>
 #include <QList>
 #include <QObject>
+#include <QPointer>
 #include <QRect>
 #include <QStringList>
-#include <QPointer>
 
 #include "plot_look.h"
 #include "scenario_view.h"
@@ -30,8 +30,8 @@ class Presentation : public QObject {
   bool on() const { return on_; }
   // Enters or leaves: full screen (optional, tests size the window themselves), fonts, look and
   // layout of `plots` (the scenario's) and `others` (consistency, data: look only).
-  void setOn(bool on, const QList<PlotPanel>& plots, const QList<QCustomPlot*>& others,
-             Theme theme, bool full_screen = true);
+  void setOn(bool on, const QList<PlotPanel>& plots, const QList<QCustomPlot*>& others, Theme theme,
+             bool full_screen = true);
   double scale() const { return scale_; }
   // Remembered (QSettings "present/scale"); applied at once when on.
   void setScale(double scale);

@@ -42,8 +42,8 @@ TEST(AppOptions, ParsesEveryOption) {
 
 TEST(AppOptions, ExportOptions) {
   auto o = kfw::parseAppOptions({"cv1d", "--export", "d", "--size", "column", "--dpi", "600",
-                                 "--font-scale", "1.5", "--plot", "angle", "--plot=nis",
-                                 "--theme", "dark"});
+                                 "--font-scale", "1.5", "--plot", "angle", "--plot=nis", "--theme",
+                                 "dark"});
   ASSERT_TRUE(o.ok()) << o.error();
   EXPECT_EQ(o->size, QString("column"));
   EXPECT_EQ(o->dpi, 600.0);

@@ -111,8 +111,8 @@ TEST(DeterministicExport, PlotOptionListPlotsAndUnknownNames) {
   EXPECT_EQ(names, w.plotNames());
 
   QTemporaryDir empty;
-  auto bad = testing::run_command(kfw("", "--export " + empty.path().toStdString() +
-                                              " helicopter --plot angel 2>&1 >/dev/null"));
+  auto bad = testing::run_command(kfw(
+      "", "--export " + empty.path().toStdString() + " helicopter --plot angel 2>&1 >/dev/null"));
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.text.find("did you mean 'angle'"), std::string::npos) << bad.text;
   EXPECT_EQ(QDir(empty.path()).entryList(QDir::Files).size(), 0);
@@ -127,10 +127,10 @@ TEST(DeterministicExport, TwoScreenshotsArePixelIdentical) {
   QTemporaryDir dir;
   const QString a = dir.filePath("a.png"), b = dir.filePath("b.png");
   const std::string env = "env -u XDG_RUNTIME_DIR QT_QPA_PLATFORM=xcb";
-  auto ra = testing::run_command(kfw(env, "--screenshot " + a.toStdString() +
-                                              " helicopter 2>&1 >/dev/null"));
-  auto rb = testing::run_command(kfw(env, "--screenshot " + b.toStdString() +
-                                              " helicopter 2>&1 >/dev/null"));
+  auto ra = testing::run_command(
+      kfw(env, "--screenshot " + a.toStdString() + " helicopter 2>&1 >/dev/null"));
+  auto rb = testing::run_command(
+      kfw(env, "--screenshot " + b.toStdString() + " helicopter 2>&1 >/dev/null"));
   EXPECT_EQ(ra.code, 0) << ra.text;
   EXPECT_EQ(ra.text, "");
   EXPECT_EQ(rb.code, 0) << rb.text;

@@ -152,13 +152,13 @@ TEST_F(PaperExport, SvgTitlesAreOneTextRunEach) {
   for (const ExportItem& item : w_.exportedPlots()) {
     auto* title = item.plot->findChild<QCPTextElement*>("title");
     if (!title) continue;
-    const QString svg = QString::fromUtf8(
-        readAll(dir.filePath("helicopter_" + item.name + ".svg")));
+    const QString svg =
+        QString::fromUtf8(readAll(dir.filePath("helicopter_" + item.name + ".svg")));
     ASSERT_FALSE(svg.isEmpty()) << item.name.toStdString();
     // The title's text, whole, inside one <text> element (XML-escaped as the generator writes it).
     const QString text = title->text().toHtmlEscaped();
-    EXPECT_TRUE(svg.contains(QRegularExpression(">\\s*" + QRegularExpression::escape(text) +
-                                                "\\s*</text>")))
+    EXPECT_TRUE(svg.contains(
+        QRegularExpression(">\\s*" + QRegularExpression::escape(text) + "\\s*</text>")))
         << item.name.toStdString() << ": " << text.toStdString();
     ++checked;
   }

@@ -2,6 +2,8 @@
 #include <QApplication>
 #include <QFont>
 #include <QFontDatabase>
+#include <QHashFunctions>
+#include <QRegularExpression>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -37,6 +39,54 @@ void ensure_runtime_dir() {
   ::setenv("XDG_RUNTIME_DIR", dir.c_str(), 1);
 }
 
+// Export, screenshot and list modes promise an empty stderr on success: Qt's platform notices
+// (no XDG_RUNTIME_DIR, "This plugin does not support propagateSizeHints()", qt.qpa.*) are
+// dropped there. Everything else, and every kfw message, still reaches stderr.
+QtMessageHandler g_previous = nullptr;
+void quiet_platform_notices(QtMsgType type, const QMessageLogContext& ctx, const QString& msg) {
+  const bool notice = type == QtDebugMsg || type == QtInfoMsg || type == QtWarningMsg;
+  const QString category = ctx.category ? QString::fromLatin1(ctx.category) : QString();
+  if (notice && (category.startsWith("qt.qpa") || msg.contains("propagateSizeHints") ||
+                 msg.contains("XDG_RUNTIME_DIR") || msg.startsWith("QStandardPaths:"))) {
+    return;
+  }
+  if (g_previous) {
+    g_previous(type, ctx, msg);
+  } else {
+    std::fprintf(stderr, "%s\n", qPrintable(msg));
+  }
+}
+
+int fail(const kfw::Error& e) {
+  std::fprintf(stderr, "kfw: %s\n", kfw::one_line(e.message).c_str());
+  return e.exit_code;
+}
+
+// The export settings from the options, checked before any work (exit 2).
+kfw::Expected<kfw::ExportSpec> export_spec(const kfw::AppOptions& o) {
+  if (!o.export_dir) {
+    if (!o.plots.isEmpty()) return kfw::Error{"--plot applies to --export (see --list-plots)"};
+    if (o.size || o.dpi || o.font_scale != 1.0) {
+      return kfw::Error{"--size, --dpi and --font-scale apply to --export"};
+    }
+  }
+  kfw::ExportSpec spec;
+  auto theme = kfw::parseTheme(o.theme);
+  if (!theme) return theme.err();
+  spec.theme = *theme;
+  spec.font_scale = o.font_scale;
+  const bool physical = o.size && !o.size->trimmed().toLower().endsWith("px") &&
+                        o.size->contains(QRegularExpression("in|mm|column|page"));
+  spec.dpi = o.dpi ? *o.dpi : (physical ? 300.0 : kfw::kLayoutDpi);
+  if (o.size) {
+    if (auto st = kfw::parseSize(*o.size, spec.dpi, spec); !st) return st.err();
+  } else {
+    spec.width_in = kfw::kExportWidth / spec.dpi;
+    spec.height_in = kfw::kExportHeight / spec.dpi;
+  }
+  return spec;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -57,13 +107,31 @@ int main(int argc, char** argv) {
     std::printf("kfw %s\n", KFW_VERSION);
     return 0;
   }
-  const bool headless = opt->export_dir || opt->bench_latency || opt->screenshot;
-  if (headless && qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) {
+  auto spec = export_spec(*opt);
+  if (!spec) return fail(spec.err());
+  std::optional<QStringList> formats;
+  if (opt->export_dir) {
+    auto f = kfw::parseFormats(opt->formats);
+    if (!f) return fail(f.err());
+    formats = *f;
+  }
+  // Export, screenshot and list modes need no display and must not depend on one: offscreen,
+  // whatever QT_QPA_PLATFORM was inherited (an inherited xcb without a display aborts).
+  const bool offscreen = opt->export_dir || opt->screenshot || opt->list_plots;
+  const bool headless = offscreen || opt->bench_latency;
+  if (offscreen || (headless && qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM"))) {
     qputenv("QT_QPA_PLATFORM", "offscreen");
   }
   ensure_runtime_dir();
+  if (offscreen) {
+    g_previous = qInstallMessageHandler(quiet_platform_notices);
+    // Qt's PDF writer emits its fonts in QHash order, which follows a per-process random seed:
+    // two processes wrote the same PDF with its objects in another order.
+    QHashSeed::setDeterministicGlobalSeed();
+  }
   QApplication app(argc, argv);
   QApplication::setApplicationName("kfw");
+  QApplication::setApplicationVersion(KFW_VERSION);  // Help → About reads it
   QApplication::setFont(QFont("DejaVu Sans", 9));
 
   kfw::MainWindow w;
@@ -77,23 +145,29 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "kfw: %s\n", kfw::one_line(st.error()).c_str());
     return st.exit_code();
   }
+  if (opt->list_plots) {
+    if (!w.waitForRun() || !w.result()) return fail(kfw::failure("the run did not finish"));
+    for (const QString& n : w.plotNames())
+      std::printf("%s\n", qPrintable(n));
+    return 0;
+  }
   if (opt->export_dir) {
-    auto formats = kfw::parseFormats(opt->formats);
-    if (!formats) {
-      std::fprintf(stderr, "kfw: %s\n", formats.error().c_str());
-      return 2;
-    }
-    auto files = w.exportAll(*opt->export_dir, *formats);
-    if (!files) {
-      std::fprintf(stderr, "kfw: %s\n", files.error().c_str());
-      return 1;
-    }
+    auto files = w.exportAll(*opt->export_dir, *formats, *spec, opt->plots);
+    if (!files) return fail(files.err());
     for (const auto& f : *files)
       std::printf("%s\n", qPrintable(f));
     return 0;
   }
+  if (spec->theme != kfw::Theme::kLight) w.setTheme(spec->theme);
   if (opt->screenshot) {
-    w.resize(1600, 1000);
+    w.setScreenshotMode(true);  // no live timings: two screenshots are identical
+    // Presentation mode is shot at a projector's 1366 × 768 (offscreen it is not full screen).
+    if (opt->present) {
+      w.resize(1366, 768);
+      w.setPresentation(true);
+    } else {
+      w.resize(1600, 1000);
+    }
     w.show();
     if (!w.waitForRun()) {
       std::fprintf(stderr, "kfw: the run did not finish\n");
@@ -122,5 +196,6 @@ int main(int argc, char** argv) {
     }
   }
   w.show();
+  if (opt->present) w.setPresentation(true);
   return app.exec();
 }

@@ -24,6 +24,8 @@ for preset in presets/*.json; do
   grep -v propagateSizeHints "$out/.log" >&2 || true
   rm -f "$out/.log"
 done
+# Presentation mode at a projector's 1366 × 768.
+"$kfw" --screenshot "$out/present_radome.png" --present presets/radome.json >/dev/null
 # Variants shown in the README beside the defaults.
 "$kfw" --export "$out/radome_B_Kp045" presets/radome.json --set sim.amplitude=0.08 --set Kp=0.45 >/dev/null
 "$kfw" --export "$out/radome_B_Kp0" presets/radome.json --set sim.amplitude=0.08 --set Kp=0 >/dev/null

@@ -8,7 +8,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libmuparser-dev libginac-dev libfast-float-dev libhowardhinnant-date-dev
   libboost-math-dev libfftw3-dev libnlopt-dev parallel tzdata
-  fonts-dejavu-core fontconfig
+  fonts-dejavu-core fontconfig poppler-utils
 )
 missing=()
 for p in "${packages[@]}"; do

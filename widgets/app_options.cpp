@@ -13,8 +13,13 @@ namespace {
 // What CLI11 parses into, before it becomes AppOptions.
 struct Parsed {
   std::string preset = "helicopter";
-  std::optional<std::string> data, export_dir, screenshot, session;
-  std::vector<std::string> sets;
+  std::optional<std::string> data, export_dir, screenshot, session, size;
+  std::vector<std::string> sets, plots;
+  std::optional<double> dpi;
+  double font_scale = 1.0;
+  std::string theme = "light";
+  bool list_plots = false;
+  bool present = false;
   std::string formats = "png";
   bool bench_latency = false;
   int bench_changes = 200;
@@ -51,6 +56,27 @@ std::unique_ptr<Declaration> declare() {
   app.add_option("--format", p.formats, "the export formats, comma-separated: png,pdf,svg")
       ->type_name("LIST")
       ->capture_default_str();
+  add_path(app, "--size", p.size, "WxH",
+           "export size: 3.5inx2.5in, 90x60mm, 1200x700 (px), column (3.5x2.5 in) or page "
+           "(7x4 in); default 1200x700 px");
+  app.add_option_function<double>(
+         "--dpi", [&p](double v) { p.dpi = v; },
+         "PNG pixels per inch (default: 300 for a size in in, mm or a named size, else 96)")
+      ->type_name("N")
+      ->check(CLI::Range(24.0, 1200.0).description(""));
+  app.add_option("--font-scale", p.font_scale, "every text of an exported plot x this")
+      ->type_name("X")
+      ->check(CLI::Range(0.25, 4.0).description(""))
+      ->capture_default_str();
+  app.add_option("--plot", p.plots, "export only this plot (repeatable; see --list-plots)")
+      ->type_name("NAME")
+      ->allow_extra_args(false)
+      ->take_all();
+  app.add_option("--theme", p.theme, "light or dark: the window and the exports")
+      ->type_name("NAME")
+      ->capture_default_str();
+  app.add_flag("--list-plots", p.list_plots, "print the plot names of PRESET and exit");
+  app.add_flag("--present", p.present, "open in presentation mode (full screen, large text)");
   add_path(app, "--screenshot", p.screenshot, "FILE.png", "grab the whole window and exit");
   app.add_flag("--bench-latency", p.bench_latency,
                "measure slider-to-redraw latency and print p50/p95");
@@ -60,9 +86,10 @@ std::unique_ptr<Declaration> declare() {
       ->capture_default_str();
   app.add_flag("--version", p.version, "print the version and exit");
   app.footer(
-      "\n--export, --screenshot and --bench-latency need no display (they default\n"
-      "QT_QPA_PLATFORM to offscreen). Exit codes: 0 done; 2 an argument, preset, data file or\n"
-      "output path is invalid; 1 the work failed.\n");
+      "\n--export, --screenshot and --list-plots need no display (they run offscreen whatever\n"
+      "QT_QPA_PLATFORM says; --bench-latency defaults to offscreen). Exit codes: 0 done; 2 an\n"
+      "argument, preset, data file, plot name or output path is invalid (nothing written);\n"
+      "1 the work failed (a failed export writes no file).\n");
   return d;
 }
 
@@ -125,6 +152,14 @@ Expected<AppOptions> parseAppOptions(const QStringList& args) {
   o.bench_latency = p.bench_latency;
   o.bench_changes = p.bench_changes;
   o.version = p.version;
+  o.size = q(p.size);
+  o.dpi = p.dpi;
+  o.font_scale = p.font_scale;
+  for (const auto& s : p.plots)
+    o.plots << QString::fromStdString(s);
+  o.theme = QString::fromStdString(p.theme);
+  o.list_plots = p.list_plots;
+  o.present = p.present;
   return o;
 }
 

@@ -19,6 +19,15 @@ struct AppOptions {
   QString formats = "png";
   std::optional<QString> screenshot;  // grab the whole window to this PNG and exit
   std::optional<QString> session;     // restore a saved session after the preset
+  // Exports: --size (see parseSize in plot_export.h), --dpi, --font-scale, --plot (repeatable),
+  // --theme; --list-plots prints the plot names of the preset.
+  std::optional<QString> size;
+  std::optional<double> dpi;
+  double font_scale = 1.0;
+  QStringList plots;
+  QString theme = "light";
+  bool list_plots = false;
+  bool present = false;  // open in presentation mode
   bool bench_latency = false;
   int bench_changes = 200;
   bool help = false;

@@ -71,6 +71,8 @@ ConsistencyPanel::ConsistencyPanel(QWidget* parent) : QWidget(parent) {
   nees_hi_ = addGraph(nees_plot_, "", color::kBound, Style::kDashed);
   nees_hi_->removeFromLegend();
 
+  nis_title_ = nis_->findChild<QCPTextElement*>("title");
+  acf_title_ = acf_->findChild<QCPTextElement*>("title");
   auto* plots = new QHBoxLayout;
   plots->addWidget(nis_, 1);
   plots->addWidget(acf_, 1);
@@ -113,6 +115,34 @@ void ConsistencyPanel::setChannel(int index) {
   load();
   channel_->setCurrentIndex(index);
 }
+int ConsistencyPanel::channel() const {
+  return channel_->currentIndex();
+}
+
+QList<ExportItem> ConsistencyPanel::exportItems() {
+  load();
+  QList<ExportItem> out;
+  if (!result_) return out;
+  for (int i = 0; i < static_cast<int>(channels_.size()); ++i) {
+    const InnovationChannel& c = channels_[static_cast<std::size_t>(i)];
+    const QString key = QString::fromStdString(c.name), label = QString::fromStdString(c.display());
+    auto draw = [this, i] {
+      const QSignalBlocker b(channel_);
+      channel_->setCurrentIndex(i);
+      refresh();
+    };
+    out << ExportItem{"consistency_nis." + key, "Consistency: NIS of " + label, nis_, draw};
+    if (!c.normalized.empty()) {
+      out << ExportItem{"consistency_whiteness." + key, "Consistency: whiteness of " + label, acf_,
+                        draw};
+    }
+  }
+  if (count_finite(nees_.nees) > 0) {
+    out << ExportItem{"consistency_nees", "Consistency: NEES", nees_plot_, [this] { refresh(); }};
+  }
+  return out;
+}
+
 QString ConsistencyPanel::summary() const {
   return summary_->text();
 }
@@ -137,6 +167,16 @@ void ConsistencyPanel::refresh() {
     return;
   }
   const InnovationChannel& c = channels_[static_cast<std::size_t>(ci)];
+  // The channel in the titles: exported plots of several channels tell which is which.
+  const QString cname = QString::fromStdString(c.display());
+  if (nis_title_)
+    nis_title_->setText("NIS of " + cname + " per update with two-sided 95 % χ² bounds");
+  if (acf_title_) {
+    acf_title_->setText(c.normalized.empty()
+                            ? QString("Whiteness: autocorrelation of y/√S of each scalar channel")
+                            : "Whiteness of " + cname +
+                                  ": autocorrelation of y/√S at the channel's own rate");
+  }
   const auto& t = result_->t;
   const auto w = static_cast<std::size_t>(window_->value());
   const std::vector<double> span{t.empty() ? 0.0 : t.front(), t.empty() ? 1.0 : t.back()};

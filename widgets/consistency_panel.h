@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "core/scenario.h"
+#include "plot_export.h"
 #include "scenario_view.h"
 
 class QComboBox;
@@ -17,6 +18,7 @@ class QLabel;
 class QCustomPlot;
 class QCPGraph;
 class QCPBars;
+class QCPTextElement;
 
 namespace kfw {
 
@@ -29,6 +31,11 @@ class ConsistencyPanel : public QWidget {
   void setWindow(int updates);
   void setChannel(int index);
   QList<PlotPanel> plots() const;
+  // What an export writes: per channel its NIS plot (consistency_nis.<channel>) and, for a scalar
+  // channel, its whiteness plot (consistency_whiteness.<channel>); NEES once when truth is there.
+  // Each item draws its channel first; setChannel(channel()) afterwards shows the user's again.
+  QList<ExportItem> exportItems();
+  int channel() const;
   QString summary() const;
   // Draws now (exports call this for a hidden panel).
   void refresh();
@@ -48,6 +55,7 @@ class ConsistencyPanel : public QWidget {
   QSpinBox* window_ = nullptr;
   QLabel* summary_ = nullptr;
   QCustomPlot *nis_ = nullptr, *acf_ = nullptr, *nees_plot_ = nullptr;
+  QCPTextElement *nis_title_ = nullptr, *acf_title_ = nullptr;
   QCPGraph *nis_y_ = nullptr, *nis_avg_ = nullptr, *nis_lo_ = nullptr, *nis_hi_ = nullptr,
            *avg_lo_ = nullptr, *avg_hi_ = nullptr;
   QCPBars* acf_bars_ = nullptr;

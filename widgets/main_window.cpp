@@ -199,6 +199,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   buildDataMenu();  // main_window_data.cpp
   buildHelpMenu();  // main_window_help.cpp
   setupReplay();    // main_window_replay.cpp
+  buildViewMenu();  // main_window_present.cpp
   refreshPresetList();
   fitToScreen();
 }
@@ -528,33 +529,6 @@ std::string MainWindow::primaryParameter() const {
     if (!is_sim_key(s.key) && (s.scale == Scale::kLog || s.scale == Scale::kLinear)) return s.key;
   }
   return specs.empty() ? std::string() : specs.front().key;
-}
-
-QList<PlotPanel> MainWindow::exportedPlots() const {
-  QList<PlotPanel> all = plots_;
-  if (result_ && !result_->channels().empty()) {
-    // Only the consistency plots that have something to show: NEES needs truth, whiteness a
-    // scalar channel.
-    const bool nees = count_finite(result_->nees_series().nees) > 0;
-    bool scalar = false;
-    for (const auto& c : result_->channels())
-      scalar = scalar || !c.normalized.empty();
-    for (const auto& p : consistency_->plots()) {
-      if ((p.name != "consistency_nees" || nees) && (p.name != "consistency_whiteness" || scalar))
-        all << p;
-    }
-  }
-  return all;
-}
-
-Expected<QStringList> MainWindow::exportAll(const QString& dir, const QStringList& formats) {
-  if (!waitForRun()) return Error{"export: the run did not finish"};
-  if (!result_) return Error{"export: no result to plot (" + last_error_.toStdString() + ")"};
-  // Files are named after the preset (two presets of one scenario do not overwrite each other).
-  const QString stem =
-      preset().path.empty() ? q(scenario_->name()) : QFileInfo(q(preset().path)).completeBaseName();
-  consistency_->refresh();
-  return exportPanels(exportedPlots(), dir, formats, stem + "_");
 }
 
 }  // namespace kfw

@@ -20,6 +20,7 @@
 #include "core/preset.h"
 #include "core/scenario.h"
 #include "core/session.h"
+#include "plot_export.h"
 #include "scenario_view.h"
 
 class QAction;
@@ -116,13 +117,30 @@ class MainWindow : public QMainWindow {
 
   // Waits (processing events) until the latest request has run and its plots are drawn.
   bool waitForRun(int timeout_ms = 20000);
-  Expected<QStringList> exportAll(const QString& dir, const QStringList& formats);
+  // Export (main_window_export.cpp): every plot (or those named in `only`) in every format, all or
+  // nothing; files named <preset>_<plot>.<format>.
+  Expected<QStringList> exportAll(const QString& dir, const QStringList& formats,
+                                  const ExportSpec& spec = {}, const QStringList& only = {});
 
   ParamPanel* paramPanel() const { return panel_; }
   ScenarioView* view() const { return view_.get(); }
   const QList<PlotPanel>& plots() const { return plots_; }
-  // What --export writes: the scenario's plots, then the consistency panel's (when it has data).
-  QList<PlotPanel> exportedPlots() const;
+  // What --export writes: the scenario's plots, then the consistency panel's per channel.
+  QList<ExportItem> exportedPlots() const;
+  // The stable names of exportedPlots() (kfw --list-plots).
+  QStringList plotNames() const;
+  // Look (main_window_present.cpp): the theme of the window and its plots; presentation mode
+  // (full screen, fonts × scale, strong pens, the chosen plots only); screenshot mode (no live
+  // timings in the status bar, so two screenshots are identical).
+  void setTheme(Theme theme);
+  Theme theme() const { return theme_; }
+  void setPresentation(bool on);
+  bool presentation() const;
+  void setPresentationScale(double scale);
+  double presentationScale() const;
+  void setPresentedPlots(const QStringList& names);
+  QStringList presentedPlots() const;
+  void setScreenshotMode(bool on);
   TransportBar* transport() const { return transport_; }
   // The user's zoom and the readout over the scenario's plots (widgets/plot_zoom.h).
   plot::ZoomGroup* zoom() const;
@@ -172,6 +190,8 @@ class MainWindow : public QMainWindow {
   void setupReplay();  // main_window_replay.cpp: keys with any focus, following window
   bool replayKey(QObject* target, QKeyEvent* event);
   friend class ReplayKeys;
+  void buildViewMenu();  // main_window_present.cpp
+  void restyleLook();    // new plots or curves take the theme and presentation look
   void rebuildScenarioUi();
   void requestRun();
   void applyResult(std::shared_ptr<const RunResult> r, const ParamValues& v, double ms);
@@ -246,6 +266,9 @@ class MainWindow : public QMainWindow {
     std::function<void(const QJsonValue&)> restore;
   };
   std::vector<ViewPart> view_parts_;
+  class Presentation* present_ = nullptr;        // main_window_present.cpp
+  Theme theme_ = Theme::kLight;
+  bool screenshot_mode_ = false;
 };
 
 }  // namespace kfw

@@ -40,6 +40,25 @@ TEST(AppOptions, ParsesEveryOption) {
   EXPECT_FALSE(d->export_dir || d->help || d->version);
 }
 
+TEST(AppOptions, ExportOptions) {
+  auto o = kfw::parseAppOptions({"cv1d", "--export", "d", "--size", "column", "--dpi", "600",
+                                 "--font-scale", "1.5", "--plot", "angle", "--plot=nis", "--theme",
+                                 "dark"});
+  ASSERT_TRUE(o.ok()) << o.error();
+  EXPECT_EQ(o->size, QString("column"));
+  EXPECT_EQ(o->dpi, 600.0);
+  EXPECT_EQ(o->font_scale, 1.5);
+  EXPECT_EQ(o->plots, (QStringList{"angle", "nis"}));
+  EXPECT_EQ(o->theme, "dark");
+  auto l = kfw::parseAppOptions({"--list-plots", "radome", "--present"});
+  ASSERT_TRUE(l.ok()) << l.error();
+  EXPECT_TRUE(l->list_plots);
+  EXPECT_TRUE(l->present);
+  EXPECT_EQ(l->preset, "radome");
+  EXPECT_FALSE(kfw::parseAppOptions({"--dpi", "5"}).ok());
+  EXPECT_FALSE(kfw::parseAppOptions({"--font-scale", "0"}).ok());
+}
+
 TEST(AppOptions, BadArgumentsAreOneLineErrorsWithTheNearestName) {
   auto o = kfw::parseAppOptions({"--exprot", "out"});
   ASSERT_FALSE(o.ok());

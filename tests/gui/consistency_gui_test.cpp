@@ -38,7 +38,7 @@ TEST(ConsistencyPanel, ShowsNisWhitenessAndNeesOfTheRun) {
   QTemporaryDir dir;
   auto files = w.exportAll(dir.path(), {"png"});
   ASSERT_TRUE(files.ok());
-  EXPECT_TRUE(files->contains(dir.filePath("helicopter_consistency_whiteness.png")));
+  EXPECT_TRUE(files->contains(dir.filePath("helicopter_consistency_whiteness.angle.png")));
 }
 
 TEST(ConsistencyPanel, RadomeHasFourChannels) {

@@ -197,9 +197,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   statusBar()->addWidget(status_, 1);
   buildMenus();
   buildDataMenu();  // main_window_data.cpp
-  buildHelpMenu();  // main_window_help.cpp
-  setupReplay();    // main_window_replay.cpp
   buildViewMenu();  // main_window_present.cpp
+  buildHelpMenu();  // main_window_help.cpp (last: Help is the right-most menu)
+  setupReplay();    // main_window_replay.cpp
   refreshPresetList();
   fitToScreen();
 }

@@ -49,7 +49,7 @@ fuzz: setup
 	  -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_CXX_FLAGS="$(FUZZ_FLAGS)" -DKFW_FUZZ=ON \
 	  -DKFW_SCENARIOS="$(FUZZ_SCENARIOS)" -DKFW_BUILD_GUI=OFF -DKFW_BUILD_TESTS=OFF \
 	  -DKFW_BUILD_BENCH=OFF $(filter -DCMAKE_CXX_COMPILER_LAUNCHER=%,$(CMAKE_FLAGS))
-	cmake --build build-fuzz -j $(JOBS)
+	cmake --build build-fuzz -j $(JOBS) --target kfw_fuzz
 	bash tests/fuzz/run.sh build-fuzz $(FUZZ_SECONDS) $(FUZZ_JOBS)
 
 # SANITIZE_GUI=OFF leaves the GUI and its tests out (the engine and CLI tests only: what CI runs).

@@ -39,7 +39,8 @@ inline std::string check_error(const Error& e, const char* what) {
   if (e.message.find('\n') != std::string::npos)
     return std::string(what) + ": a message of more than one line: " + e.message.substr(0, 200);
   if (e.message.size() > 2000)
-    return std::string(what) + ": a message of " + std::to_string(e.message.size()) + " bytes";
+    return std::string(what) + ": a message of " + std::to_string(e.message.size()) +
+           " bytes: " + e.message.substr(0, 200);
   if (e.exit_code != kExitInvalid && e.exit_code != kExitFailed)
     return std::string(what) + ": exit code " + std::to_string(e.exit_code);
   return "";

@@ -14,6 +14,7 @@ if [ "$seconds" -le 0 ]; then
   exit 0
 fi
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
+export LSAN_OPTIONS=suppressions=$here/../lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 names=${FUZZ_HARNESSES:-csv csv_mapped preset session set model_expr}
 

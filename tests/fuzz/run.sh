@@ -32,9 +32,10 @@ report() {
   local name=$1 log="$build/fuzz_$1.log"
   local rc execs last files
   rc=$(cat "$build/fuzz_$name.rc" 2>/dev/null || echo "?")
-  execs=$(grep -E 'stat::number_of_executed_units' "$log" | awk '{print $2}')
+  execs=$(grep -m1 -E 'stat::number_of_executed_units' "$log" | awk '{print $2}')
   # The last status line: "#N  DONE|REDUCE|NEW|pulse  cov: E ft: F corp: C/SIZE ... exec/s: R".
-  last=$(grep -E '^#[0-9]+ .*cov: ' "$log" | tail -1 | sed -E 's/^#[0-9]+[[:space:]]+[A-Z]+[[:space:]]+//')
+  last=$(grep -E '^#[0-9]+[[:space:]].*cov: ' "$log" | tail -1 |
+    sed -E 's/^#[0-9]+[[:space:]]+[A-Za-z]+[[:space:]]+//; s/[[:space:]]+MS:.*//')
   files=$(find "$build/corpus/$name" -type f | wc -l)
   echo "fuzz_$name: exit $rc, ${execs:-?} executions, ${last:-no status line (see $log)}," \
     "$files files in $build/corpus/$name"

@@ -34,11 +34,13 @@ screenshots: build
 	bash scripts/screenshots.sh $(BUILD)
 
 # Hardening (README "Hardening"), local and long; CI's `make test` needs neither.
-# make fuzz FUZZ_SECONDS=N   every libFuzzer harness for N seconds (clang; build-fuzz/)
+# make fuzz FUZZ_SECONDS=N   every libFuzzer harness for N seconds, FUZZ_JOBS at a time (clang;
+#                            build-fuzz/)
 # make sanitize              the whole suite under AddressSanitizer + UBSan (build-asan/)
 # FUZZ_SCENARIOS=helicopter builds only the scenario the harnesses run (a faster build; presets
 # of the other scenarios are then refused as unknown). -O1 -g1: fast to build, fast to run.
 FUZZ_SECONDS ?= 60
+FUZZ_JOBS ?= 1
 FUZZ_SCENARIOS ?=
 FUZZ_FLAGS := -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
 fuzz: setup
@@ -47,13 +49,18 @@ fuzz: setup
 	  -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_CXX_FLAGS="$(FUZZ_FLAGS)" -DKFW_FUZZ=ON \
 	  -DKFW_SCENARIOS="$(FUZZ_SCENARIOS)" -DKFW_BUILD_GUI=OFF -DKFW_BUILD_TESTS=OFF \
 	  -DKFW_BUILD_BENCH=OFF $(filter -DCMAKE_CXX_COMPILER_LAUNCHER=%,$(CMAKE_FLAGS))
-	cmake --build build-fuzz -j $(JOBS)
-	bash tests/fuzz/run.sh build-fuzz $(FUZZ_SECONDS)
+	cmake --build build-fuzz -j $(JOBS) --target kfw_fuzz
+	bash tests/fuzz/run.sh build-fuzz $(FUZZ_SECONDS) $(FUZZ_JOBS)
 
-ASAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -g
+# SANITIZE_GUI=OFF leaves the GUI and its tests out (the engine and CLI tests only: what CI runs).
+# -O1 -g1 (line tables: enough for a report's file:line), the build is the long part.
+ASAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
+SANITIZE_GUI ?= ON
 sanitize: setup
 	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS="$(ASAN_FLAGS)" \
-	  -DKFW_BUILD_BENCH=OFF $(filter -DCMAKE_CXX_COMPILER_LAUNCHER=%,$(CMAKE_FLAGS))
+	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+	  -DKFW_BUILD_GUI=$(SANITIZE_GUI) -DKFW_BUILD_BENCH=OFF \
+	  $(filter -DCMAKE_CXX_COMPILER_LAUNCHER=%,$(CMAKE_FLAGS))
 	cmake --build build-asan -j $(JOBS)
 	cd build-asan && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \

@@ -131,7 +131,7 @@ Expected<Dataset> parse_csv(std::istream& in, const std::string& source, const C
 }
 
 Expected<Dataset> read_csv(const std::string& path, const CsvOptions& opt) {
-  auto bytes = read_file_bytes(path);
+  auto bytes = read_file_bytes(path, kMaxCsvLineBytes);
   if (!bytes) return bytes.err();
   return parse_csv_text(std::move(*bytes), path, opt);
 }

@@ -47,7 +47,17 @@ class PathTracker final : public nlohmann::json_sax<json> {
       if (auto q = what.find(": ", p); q != std::string::npos) what = what.substr(q + 2);
     }
     if (ex.id == 406) what = "number overflows a double";
-    return fail(what);
+    // nlohmann echoes the whole token read so far (a string of any length, control characters
+    // included): cut and made printable like every echoed token.
+    static constexpr std::string_view kLastRead = "; last read: '";
+    if (auto b = what.find(kLastRead); b != std::string::npos) {
+      b += kLastRead.size();
+      const auto e = what.rfind('\'');
+      if (e != std::string::npos && e >= b)
+        what = what.substr(0, b) + truncate_token(std::string_view(what).substr(b, e - b)) +
+               what.substr(e);
+    }
+    return fail(truncate_token(what, 400));
   }
 
  private:

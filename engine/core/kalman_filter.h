@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/covariance_check.h"
 #include "core/types.h"
 
 namespace kfw {
@@ -74,6 +75,7 @@ Update<N, M> update(const Gaussian<N>& prior, const Vec<M>& z, const Mat<M, N>& 
   KR.noalias() = u.K * R;
   u.post.P.noalias() += KR * u.K.transpose();
   u.post.P = 0.5 * (u.post.P + u.post.P.transpose()).eval();
+  debug_check_covariance(u.post.P, "a Kalman update");
   u.ok = true;
   return u;
 }
@@ -101,6 +103,7 @@ Update<N, 1> update_scalar(const Gaussian<N>& prior, double z, const Mat<1, N>& 
   u.post.P.noalias() -= u.K * PHt.transpose();
   u.post.P.noalias() -= PHt * u.K.transpose();
   u.post.P.noalias() += (S * u.K) * u.K.transpose();
+  debug_check_covariance(u.post.P, "a scalar Kalman update");
   u.ok = true;
   return u;
 }

@@ -87,7 +87,8 @@ Status read_parameter(Preset& p, const ParamTable& table, const std::string& key
   } else if (e.is_object()) {
     for (auto it = e.begin(); it != e.end(); ++it) {
       if (!allowed(it.key(), kParamKeys)) {
-        return Error{where + "." + it.key() + ": " + unknown_key(it.key(), kParamKeys)};
+        return Error{where + "." + truncate_token(it.key()) + ": " +
+                     unknown_key(it.key(), kParamKeys)};
       }
     }
     auto v = e.find("value");
@@ -170,7 +171,7 @@ Expected<Preset> preset_from_json(const json& j, const std::string& path) {
   if (!j.is_object()) return Error{path + ": a preset must be a JSON object"};
   for (auto it = j.begin(); it != j.end(); ++it) {
     if (!allowed(it.key(), kTopKeys)) {
-      return Error{path + ": " + it.key() + ": " + unknown_key(it.key(), kTopKeys)};
+      return Error{path + ": " + truncate_token(it.key()) + ": " + unknown_key(it.key(), kTopKeys)};
     }
   }
   auto str = [&](const char* key, std::string& out, bool required) -> Status {
@@ -261,7 +262,7 @@ Expected<Preset> preset_from_json(const json& j, const std::string& path) {
     if (!s->is_object()) return Error{path + ": sim: must be an object"};
     for (auto it = s->begin(); it != s->end(); ++it) {
       if (it.key() != "x0_from_prior") {
-        return Error{path + ": sim." + it.key() + ": unknown key (x0_from_prior)"};
+        return Error{path + ": sim." + truncate_token(it.key()) + ": unknown key (x0_from_prior)"};
       }
       if (!it->is_boolean()) return Error{path + ": sim.x0_from_prior: must be true or false"};
       p.sim_x0_from_prior = it->get<bool>();

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/json_io.h"
+#include "core/suggest.h"
 
 namespace kfw {
 
@@ -25,7 +26,8 @@ Expected<ParamValues> values_from(const json& j, const std::string& where) {
   if (!j.is_object()) return Error{where + ": must be an object of numbers"};
   ParamValues v;
   for (auto it = j.begin(); it != j.end(); ++it) {
-    if (!it->is_number()) return Error{where + "." + it.key() + ": must be a number"};
+    if (!it->is_number())
+      return Error{where + "." + truncate_token(it.key()) + ": must be a number"};
     v[it.key()] = it->get<double>();
   }
   return v;

@@ -100,9 +100,37 @@ std::string unknown_message(std::string_view what, std::string_view word,
   return "unknown " + std::string(what) + " " + quote_token(word) + did_you_mean(word, candidates);
 }
 
+namespace {
+// Control characters written as \n, \r, \t or \xNN: an echoed token keeps a message on one line
+// (truncate_token and quote_token apply it).
+std::string printable(std::string_view s) {
+  std::string out;
+  out.reserve(s.size());
+  for (char c : s) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u != 0x7f) {
+      out += c;
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else {
+      static const char hex[] = "0123456789abcdef";
+      out += "\\x";
+      out += hex[u >> 4];
+      out += hex[u & 0xf];
+    }
+  }
+  return out;
+}
+}  // namespace
+
+// Cut, and control characters made printable (see printable).
 std::string truncate_token(std::string_view token, std::size_t max) {
-  if (token.size() <= max) return std::string(token);
-  return std::string(cut(token, max > 0 ? max - 1 : 0)) + "…";
+  if (token.size() <= max) return printable(token);
+  return printable(cut(token, max > 0 ? max - 1 : 0)) + "…";
 }
 
 std::string quote_token(std::string_view token) {

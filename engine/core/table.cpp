@@ -382,7 +382,7 @@ Expected<Table> parse_table(std::string text, const std::string& source, const T
   return t;
 }
 
-Expected<std::string> read_file_bytes(const std::string& path) {
+Expected<std::string> read_file_bytes(const std::string& path, std::size_t max_line) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     return Error{path + ": is a directory, not a CSV file"};
@@ -392,9 +392,15 @@ Expected<std::string> read_file_bytes(const std::string& path) {
   const auto size = std::filesystem::file_size(path, ec);
   if (!ec) text.reserve(static_cast<std::size_t>(size));
   char buf[1 << 16];
-  std::size_t n = 0;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0)
+  std::size_t n = 0, since_newline = 0;
+  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) {
     text.append(buf, n);
+    if (!max_line) continue;
+    const void* nl = ::memrchr(buf, '\n', n);
+    since_newline = nl ? n - static_cast<std::size_t>(static_cast<const char*>(nl) - buf) - 1
+                       : since_newline + n;
+    if (since_newline > max_line) break;  // the text ends inside a line the parser refuses
+  }
   const bool bad = std::ferror(f) != 0;
   std::fclose(f);
   if (bad) return Error{path + ": read error"};
@@ -402,7 +408,7 @@ Expected<std::string> read_file_bytes(const std::string& path) {
 }
 
 Expected<Table> read_table(const std::string& path, const TableOptions& opt) {
-  auto bytes = read_file_bytes(path);
+  auto bytes = read_file_bytes(path, kMaxCsvLineBytes);
   if (!bytes) return bytes.err();
   return parse_table(std::move(*bytes), path, opt);
 }

@@ -66,7 +66,9 @@ Expected<Table> parse_table(std::string text, const std::string& source,
                             const TableOptions& opt = {});
 Expected<Table> read_table(const std::string& path, const TableOptions& opt = {});
 
-// The file's bytes (a directory or an unreadable file is an error naming the path).
-Expected<std::string> read_file_bytes(const std::string& path);
+// The file's bytes (a directory or an unreadable file is an error naming the path). With
+// max_line > 0, reading stops (memory bounded) once a line is longer than max_line bytes: the text
+// then ends inside that line, which parse_table refuses as too long, naming its line.
+Expected<std::string> read_file_bytes(const std::string& path, std::size_t max_line = 0);
 
 }  // namespace kfw

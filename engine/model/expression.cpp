@@ -11,6 +11,8 @@
 #include <regex>
 #include <stdexcept>
 
+#include "core/suggest.h"
+
 // min and max for GiNaC, with the derivatives ∂min(a, b)/∂a = step(b − a) and so on (step(0) =
 // 1/2, as GiNaC's and ours). Namespace scope: the GiNaC macros define types named after them.
 namespace kfw::model::symbolic {
@@ -165,8 +167,9 @@ std::string to_muparser(const GiNaC::ex& e) {
   throw std::runtime_error("a term of type " + std::string(ex_to<basic>(e).class_name()));
 }
 
+// The text as written, cut and made printable (an expression may hold a newline or be 10 MB).
 std::string quoted(const std::string& text) {
-  return "\"" + text + "\"";
+  return "\"" + truncate_token(text, 200) + "\"";
 }
 
 Error at(const std::string& key, const std::string& what, std::size_t pos0,
@@ -311,7 +314,8 @@ Expected<Expr> compile_expr(const std::string& text, const std::string& key, con
     const bool ok = std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' ||
                     std::string_view("+-*/^(),").find(c) != std::string_view::npos;
     if (!ok) {
-      return at(key, "'" + std::string(1, c) + "' is not part of the expression language", i, text);
+      return at(key, quote_token(std::string(1, c)) + " is not part of the expression language", i,
+                text);
     }
   }
   if (!any) return Error{key + ": empty expression"};

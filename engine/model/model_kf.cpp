@@ -4,6 +4,7 @@
 #include <Eigen/Cholesky>
 #include <cmath>
 
+#include "core/covariance_check.h"
 #include "model/model_filter_detail.h"
 
 namespace kfw::model::detail {
@@ -48,6 +49,7 @@ void update(Context& ctx, std::size_t c, std::size_t k, typename Types<N>::VecN&
     P.noalias() -= K * PHt.transpose();
     P.noalias() -= PHt * K.transpose();
     P.noalias() += (S * K) * K.transpose();
+    debug_check_covariance(P, "a model's scalar update");
     ++out.updates;
     ctx.record_update(c, k, ym, Sm, nis, std::log(S), K);
     return;
@@ -90,6 +92,7 @@ void update(Context& ctx, std::size_t c, std::size_t k, typename Types<N>::VecN&
   KR.noalias() = K * ch.R;
   P.noalias() += KR * K.transpose();
   P = 0.5 * (P + P.transpose()).eval();
+  debug_check_covariance(P, "a model's update");
   ++out.updates;
   ctx.record_update(c, k, y, S, nis, log_det, K);
 }

@@ -323,7 +323,7 @@ Expected<ParamTable> parse_param_table(const json& params, const std::string& pa
     }
     specs.push_back(s);
     ParamTable one({s});
-    if (auto st = one.check(s.key, s.def); !st) return Error{path + ": " + st.error()};
+    if (auto st = one.check(s.key, s.def); !st) return Error{where + ": " + st.error()};
   }
   return ParamTable(std::move(specs));
 }

@@ -7,6 +7,7 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
+#include "core/covariance_check.h"
 #include "model/model_filter_detail.h"
 
 namespace kfw::model::detail {
@@ -220,6 +221,7 @@ Status run_ukf(Context& ctx, typename Types<N>::VecN x, typename Types<N>::MatN 
       x.noalias() += K * y;
       P.noalias() -= K * S * K.transpose();
       P = 0.5 * (P + P.transpose()).eval();
+      debug_check_covariance(P, "a UKF update");
       if (any_angle) {
         for (Eigen::Index i = 0; i < n; ++i)
           x(i) = wrap(x(i), state_angle[static_cast<std::size_t>(i)]);

@@ -86,7 +86,7 @@ TEST_F(BadModel, CovariancesThatAreNotPositive) {
 
 TEST_F(BadModel, ParametersOutOfTheirRange) {
   refused("val.json", [](Json& j) { j["parameters"]["sigma_a"]["value"] = 1e9; },
-          {"sigma_a", "out of range"});
+          {"parameters.sigma_a: ", "out of range"});
   refused("nan.json", [](Json& j) { j["parameters"]["sigma_a"]["value"] = "nan"; },
           {"parameters.sigma_a.value"});
 }

@@ -250,7 +250,8 @@ TEST(ModelErrors, BadParameterBlocks) {
   expect_error(j, {"parameters.q.scale: 'logarithmic' is not one of"});
   j = base();
   j["parameters"]["q"]["value"] = 1e7;
-  expect_error(j, {"parameter 'q' = 10000000 is out of range"});
+  // The same key prefix as the built-in presets (issue 16): PATH: parameters.q: parameter ...
+  expect_error(j, {"parameters.q: parameter 'q' = 10000000 is out of range"});
   j = base();
   j["parameters"]["m"]["value"] = 0;
   j["parameters"]["m"]["min"] = 0;

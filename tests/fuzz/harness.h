@@ -16,13 +16,16 @@
 #include <string>
 #include <string_view>
 
+#include "core/covariance_check.h"
 #include "core/dataset.h"
 #include "core/grammar.h"
 #include "core/preset.h"
 #include "core/scenario.h"
 #include "core/session.h"
 #include "core/workspace.h"
+#include "model/model_result.h"
 #include "model/model_scenario.h"
+#include "scenarios/helicopter/indirect_kf.h"
 
 namespace kfw::fuzz {
 
@@ -36,14 +39,42 @@ inline std::string check_error(const Error& e, const char* what) {
   if (e.message.find('\n') != std::string::npos)
     return std::string(what) + ": a message of more than one line: " + e.message.substr(0, 200);
   if (e.message.size() > 2000)
-    return std::string(what) + ": a message of " + std::to_string(e.message.size()) + " bytes";
+    return std::string(what) + ": a message of " + std::to_string(e.message.size()) +
+           " bytes: " + e.message.substr(0, 200);
   if (e.exit_code != kExitInvalid && e.exit_code != kExitFailed)
     return std::string(what) + ": exit code " + std::to_string(e.exit_code);
   return "";
 }
 
+// The full covariance, where a result exposes one (the helicopter's 2×2, a model's n×n upper
+// triangle): symmetric positive semi-definite at every step (core/covariance_check.h).
+inline std::string check_covariances(const RunResult& res) {
+  if (const auto* h = dynamic_cast<const helicopter::HelicopterResult*>(&res)) {
+    for (std::size_t k = 0; k < h->P11.size(); ++k) {
+      Eigen::Matrix2d P;
+      P << h->P11[k], h->P12[k], h->P12[k], h->P22[k];
+      if (!is_symmetric_psd(P)) return "P not PSD at step " + std::to_string(k);
+    }
+  }
+  if (const auto* m = dynamic_cast<const model::ModelResult*>(&res)) {
+    const std::size_t n = m->n();
+    Eigen::MatrixXd P(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+    const std::size_t steps = m->P.empty() ? 0 : m->P.front().size();
+    for (std::size_t k = 0; k < steps; ++k) {
+      for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t j = 0; j < n; ++j)
+          P(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
+              m->P[m->cov_index(i, j)][k];
+      }
+      if (!is_symmetric_psd(P)) return "P not PSD at step " + std::to_string(k);
+    }
+  }
+  return "";
+}
+
 // A run's promises: finite metrics; per state, finite estimates once started and variances that
-// are finite and >= 0 (the diagonal of a PSD covariance); NIS >= 0 (S positive definite).
+// are finite and >= 0 (the diagonal of a PSD covariance); the full covariance PSD where the result
+// exposes it; NIS >= 0 (S positive definite).
 inline std::string check_run(const Expected<std::shared_ptr<const RunResult>>& r) {
   if (!r) {
     if (r.exit_code() != kExitFailed) return "a run refused its validated input: " + r.error();
@@ -64,7 +95,7 @@ inline std::string check_run(const Expected<std::shared_ptr<const RunResult>>& r
       if (v < -1e-9 || std::isinf(v)) return "NIS of " + c.name + " is " + std::to_string(v);
     }
   }
-  return "";
+  return check_covariances(res);
 }
 
 // The input as a file: the app's loaders read files (one file per process).

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/covariance_check.h"
+#include "core/types.h"
 #include "scenarios/helicopter/helicopter_model.h"
 
 namespace kfw::helicopter {
@@ -111,6 +113,10 @@ HelicopterResult run_indirect_kf(const std::vector<double>& t, const std::vector
           p11 = n11;
           p12 = n12;
           p22 = n22;
+#ifndef NDEBUG
+          debug_check_covariance((Mat<2, 2>() << p11, p12, p12, p22).finished(),
+                                 "the helicopter update");
+#endif
           r.k1[k] = k1;
           r.k2[k] = k2;
           r.nis[k] = y * y / S;

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "core/covariance_check.h"
 #include "scenarios/radome/radome_renewal.h"
 
 #include "core/kalman_filter.h"
@@ -223,6 +224,7 @@ void RadomeImm::step_axis(const Sample& s, StepOutput& o) {
         const Vec<3> PHt = g.P.col(0);
         g.x.noalias() += PHt * (y / S);
         g.P.noalias() -= PHt * (PHt.transpose() / S);
+        debug_check_covariance(g.P, "a radome axis update");
         quad += y * y / S;
         det *= S;
         ys[ax] = y;
@@ -299,6 +301,7 @@ void RadomeImm::step_full(const Sample& s, StepOutput& o) {
     g.x.noalias() += KT.transpose() * y;
     g.P.noalias() -= PHt * KT;
     g.P = 0.5 * (g.P + g.P.transpose()).eval();
+    debug_check_covariance(g.P, "a radome update");
     const Vec<3> u = llt.matrixL().solve(y);
     double log_det = 0.0;
     for (int i = 0; i < 3; ++i)

@@ -266,7 +266,7 @@ class MainWindow : public QMainWindow {
     std::function<void(const QJsonValue&)> restore;
   };
   std::vector<ViewPart> view_parts_;
-  class Presentation* present_ = nullptr;        // main_window_present.cpp
+  class Presentation* present_ = nullptr;  // main_window_present.cpp
   Theme theme_ = Theme::kLight;
   bool screenshot_mode_ = false;
 };

@@ -11,6 +11,7 @@
 
 #include "consistency_panel.h"
 #include "main_window.h"
+#include "plot_zoom.h"
 #include "transport_bar.h"
 
 namespace kfw {
@@ -66,7 +67,10 @@ bool MainWindow::replayKey(QObject* target, QKeyEvent* event) {
   QWidget* focus = QApplication::focusWidget();
   if (isTextEntry(focus) || isTextEntry(w)) return false;
   // Home and End on a plot are the plot's (reset the zoom).
-  if ((k == Qt::Key_Home || k == Qt::Key_End) && qobject_cast<QCustomPlot*>(focus)) return false;
+  if ((k == Qt::Key_Home || k == Qt::Key_End) &&
+      (qobject_cast<QCustomPlot*>(focus) || qobject_cast<QCustomPlot*>(w))) {
+    return false;
+  }
   if (event->type() == QEvent::ShortcutOverride) {
     event->accept();
     return true;

@@ -137,6 +137,7 @@ void styleLegend(QCPLegend* lg, const Look& l) {
       });
   for (int i = 0; i < lg->itemCount(); ++i) {
     QCPAbstractLegendItem* it = lg->item(i);
+    if (!it) continue;  // an empty cell of a wrapped legend row
     KFW_FONT(it, "kfwFont", font, setFont);
     KFW_COLOR(it, "kfwText", textColor, setTextColor);
   }

@@ -47,7 +47,8 @@ ParamTable make_table() {
   mode.choices = {"closed", "replay"};
   return ParamTable({
       {"Q", "Q, ball acceleration noise variance", "(m/s²)²", 1e-8, 1e6, 0.5013, Scale::kLog, F,
-       "w ~ N(0, Q) in x_{k+1} = F x_k + G^c u^c_k + G w_k (Jang et al. 2014, eq. 12–13). 0.5013 with "
+       "w ~ N(0, Q) in x_{k+1} = F x_k + G^c u^c_k + G w_k (Jang et al. 2014, eq. 12–13). 0.5013 "
+       "with "
        "R = 4e-6 m², Ts = 10 ms gives λ = 0.0354, Table 1's α = 0.234, β = 0.031.",
        4},
       {"R", "R, position noise variance", "m²", 1e-12, 1.0, 4e-6, Scale::kLog, F,
@@ -77,7 +78,8 @@ ParamTable make_table() {
        "Mean length of a contact loss (geometric); each lost sample reads an impulsive spike "
        "anywhere along the beam."},
       {"sim.V_max", "motor voltage limit", "V", 1, 1000, 12, Scale::kLog, S,
-       "Amplifier saturation |V| ≤ V_max (not in Jang et al. 2014; 12 V chosen for a small DC motor)."},
+       "Amplifier saturation |V| ≤ V_max (not in Jang et al. 2014; 12 V chosen for a small DC "
+       "motor)."},
       {"sim.theta_max", "beam angle stop θ_max", "rad", 0.05, 1.5, 0.785, Scale::kLinear, S,
        "Mechanical stops |θ| ≤ θ_max (not in Jang et al. 2014; 45° assumed). The model ẍ = a3 θ "
        "assumes small angles; beyond 0.25 rad the run warns.",
@@ -129,11 +131,12 @@ std::vector<MetricSpec> make_metric_specs() {
        "RMS of x − x_noise-free with detection on, up to a fall", G::kAccuracy, D::kLower},
       {"tracking_excess_detect_off", "tracking excess, detection off", "m",
        "RMS of x − x_noise-free with detection off, up to a fall", G::kAccuracy, D::kLower},
-      {"alpha", "α (closed form)", "", "α of the α-β filter from λ (Jang et al. 2014, eq. 16)", G::kGains,
+      {"alpha", "α (closed form)", "", "α of the α-β filter from λ (Jang et al. 2014, eq. 16)",
+       G::kGains, D::kNone},
+      {"beta", "β (closed form)", "", "β of the α-β filter from λ (Jang et al. 2014, eq. 16)",
+       G::kGains, D::kNone},
+      {"lambda", "λ, tracking index", "", "λ = Ts² √(Q/R) (Jang et al. 2014, eq. 16)", G::kGains,
        D::kNone},
-      {"beta", "β (closed form)", "", "β of the α-β filter from λ (Jang et al. 2014, eq. 16)", G::kGains,
-       D::kNone},
-      {"lambda", "λ, tracking index", "", "λ = Ts² √(Q/R) (Jang et al. 2014, eq. 16)", G::kGains, D::kNone},
       {"alpha_dare", "α (DARE)", "", "steady-state K1 of the same model from the DARE", G::kGains,
        D::kNone},
       {"beta_dare", "β (DARE)", "", "steady-state K2·Ts of the same model from the DARE", G::kGains,

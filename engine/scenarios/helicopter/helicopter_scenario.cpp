@@ -67,7 +67,8 @@ std::vector<MetricSpec> make_metric_specs() {
        "steady-state angle gain k1(β) of the constant-bias model (Kim et al., eq. 11)", G::kGains,
        D::kNone},
       {"beta", "β, operating point", "",
-       "β = m Ts² N_ω / N_θ, the one number k1 depends on (Kim et al., eq. 11)", G::kGains, D::kNone},
+       "β = m Ts² N_ω / N_θ, the one number k1 depends on (Kim et al., eq. 11)", G::kGains,
+       D::kNone},
   };
 }
 

@@ -25,7 +25,8 @@ ParamTable make_table() {
   const std::string F = "Filter", G = "IMM grid", S = "Simulator";
   return ParamTable({
       {"Q", "Q, target manoeuvre noise density", "(m/s²)²/Hz", 1e-3, 1e6, 100.0, Scale::kLog, F,
-       "Spectral density of w driving A_T through D = I/τ (Kim & Back 2017, eq. 1); same per axis."},
+       "Spectral density of w driving A_T through D = I/τ (Kim & Back 2017, eq. 1); same per "
+       "axis."},
       {"tau", "τ, target manoeuvre time constant", "s", 0.05, 100.0, 0.5, Scale::kLog, F,
        "A = [[0, I, 0], [0, 0, I], [0, 0, −I/τ]] (Kim & Back 2017, eq. 1)."},
       {"R", "R, angle noise variance", "rad²", 1e-10, 1e-2, 1e-6, Scale::kLog, F,
@@ -53,7 +54,8 @@ ParamTable make_table() {
        0,
        {"axis", "full"}},
       {"Kp", "Kp, mode-parameter renewal gain", "", 0.0, 1.0, 0.0, Scale::kLinear, G,
-       "ΔR̄_k = Kp (R̂_{k−1} − mean R̄_{k−1}) moves the grid (Kim & Back 2017, eq. 4); 0 = plain IMM.", 3},
+       "ΔR̄_k = Kp (R̂_{k−1} − mean R̄_{k−1}) moves the grid (Kim & Back 2017, eq. 4); 0 = plain IMM.",
+       3},
       {"renewal.mode",
        "renewal: what μ and Kp mean",
        "",
@@ -101,7 +103,9 @@ ParamTable make_table() {
        1},
       {"sim.weave_period", "weave period P", "s", 0.5, 60, 4, Scale::kLinear, S, "", 1},
       {"sim.target_g", "target manoeuvre", "g", 0, 9, 1, Scale::kLinear, S,
-       "Target weave a_T = g_T [0, cos(2πt/20 s), cos(2πt/14 s)] (Kim & Back 2017: 1 g in y and z).", 2},
+       "Target weave a_T = g_T [0, cos(2πt/20 s), cos(2πt/14 s)] (Kim & Back 2017: 1 g in y and "
+       "z).",
+       2},
       {"sim.R", "angle noise variance", "rad²", 0, 1e-2, 1e-6, Scale::kLinear, S,
        "ν_ψ, ν_θ ~ N(0, 1e-6) (Kim & Back 2017).", 8},
       {"sim.R_range", "range noise variance", "m²", 0, 1e4, 1e-6, Scale::kLinear, S,

@@ -24,33 +24,35 @@ constexpr double kMaxRows = 500000;
 
 ParamTable make_table() {
   const std::string F = "Filter", S = "Simulator";
-  ParamSpec scheme{"scheme",
-                   "update scheme",
-                   "",
-                   0,
-                   2,
-                   1,
-                   Scale::kChoice,
-                   F,
-                   "AS: each measurement when it arrives; SC: the ranges of a synchronous instant "
-                   "in one stacked update; SI: the same ranges one by one (Han et al. 2015, Table 13)."};
+  ParamSpec scheme{
+      "scheme",
+      "update scheme",
+      "",
+      0,
+      2,
+      1,
+      Scale::kChoice,
+      F,
+      "AS: each measurement when it arrives; SC: the ranges of a synchronous instant "
+      "in one stacked update; SI: the same ranges one by one (Han et al. 2016, Table 13)."};
   scheme.choices = {"AS", "SC", "SI"};
-  ParamSpec clock{"sim.clock",
-                  "sensor clocks",
-                  "",
-                  0,
-                  1,
-                  1,
-                  Scale::kChoice,
-                  S,
-                  "synchronous: one period sim.dt_sync for every sensor; asynchronous: Table 3 "
-                  "periods (DVL 0.20 s, AHRS 0.01 s, ranges 0.10 s, depth 0.02 s) (Han et al. 2015, "
-                  "Table 2)."};
+  ParamSpec clock{
+      "sim.clock",
+      "sensor clocks",
+      "",
+      0,
+      1,
+      1,
+      Scale::kChoice,
+      S,
+      "synchronous: one period sim.dt_sync for every sensor; asynchronous: Table 3 "
+      "periods (DVL 0.20 s, AHRS 0.01 s, ranges 0.10 s, depth 0.02 s) (Han et al. 2016, "
+      "Table 2)."};
   clock.choices = {"synchronous", "asynchronous"};
   return ParamTable({
       scheme,
       {"gate", "χ² gate d", "", 0.5, 50, 2.5, Scale::kLinear, F,
-       "Reject a range when d = |z − ẑ|/√S exceeds it (Han et al. 2015, eq. 10: d = 2.5).", 2},
+       "Reject a range when d = |z − ẑ|/√S exceeds it (Han et al. 2016, eq. 10: d = 2.5).", 2},
       {"sigma_range", "R: range σ_r", "m", 1e-3, 10, 0.1, Scale::kLog, F,
        "Range white-noise σ assumed by the filter."},
       {"sigma_depth", "R: depth σ_d", "m", 1e-3, 10, 0.2, Scale::kLog, F,
@@ -65,16 +67,17 @@ ParamTable make_table() {
        "Initial σ of x, y, z around (0, 0, first depth)."},
       {"sim.seed", "seed", "", 0, 1e6, 4, Scale::kInteger, S, "Random seed of the simulator."},
       {"sim.duration", "duration", "s", 1, 2400, 180, Scale::kLinear, S,
-       "Length of the run (Han et al. 2015: 3 min). At most 40 min: the asynchronous clocks log 195 "
+       "Length of the run (Han et al. 2016: 3 min). At most 40 min: the asynchronous clocks log "
+       "195 "
        "rows/s, and a simulated log is limited to 500 000 rows.",
        0},
       clock,
       {"sim.dt_sync", "synchronous period Δt", "s", 0.01, 2, 0.1, Scale::kLinear, S,
        "Sample period of every sensor when the clocks are synchronous.", 3},
       {"sim.sigma_t", "timing jitter σ_t", "s", 0, 0.05, 0.001, Scale::kLinear, S,
-       "t_{s,i} = t_{s,i−1} + Δt + n_t, n_t ~ N(0, σ_t) (Han et al. 2015, Table 2).", 4},
+       "t_{s,i} = t_{s,i−1} + Δt + n_t, n_t ~ N(0, σ_t) (Han et al. 2016, Table 2).", 4},
       {"sim.u_cmd", "command u", "m/s", -2, 2, 0.5, Scale::kLinear, S,
-       "Surge velocity command (Han et al. 2015, Table 9).", 2},
+       "Surge velocity command (Han et al. 2016, Table 9).", 2},
       {"sim.w_cmd", "command w", "m/s", -1, 1, 0.2, Scale::kLinear, S,
        "Heave velocity command, positive down (Table 9).", 2},
       {"sim.r_cmd", "command r", "rad/s", -2, 2, 0.5, Scale::kLinear, S,
@@ -86,7 +89,7 @@ ParamTable make_table() {
       {"sim.motion_sigma_r", "motion noise σ_r", "rad/s", 0, 1, 0.10, Scale::kLinear, S,
        "Gaussian noise on the actual yaw rate (Table 9).", 3},
       {"sim.sigma_dvl_u", "DVL σ_u", "m/s", 0, 1, 0.1, Scale::kLinear, S,
-       "DVL surge noise (Han et al. 2015, eq. 1, Table 10).", 3},
+       "DVL surge noise (Han et al. 2016, eq. 1, Table 10).", 3},
       {"sim.sigma_dvl_v", "DVL σ_v", "m/s", 0, 1, 0.0, Scale::kLinear, S,
        "DVL sway noise (Table 10: 0).", 3},
       {"sim.sigma_dvl_w", "DVL σ_w", "m/s", 0, 1, 0.1, Scale::kLinear, S,
@@ -96,7 +99,7 @@ ParamTable make_table() {
       {"sim.sigma_attitude", "AHRS attitude σ", "deg", 0, 5, 0.1, Scale::kLinear, S,
        "AHRS attitude noise (Table 11: resolution < 0.1°).", 3},
       {"sim.sigma_range", "range σ_r", "m", 0, 2, 0.1, Scale::kLinear, S,
-       "Range white noise n_r (Han et al. 2015, eq. 2, Table 10); 0 switches it off.", 3},
+       "Range white noise n_r (Han et al. 2016, eq. 2, Table 10); 0 switches it off.", 3},
       {"sim.sigma_depth", "depth σ_d", "m", 0, 2, 0.2, Scale::kLinear, S,
        "Depth noise n_d (eq. 3, Table 10); 0 switches it off.", 3},
       {"sim.sigma_corr", "correlated range σ_c", "m", 0, 2, 0.2, Scale::kLinear, S,
@@ -106,7 +109,7 @@ ParamTable make_table() {
       {"sim.outliers", "outlier count N", "", 0, 10000, 276, Scale::kInteger, S,
        "Range samples drawn at random that get ±σ_o (Table 8; Table 14: 276); 0 = none."},
       {"sim.outlier_size", "outlier offset σ_o", "m", 0, 20, 1.0, Scale::kLinear, S,
-       "Offset of an outlier, sign drawn at random (Han et al. 2015: ±1 m).", 2},
+       "Offset of an outlier, sign drawn at random (Han et al. 2016: ±1 m).", 2},
       {"sim.range_dropout", "range dropout", "", 0, 0.9, 0.0, Scale::kLinear, S,
        "Probability that a range sample is lost (an empty cell).", 3},
   });
@@ -182,8 +185,8 @@ std::vector<MetricSpec> make_metric_specs() {
        "004, Table 13)",
        G::kAccuracy, D::kLower},
       {"pos_mean", "mean distance error", "m",
-       "mean distance between estimated and true position (Han et al. 2015, Table 13)", G::kAccuracy,
-       D::kLower},
+       "mean distance between estimated and true position (Han et al. 2016, Table 13)",
+       G::kAccuracy, D::kLower},
       {"pos_std", "std of the distance error", "m",
        "standard deviation of the distance between estimated and true position", G::kAccuracy,
        D::kLower},
@@ -193,7 +196,7 @@ std::vector<MetricSpec> make_metric_specs() {
        "range samples the simulator offset by ±sim.outlier_size (from the outlier1..4 columns)",
        G::kScenario, D::kLower},
       {"outliers_detected", "outliers detected", "",
-       "injected outliers that the χ² gate rejected (Han et al. 2015, Table 14)", G::kScenario,
+       "injected outliers that the χ² gate rejected (Han et al. 2016, Table 14)", G::kScenario,
        D::kHigher},
       {"outliers_false_alarm", "false alarms", "", "good range samples that the χ² gate rejected",
        G::kScenario, D::kLower},
@@ -209,15 +212,15 @@ std::vector<MetricSpec> make_metric_specs() {
       {"steps", "steps", "", "number of rows (sensor times) in the run", G::kScenario, D::kNone},
       {"stats_range_var_mean", "range-error variance (mean)", "m²",
        "sample variance of the range errors at synchronous instants, mean over the four beacons "
-       "(Han et al. 2015, eq. 5–8)",
+       "(Han et al. 2016, eq. 5–8)",
        G::kScenario, D::kLower},
       {"stats_range_cov_mean", "range–range covariance (mean)", "m²",
        "sample covariance between the range errors of two beacons, mean over the pairs (seed "
        "004, eq. 6–8: σ_c²)",
        G::kScenario, D::kLower},
       {"stats_depth_var", "depth-error variance", "m²",
-       "sample variance of the depth error at synchronous instants (Han et al. 2015, eq. 5)", G::kScenario,
-       D::kLower},
+       "sample variance of the depth error at synchronous instants (Han et al. 2016, eq. 5)",
+       G::kScenario, D::kLower},
       {"stats_instants", "synchronous instants", "",
        "instants with every range and the depth, over which the statistics are taken", G::kScenario,
        D::kHigher},
@@ -232,7 +235,7 @@ class UnderwaterScenario final : public Scenario {
     return specs;
   }
   std::string title() const override {
-    return "Underwater vehicle: sensor simulator + EKF localization AS/SC/SI (Han et al. 2015)";
+    return "Underwater vehicle: sensor simulator + EKF localization AS/SC/SI (Han et al. 2016)";
   }
   const ParamTable& params() const override {
     static const ParamTable table = make_table();

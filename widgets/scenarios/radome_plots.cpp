@@ -150,11 +150,9 @@ class RadomeView final : public ScenarioView {
     for (int axis = 0; axis < 2; ++axis) {
       const QString sym = axis == 0 ? "ψ" : "θ";
       SlopePlot& s = slope_[axis];
-      s.plot = makePlot(
-          parent,
-          QString("Radome slope R_%1: estimate, truth and grid (Kim & Back 2017, Figs. 3, 5, 7, 9)")
-              .arg(sym),
-          "time (s)", QString("slope R_%1 (–)").arg(sym));
+      s.plot =
+          makePlot(parent, QString("Slope R_%1 and its grid (Kim & Back 2017, Figs. 3–9)").arg(sym),
+                   "time (s)", QString("slope R_%1 (–)").arg(sym));
       s.envelope = addBand(s.plot, "grid envelope", color::kSensor);
       s.center = addGraph(s.plot, "grid centre", color::kBound, Style::kDashed);
       s.truth = addGraph(s.plot, "truth", color::kTruth);

@@ -54,7 +54,9 @@ fuzz: setup
 
 # SANITIZE_GUI=OFF leaves the GUI and its tests out (the engine and CLI tests only: what CI runs).
 # -O1 -g1 (line tables: enough for a report's file:line), the build is the long part.
-ASAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
+# GCC 12 under -fsanitize at -O1 reports false maybe-uninitialized warnings inside <regex> and
+# <functional> (std::function in std::regex's NFA); the Release build keeps the warning.
+ASAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -Wno-maybe-uninitialized
 SANITIZE_GUI ?= ON
 sanitize: setup
 	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS="$(ASAN_FLAGS)" \

@@ -189,7 +189,7 @@ void ConsistencyPanel::refresh() {
   plot::setSeries(avg_lo_, span, {bw.lo, bw.lo}, 2);
   plot::setSeries(avg_hi_, span, {bw.hi, bw.hi}, 2);
   nis_avg_->setName(QString("moving average (%1)").arg(w));
-  plot::rescale(nis_);
+  plot::rescale(nis_, span[0], span[1]);  // a time plot: the replay window applies
   plot::replot(nis_);
 
   QString text = QString(
@@ -275,7 +275,7 @@ void ConsistencyPanel::refresh() {
     plot::setSeries(nees_lo_, span, {nb.lo, nb.lo}, 2);
     nees_lo_->setName(QString("χ²(%1) 2.5 % / 97.5 %").arg(nees_.dof));
     plot::setSeries(nees_hi_, span, {nb.hi, nb.hi}, 2);
-    plot::rescale(nees_plot_);
+    plot::rescale(nees_plot_, span[0], span[1]);
     plot::replot(nees_plot_);
     text += QString("<br>NEES (%1 dof): mean %2, %3 % inside the 95 % bounds")
                 .arg(nees_.dof)

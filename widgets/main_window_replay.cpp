@@ -11,6 +11,7 @@
 
 #include "consistency_panel.h"
 #include "main_window.h"
+#include "plot_kit.h"
 #include "plot_zoom.h"
 #include "transport_bar.h"
 
@@ -46,10 +47,6 @@ bool isTextEntry(const QWidget* w) {
     return !qobject_cast<const QAbstractSpinBox*>(e->parentWidget());
   }
   return false;
-}
-
-bool isTimePlot(const QCustomPlot* p) {
-  return p && p->xAxis && p->xAxis->label().startsWith("time");
 }
 
 }  // namespace
@@ -99,16 +96,12 @@ bool MainWindow::replayKey(QObject* target, QKeyEvent* event) {
 
 void MainWindow::applyTimeWindow(double t0, double t1) {
   if (!(t1 > t0)) return;
-  if (zoom_) {
-    // As a zoom of the linked time axes, so the next redraw keeps (and reduces data for) it.
-    zoom_->followTime(t0, t1);
-    for (const auto& p : plots_)
-      p.plot->replot(QCustomPlot::rpQueuedReplot);
-  }
+  // As a zoom of the linked time axes, so the next redraw keeps (and reduces data for) it.
+  if (zoom_) zoom_->followTime(t0, t1);
   QList<PlotPanel> all = plots_;
   if (consistency_) all << consistency_->plots();
   for (const auto& p : all) {
-    if (!isTimePlot(p.plot)) continue;
+    if (!plot::isTimePlot(p.plot)) continue;
     p.plot->xAxis->setRange(t0, t1);
     p.plot->replot(QCustomPlot::rpQueuedReplot);
   }

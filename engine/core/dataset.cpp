@@ -2,6 +2,7 @@
 
 #include "core/import.h"
 #include "core/output.h"
+#include "core/suggest.h"
 #include "core/table.h"
 
 #include <fast_float/fast_float.h>
@@ -69,12 +70,6 @@ bool is_missing_word(std::string_view s) {
   return s.empty() || s == "nan" || s == "NaN" || s == "NAN" || s == "-nan" || s == "NA";
 }
 
-// A token as it may appear in a message: at most 40 characters.
-std::string shown(std::string_view s) {
-  if (s.size() <= 40) return std::string(s);
-  return std::string(s.substr(0, 40)) + "…";
-}
-
 }  // namespace
 
 Expected<double> parse_cell(std::string_view f) {
@@ -86,14 +81,14 @@ Expected<double> parse_cell(std::string_view f) {
   auto [ptr, ec] = fast_float::from_chars(b, e, v);
   if (ec != std::errc() || ptr != e) {
     std::ostringstream os;
-    os << '\'' << shown(f) << "' is not a number";
+    os << '\'' << shown_field(f) << "' is not a number";
     return Error{os.str()};
   }
   if (std::isnan(v)) return kNoSample;
   if (std::isinf(v)) {
     if (f.find_first_of("iI") != std::string_view::npos) return Error{"infinite value"};
     std::ostringstream os;
-    os << '\'' << shown(f) << "' overflows a double";
+    os << '\'' << shown_field(f) << "' overflows a double";
     return Error{os.str()};
   }
   return v;

@@ -13,20 +13,11 @@
 #include <optional>
 #include <sstream>
 
+#include "core/suggest.h"
+
 namespace kfw {
 
 namespace {
-
-std::string shown(std::string_view s) {
-  if (s.size() <= 40) return std::string(s);
-  return std::string(s.substr(0, 40)) + "…";
-}
-
-std::string at(const std::string& source, std::size_t line, std::size_t col = 0) {
-  std::string s = source + ":" + std::to_string(line);
-  if (col) s += ":" + std::to_string(col);
-  return s;
-}
 
 // Lower-case words of a name: "accRoll_deg [x]" -> acc, roll, deg, x.
 std::vector<std::string> words(const std::string& name) {
@@ -199,7 +190,7 @@ Expected<long long> parse_iso_time_ns(std::string_view text, const std::string& 
   std::string s(text);
   while (!s.empty() && (s.back() == ' ' || s.back() == '\t'))
     s.pop_back();
-  const auto bad = Error{"'" + shown(text) + "' is not an ISO-8601 date-time"};
+  const auto bad = Error{"'" + shown_field(text) + "' is not an ISO-8601 date-time"};
   if (s.size() < 10) return bad;
   if (s.size() > 10 && s[10] == ' ') s[10] = 'T';
   bool utc = false;
@@ -221,7 +212,7 @@ Expected<long long> parse_iso_time_ns(std::string_view text, const std::string& 
     try {
       z = date::locate_zone(zone);
     } catch (const std::exception&) {
-      return Error{"unknown time zone '" + shown(zone) + "'"};
+      return Error{"unknown time zone '" + shown_field(zone) + "'"};
     }
     try {
       return static_cast<long long>(z->to_sys(lt).time_since_epoch().count());
@@ -229,7 +220,7 @@ Expected<long long> parse_iso_time_ns(std::string_view text, const std::string& 
       return static_cast<long long>(
           z->to_sys(lt, date::choose::earliest).time_since_epoch().count());
     } catch (const date::nonexistent_local_time&) {
-      return Error{"'" + shown(text) + "' does not exist in " + zone +
+      return Error{"'" + shown_field(text) + "' does not exist in " + zone +
                    " (the clocks jump forward then)"};
     }
   }
@@ -244,7 +235,8 @@ Status check_time_zone(const std::string& zone) {
   try {
     date::locate_zone(zone);
   } catch (const std::exception&) {
-    return Error{"unknown time zone '" + shown(zone) + "' (an IANA name such as Europe/Berlin)"};
+    return Error{"unknown time zone '" + shown_field(zone) +
+                 "' (an IANA name such as Europe/Berlin)"};
   }
   return Ok{};
 }
@@ -330,14 +322,14 @@ Expected<Dataset> import_table(const Table& t, const Mapping& m,
     const auto& i = t.first_invalid[b.col];
     if (i.line < cell_line) {
       cell_line = i.line;
-      cell_error = Error{at(t.source, i.line, i.col) + ": column '" + shown(t.names[b.col]) +
-                         "': " + i.message};
+      cell_error = Error{source_position(t.source, i.line, i.col) + ": column '" +
+                         shown_field(t.names[b.col]) + "': " + i.message};
     }
   }
   Dataset d;
   d.source = t.source;
   const Bound& tb = bound.front();
-  const std::string tname = shown(t.names[tb.col]);
+  const std::string tname = shown_field(t.names[tb.col]);
   auto& time = d.add("t", t.rows());
   if (is_iso_unit(tb.map.unit)) {
     const std::string zone = iso_zone(tb.map.unit);
@@ -348,8 +340,8 @@ Expected<Dataset> import_table(const Table& t, const Mapping& m,
       auto ns = parse_iso_time_ns(text, zone);
       if (!ns) {
         if (t.line_of(r) >= cell_line) break;  // a cell that is not a number comes first
-        return Error{at(t.source, t.line_of(r), t.cell_column(r, tb.col)) + ": column '" + tname +
-                     "': " + ns.error()};
+        return Error{source_position(t.source, t.line_of(r), t.cell_column(r, tb.col)) +
+                     ": column '" + tname + "': " + ns.error()};
       }
       if (r == 0) origin = *ns;
       time[r] = static_cast<double>(*ns - origin) * 1e-9;
@@ -369,19 +361,20 @@ Expected<Dataset> import_table(const Table& t, const Mapping& m,
     const double x = time[r];
     const std::size_t line = t.line_of(r);
     if (std::isnan(x)) {
-      return Error{at(t.source, line, t.cell_column(r, tb.col)) + ": column '" + tname +
-                   "' is empty (every row needs a time)"};
+      return Error{source_position(t.source, line, t.cell_column(r, tb.col)) + ": column '" +
+                   tname + "' is empty (every row needs a time)"};
     }
     if (r == 0) continue;
     const double prev = time[r - 1];
     if (!(x > prev)) {
-      return Error{at(t.source, line, t.cell_column(r, tb.col)) + ": time is not increasing (" +
-                   tname + " = " + shown(t.cell(r, tb.col)) + " after " +
-                   shown(t.cell(r - 1, tb.col)) + (x == prev ? ", a duplicate" : "") + ")"};
+      return Error{source_position(t.source, line, t.cell_column(r, tb.col)) +
+                   ": time is not increasing (" + tname + " = " + shown_field(t.cell(r, tb.col)) +
+                   " after " + shown_field(t.cell(r - 1, tb.col)) +
+                   (x == prev ? ", a duplicate" : "") + ")"};
     }
     if (!std::isfinite(x - prev)) {
-      return Error{at(t.source, line, t.cell_column(r, tb.col)) + ": the step from " +
-                   shown(t.cell(r - 1, tb.col)) + " to " + shown(t.cell(r, tb.col)) +
+      return Error{source_position(t.source, line, t.cell_column(r, tb.col)) + ": the step from " +
+                   shown_field(t.cell(r - 1, tb.col)) + " to " + shown_field(t.cell(r, tb.col)) +
                    " overflows a double"};
     }
   }

@@ -34,6 +34,11 @@ std::string unknown_message(std::string_view what, std::string_view word,
 std::string truncate_token(std::string_view token, std::size_t max = kMaxQuotedToken);
 // 'token' for a message, truncated.
 std::string quote_token(std::string_view token);
+// A cell, column name or other field of a data file as its messages show it: at most 40
+// characters (then "…"), printable.
+inline std::string shown_field(std::string_view s) {
+  return truncate_token(s, 41);
+}
 
 // A message as one line: newlines become spaces, and any word longer than 160 characters keeps
 // its first 100 and last 40 around "…" (so FILE:LINE:COL at the end of a long path survives).

@@ -14,6 +14,7 @@
 #include <unordered_set>
 
 #include "core/dataset.h"
+#include "core/suggest.h"
 
 namespace kfw {
 
@@ -33,17 +34,6 @@ std::string_view trim(std::string_view s) {
     s.remove_prefix(1);
   while (!s.empty() && (blank(s.back()) || s.back() == '\r'))
     s.remove_suffix(1);
-  return s;
-}
-
-std::string shown(std::string_view s) {
-  if (s.size() <= 40) return std::string(s);
-  return std::string(s.substr(0, 40)) + "…";
-}
-
-std::string at(const std::string& source, std::size_t line, std::size_t col = 0) {
-  std::string s = source + ":" + std::to_string(line);
-  if (col) s += ":" + std::to_string(col);
   return s;
 }
 
@@ -178,7 +168,7 @@ Expected<double> slow_number(std::string_view f, bool decimal_comma) {
     std::string s(f);
     std::replace(s.begin(), s.end(), ',', '.');
     auto v = parse_cell(s);
-    if (!v) return Error{"'" + shown(f) + "' is not a number"};
+    if (!v) return Error{"'" + shown_field(f) + "' is not a number"};
     return v;
   }
   return parse_cell(f);
@@ -237,6 +227,12 @@ std::size_t Table::cell_column(std::size_t row, std::size_t col) const {
   return col < f.size() ? f[col].col : 0;
 }
 
+std::string source_position(const std::string& source, std::size_t line, std::size_t col) {
+  std::string s = source + ":" + std::to_string(line);
+  if (col) s += ":" + std::to_string(col);
+  return s;
+}
+
 Expected<char> parse_separator(const std::string& s) {
   if (s == "," || s == "comma") return ',';
   if (s == ";" || s == "semicolon") return ';';
@@ -252,7 +248,7 @@ Expected<Table> parse_table(std::string text, const std::string& source, const T
     const auto pos = static_cast<std::size_t>(static_cast<const char*>(nul) - text.data());
     const auto line = 1 + static_cast<std::size_t>(std::count(
                               text.begin(), text.begin() + static_cast<std::ptrdiff_t>(pos), '\n'));
-    return Error{at(source, line) + ": not a text file (NUL byte)"};
+    return Error{source_position(source, line) + ": not a text file (NUL byte)"};
   }
   std::size_t pos = 0;
   if (text.size() >= 3 && text.compare(0, 3, "\xEF\xBB\xBF") == 0) pos = 3;  // UTF-8 BOM
@@ -267,7 +263,7 @@ Expected<Table> parse_table(std::string text, const std::string& source, const T
       const std::size_t start = pos;
       pos += len + (nl ? 1 : 0);
       if (len > kMaxCsvLineBytes) {
-        return Error{at(source, line_no) + ": line longer than " +
+        return Error{source_position(source, line_no) + ": line longer than " +
                      std::to_string(kMaxCsvLineBytes / (1024 * 1024)) + " MB"};
       }
       std::string_view line(b, len);
@@ -306,10 +302,10 @@ Expected<Table> parse_table(std::string text, const std::string& source, const T
   std::vector<Field> fields;
   std::deque<std::string> scratch;
   if (std::size_t q = split(header.text, t.separator, fields, scratch)) {
-    return Error{at(source, header.number, q) + ": unterminated quote"};
+    return Error{source_position(source, header.number, q) + ": unterminated quote"};
   }
   if (fields.size() > kMaxCsvColumns) {
-    return Error{at(source, header.number) + ": " + std::to_string(fields.size()) +
+    return Error{source_position(source, header.number) + ": " + std::to_string(fields.size()) +
                  " columns: more than the limit of " + std::to_string(kMaxCsvColumns)};
   }
   std::unordered_set<std::string_view> seen;
@@ -317,17 +313,17 @@ Expected<Table> parse_table(std::string text, const std::string& source, const T
     const std::string_view name = fields[c].text;
     double dummy = 0.0;
     if (name.empty()) {
-      return Error{at(source, header.number, fields[c].col) + ": column " + std::to_string(c + 1) +
-                   " has an empty header name"};
+      return Error{source_position(source, header.number, fields[c].col) + ": column " +
+                   std::to_string(c + 1) + " has an empty header name"};
     }
     if (c == 0 && fast_number(name.data(), name.data() + name.size(), dummy, t.decimal_comma)) {
-      return Error{at(source, header.number, 1) +
+      return Error{source_position(source, header.number, 1) +
                    ": the first row must be a header row of column names, found the number '" +
-                   shown(name) + "'"};
+                   shown_field(name) + "'"};
     }
     if (!seen.insert(name).second) {
-      return Error{at(source, header.number, fields[c].col) + ": duplicate column '" + shown(name) +
-                   "'"};
+      return Error{source_position(source, header.number, fields[c].col) + ": duplicate column '" +
+                   shown_field(name) + "'"};
     }
     t.names.emplace_back(name);
   }
@@ -349,10 +345,10 @@ Expected<Table> parse_table(std::string text, const std::string& source, const T
     if (!*more) break;
     scratch.clear();
     if (std::size_t q = split(l.text, t.separator, fields, scratch)) {
-      return Error{at(source, l.number, q) + ": unterminated quote"};
+      return Error{source_position(source, l.number, q) + ": unterminated quote"};
     }
     if (fields.size() != ncols) {
-      return Error{at(source, l.number) + ": expected " + std::to_string(ncols) +
+      return Error{source_position(source, l.number) + ": expected " + std::to_string(ncols) +
                    " fields as in the header, found " + std::to_string(fields.size())};
     }
     for (std::size_t c = 0; c < ncols; ++c) {

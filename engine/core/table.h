@@ -57,6 +57,9 @@ struct Table {
   std::vector<std::uint32_t> row_line_;
 };
 
+// "FILE:LINE" or "FILE:LINE:COL" (col 0: none), where a data file's messages point.
+std::string source_position(const std::string& source, std::size_t line, std::size_t col = 0);
+
 // A separator by name or character: "," ";" "tab" "\t" "space" "whitespace" "comma" "semicolon".
 Expected<char> parse_separator(const std::string& s);
 

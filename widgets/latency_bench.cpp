@@ -4,11 +4,25 @@
 #include <QElapsedTimer>
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 
 #include "main_window.h"
 #include "param_panel.h"
 
 namespace kfw {
+
+namespace {
+double threadCpuMs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) / 1e6;
+}
+
+double percentile(std::vector<double> v, double p) {
+  std::sort(v.begin(), v.end());
+  return v[static_cast<std::size_t>(std::floor(p * static_cast<double>(v.size() - 1)))];
+}
+}  // namespace
 
 LatencyStats measureLatency(MainWindow& w, int changes) {
   LatencyStats s;
@@ -17,6 +31,7 @@ LatencyStats measureLatency(MainWindow& w, int changes) {
   const std::string key = w.primaryParameter();
   const ParamSpec* spec = w.scenario()->params().find(key);
   const double base = w.paramPanel()->values().at(key);
+  std::vector<double> cpu;
   for (int i = 0; i < changes; ++i) {
     // Walk a decade up and down around the preset value: a drag.
     // Log parameters a decade up and down, linear ones ±20 % of their range, kept in range.
@@ -26,17 +41,18 @@ LatencyStats measureLatency(MainWindow& w, int changes) {
     v = std::clamp(v, spec->min, spec->max);
     QElapsedTimer t;
     t.start();
+    const double cpu0 = threadCpuMs();
     w.setParam(key, v);
     w.waitForRun();
     QCoreApplication::processEvents();  // the repaint of every plot
     s.samples_ms.push_back(static_cast<double>(t.nsecsElapsed()) / 1e6);
+    cpu.push_back(threadCpuMs() - cpu0 + w.lastRunMs());
   }
-  auto v = s.samples_ms;
-  std::sort(v.begin(), v.end());
-  auto pct = [&](double p) { return v[static_cast<std::size_t>(std::floor(p * (v.size() - 1)))]; };
-  s.p50_ms = pct(0.50);
-  s.p95_ms = pct(0.95);
-  s.max_ms = v.back();
+  s.p50_ms = percentile(s.samples_ms, 0.50);
+  s.p95_ms = percentile(s.samples_ms, 0.95);
+  s.max_ms = percentile(s.samples_ms, 1.0);
+  s.cpu_p50_ms = percentile(cpu, 0.50);
+  s.cpu_p95_ms = percentile(cpu, 0.95);
   return s;
 }
 

@@ -10,6 +10,9 @@ class MainWindow;
 struct LatencyStats {
   double p50_ms = 0, p95_ms = 0, max_ms = 0;
   std::vector<double> samples_ms;
+  // The CPU time of the two threads at work per change (the worker's run, the GUI thread's
+  // drawing and repaint): what the latency would be on an idle machine, when others load it.
+  double cpu_p50_ms = 0, cpu_p95_ms = 0;
 };
 
 // Sweeps the first log-scale parameter (Q) across its slider `changes` times, one change at a

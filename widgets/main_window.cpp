@@ -504,6 +504,10 @@ void MainWindow::clearError() {
   error_->clear();
 }
 
+double MainWindow::lastRunMs() const {
+  return runner_ ? runner_->lastCpuMs() : 0.0;
+}
+
 bool MainWindow::waitForRun(int timeout_ms) {
   // A nested event loop that sleeps until the run lands (no busy polling: the worker keeps a core).
   QDeadlineTimer deadline(timeout_ms);

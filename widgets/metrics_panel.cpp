@@ -36,15 +36,20 @@ int declaredIndex(const Scenario& s, const std::string& key) {
   return 100000;
 }
 
+// The good/bad marks, drawn once.
 QIcon mark(bool good) {
-  QPixmap pm(10, 10);
-  pm.fill(Qt::transparent);
-  QPainter p(&pm);
-  p.setRenderHint(QPainter::Antialiasing);
-  p.setPen(Qt::NoPen);
-  p.setBrush(good ? QColor(40, 150, 60) : QColor(190, 40, 30));
-  p.drawEllipse(1, 1, 8, 8);
-  return QIcon(pm);
+  static const auto draw = [](const QColor& c) {
+    QPixmap pm(10, 10);
+    pm.fill(Qt::transparent);
+    QPainter p(&pm);
+    p.setRenderHint(QPainter::Antialiasing);
+    p.setPen(Qt::NoPen);
+    p.setBrush(c);
+    p.drawEllipse(1, 1, 8, 8);
+    return QIcon(pm);
+  };
+  static const QIcon good_icon = draw(QColor(40, 150, 60)), bad_icon = draw(QColor(190, 40, 30));
+  return good ? good_icon : bad_icon;
 }
 
 QString bounds(const MetricSpec& spec) {
@@ -53,33 +58,44 @@ QString bounds(const MetricSpec& spec) {
            spec.good_hi ? MetricsPanel::format(*spec.good_hi) : QString("∞"));
 }
 
+// Sets a value cell from a run. Only what differs is set (an unchanged cell is not repainted,
+// and the table's re-runs during a slider drag cost only the cells that changed).
+constexpr int kVerdictRole = Qt::UserRole + 10;
+void setValue(QTableWidgetItem* item, const RunResult* r, const MetricSpec& spec) {
+  QString text, tip, verdict;
+  QVariant value;
+  if (!r) {
+    text = "–";
+    tip = "no run";
+  } else if (auto it = r->metrics.find(spec.key); it == r->metrics.end()) {
+    text = "—";
+    auto u = r->undefined.find(spec.key);
+    tip = u == r->undefined.end() ? "not reported" : "undefined: " + q(u->second);
+  } else {
+    const double v = it->second;
+    text = MetricsPanel::format(v);
+    value = v;
+    tip = QString::number(v, 'g', 10);
+    verdict = q(judge(spec, v));
+    if (!verdict.isEmpty()) {
+      const bool good = verdict == "good";
+      tip += QString(" · %1: %2 %3").arg(verdict, good ? "inside" : "outside", bounds(spec));
+    }
+  }
+  if (item->text() != text) item->setText(text);
+  if (item->toolTip() != tip) item->setToolTip(tip);
+  item->setData(MetricsPanel::kValueRole, value);
+  if (item->data(kVerdictRole).toString() != verdict || !item->data(kVerdictRole).isValid()) {
+    item->setData(kVerdictRole, verdict);
+    item->setIcon(verdict.isEmpty() ? QIcon() : mark(verdict == "good"));
+    item->setForeground(verdict == "bad" ? QBrush(QColor(170, 30, 20)) : QBrush());
+  }
+}
+
 QTableWidgetItem* valueItem(const RunResult* r, const MetricSpec& spec) {
   auto* item = new QTableWidgetItem;
   item->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
-  if (!r) {
-    item->setText("–");
-    item->setToolTip("no run");
-    return item;
-  }
-  auto it = r->metrics.find(spec.key);
-  if (it == r->metrics.end()) {
-    item->setText("—");
-    auto u = r->undefined.find(spec.key);
-    item->setToolTip(u == r->undefined.end() ? "not reported" : "undefined: " + q(u->second));
-    return item;
-  }
-  const double v = it->second;
-  item->setText(MetricsPanel::format(v));
-  item->setData(MetricsPanel::kValueRole, v);
-  QString tip = QString::number(v, 'g', 10);
-  const std::string verdict = judge(spec, v);
-  if (!verdict.empty()) {
-    const bool good = verdict == "good";
-    item->setIcon(mark(good));
-    if (!good) item->setForeground(QColor(170, 30, 20));
-    tip += QString(" · %1: %2 %3").arg(q(verdict), good ? "inside" : "outside", bounds(spec));
-  }
-  item->setToolTip(tip);
+  setValue(item, r, spec);
   return item;
 }
 
@@ -90,11 +106,18 @@ MetricsPanel::MetricsPanel(QWidget* parent) : QTableWidget(0, 2, parent) {
   setHorizontalHeaderLabels({"metric", "live"});
   verticalHeader()->setVisible(false);
   // Compact rows; a name too long for its column wraps instead of being cut ("nees_in_bou…").
-  verticalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  // Row heights fit the (wrapped) names: measured when the rows or the name column's width
+  // change, not on every value update (a ResizeToContents header re-measures every row then).
+  verticalHeader()->setSectionResizeMode(QHeaderView::Fixed);
   verticalHeader()->setMinimumSectionSize(fontMetrics().height() + 2);
+  connect(horizontalHeader(), &QHeaderView::sectionResized, this, [this](int logical, int, int) {
+    if (logical == 0) resizeRowsToContents();
+  });
   setWordWrap(true);
   setTextElideMode(Qt::ElideNone);
-  horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  // Value columns fit their values, measured once per update (fitValueColumns): a
+  // ResizeToContents column re-measures the whole column on every cell that changes.
+  horizontalHeader()->setSectionResizeMode(QHeaderView::Fixed);
   horizontalHeader()->setSectionResizeMode(0, QHeaderView::Stretch);
   setEditTriggers(QAbstractItemView::NoEditTriggers);
   setSelectionMode(QAbstractItemView::NoSelection);
@@ -127,10 +150,11 @@ void MetricsPanel::setRuns(const Scenario& scenario, std::shared_ptr<const RunRe
   setColumnCount(static_cast<int>(headers.size()));
   setHorizontalHeaderLabels(headers);
   for (int c = 1; c < columnCount(); ++c)
-    horizontalHeader()->setSectionResizeMode(c, QHeaderView::ResizeToContents);
+    horizontalHeader()->setSectionResizeMode(c, QHeaderView::Fixed);
   if (!live) {
     setRowCount(0);
     primary_.clear();
+    layout_.clear();
     return;
   }
   struct Row {
@@ -161,6 +185,29 @@ void MetricsPanel::setRuns(const Scenario& scenario, std::shared_ptr<const RunRe
     }
   }
   primary_ = q(first);
+
+  // The same rows and columns as the last call (a re-run with new values): update the value
+  // cells in place.
+  QStringList layout = headers;
+  layout << primary_;
+  for (const auto& r : rows)
+    layout << q(r.spec.key);
+  if (layout == layout_ && rowCount() > 0) {
+    for (int row = 0; row < rowCount(); ++row) {
+      const QTableWidgetItem* name = item(row, 0);
+      if (!name || !name->data(kKeyRole).isValid()) continue;  // a group header
+      const auto spec = std::find_if(rows.begin(), rows.end(), [&](const Row& r) {
+        return q(r.spec.key) == name->data(kKeyRole).toString();
+      });
+      if (spec == rows.end()) continue;
+      setValue(item(row, 1), live.get(), spec->spec);
+      for (int j = 0; j < snapshots.size(); ++j)
+        setValue(item(row, 2 + j), snapshots[j].second.get(), spec->spec);
+    }
+    fitValueColumns();
+    return;
+  }
+  layout_ = layout;
 
   setRowCount(0);                                  // drops the old items and spans
   setRowCount(static_cast<int>(rows.size()) + 4);  // + one header per group at most
@@ -226,6 +273,13 @@ void MetricsPanel::setRuns(const Scenario& scenario, std::shared_ptr<const RunRe
     ++row;
   }
   setRowCount(row);
+  fitValueColumns();
+  resizeRowsToContents();
+}
+
+void MetricsPanel::fitValueColumns() {
+  for (int c = 1; c < columnCount(); ++c)
+    resizeColumnToContents(c);
 }
 
 }  // namespace kfw

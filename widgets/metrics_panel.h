@@ -8,6 +8,7 @@
 #include <QList>
 #include <QPair>
 #include <QString>
+#include <QStringList>
 #include <QTableWidget>
 #include <memory>
 #include <string>
@@ -40,7 +41,9 @@ class MetricsPanel : public QTableWidget {
   static QString format(double v);
 
  private:
+  void fitValueColumns();
   QString primary_;
+  QStringList layout_;  // headers, primary key and row keys of the table as built
 };
 
 }  // namespace kfw

@@ -63,12 +63,7 @@ void EstimatePlot::setData(const std::vector<double>* t, const std::vector<doubl
   x_ = estimate;
   truth_y_ = truth && !truth->empty() ? truth : nullptr;
   sensor_y_ = sensor && !sensor->empty() ? sensor : nullptr;
-  two_sigma_.clear();
-  if (variance) {
-    two_sigma_.resize(variance->size());
-    for (std::size_t i = 0; i < variance->size(); ++i)
-      two_sigma_[i] = 2.0 * std::sqrt(std::max(0.0, (*variance)[i]));
-  }
+  variance_ = variance && !variance->empty() ? variance : nullptr;
   // A series with no data leaves the legend (truth of a file without truth, say).
   truth_->setVisible(truth_y_ != nullptr);
   if (truth_y_) {
@@ -76,8 +71,8 @@ void EstimatePlot::setData(const std::vector<double>* t, const std::vector<doubl
   } else {
     truth_->removeFromLegend();
   }
-  band_.upper->setVisible(!two_sigma_.empty());
-  band_.lower->setVisible(!two_sigma_.empty());
+  band_.upper->setVisible(variance_ != nullptr);
+  band_.lower->setVisible(variance_ != nullptr);
 }
 
 void EstimatePlot::setGhosts(const QList<GhostSeries>& ghosts) {
@@ -94,7 +89,7 @@ void EstimatePlot::setGhosts(const QList<GhostSeries>& ghosts) {
 void EstimatePlot::draw(const Frame& f) {
   if (!t_ || !x_) return;
   const std::vector<double>& t = *t_;
-  if (!two_sigma_.empty()) setBand(band_, t, *x_, two_sigma_, f.n);
+  if (variance_) setSigmaBand(band_, t, x_, *variance_, 2.0, f.n);
   if (sensor_ && sensor_y_) setSeries(sensor_, t, *sensor_y_, f.n);
   if (truth_y_) setSeries(truth_, t, *truth_y_, f.n);
   setSeries(estimate_, t, *x_, f.n);
@@ -117,18 +112,12 @@ void InnovationPlot::setData(const std::vector<double>* t, const std::vector<dou
                              const std::vector<double>* S) {
   t_ = t;
   yv_ = y;
-  const std::size_t n = S ? S->size() : 0;
-  two_sqrt_s_.resize(n);
-  zero_.assign(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double s = (*S)[i];
-    two_sqrt_s_[i] = std::isfinite(s) && s >= 0.0 ? 2.0 * std::sqrt(s) : kNoSample;
-  }
+  s_ = S && !S->empty() ? S : nullptr;
 }
 
 void InnovationPlot::draw(const Frame& f) {
   if (!t_ || !yv_) return;
-  if (!two_sqrt_s_.empty()) setBand(band_, *t_, zero_, two_sqrt_s_, f.n);
+  if (s_) setSigmaBand(band_, *t_, nullptr, *s_, 2.0, f.n);
   setSeries(y_, *t_, *yv_, f.n);
   rescale(plot_, f.t0, f.t1, f.settle());
   setCursorAt(cursor_, f.tc, !f.all);
@@ -149,22 +138,33 @@ NisPlot::NisPlot(QWidget* parent, const QString& title, std::size_t window) : wi
   cursor_ = addCursor(plot_);
 }
 
-void NisPlot::setData(const std::vector<double>* t, const std::vector<double>* nis, double dof) {
+void NisPlot::setData(const std::vector<double>* t, const std::vector<double>* nis, double dof,
+                      const std::vector<double>* average, std::size_t window) {
   t_ = t;
   nis_y_ = nis;
   lo_v_ = chi2_quantile(0.025, dof);
   hi_v_ = chi2_quantile(0.975, dof);
+  if (average && window > 0) {
+    avg_src_ = average;
+    avg_y_.clear();
+    if (window != window_) {
+      window_ = window;
+      avg_->setName(QString("moving average (%1 updates)").arg(window_));
+    }
+  } else {
+    avg_y_ = nis ? moving_average_finite(*nis, window_) : std::vector<double>{};
+    avg_src_ = &avg_y_;
+  }
   const auto b = nis_bounds(dof, window_);
   avg_lo_v_ = b.lo;
   avg_hi_v_ = b.hi;
-  avg_y_ = nis ? moving_average_finite(*nis, window_) : std::vector<double>{};
   lo_->setName(QString("χ²(%1) 2.5 % / 97.5 %").arg(dof));
 }
 
 void NisPlot::draw(const Frame& f) {
   if (!t_ || !nis_y_) return;
   setSeries(nis_, *t_, *nis_y_, f.n);
-  setSeries(avg_, *t_, avg_y_, f.n);
+  if (avg_src_) setSeries(avg_, *t_, *avg_src_, f.n);
   setLevel(lo_, f, lo_v_);
   setLevel(hi_, f, hi_v_);
   setLevel(avg_lo_, f, avg_lo_v_);

@@ -63,7 +63,7 @@ class EstimatePlot {
   QCPGraph *sensor_ = nullptr, *truth_ = nullptr, *estimate_ = nullptr;
   QCPItemStraightLine* cursor_ = nullptr;
   const std::vector<double>*t_ = nullptr, *x_ = nullptr, *truth_y_ = nullptr, *sensor_y_ = nullptr;
-  std::vector<double> two_sigma_;
+  const std::vector<double>* variance_ = nullptr;
   struct Ghost {
     GhostSeries s;
     QCPGraph* graph;
@@ -89,7 +89,7 @@ class InnovationPlot {
   QCPGraph* y_ = nullptr;
   QCPItemStraightLine* cursor_ = nullptr;
   const std::vector<double>*t_ = nullptr, *yv_ = nullptr;
-  std::vector<double> two_sqrt_s_, zero_;
+  const std::vector<double>* s_ = nullptr;
 };
 
 // NIS of one channel (dof components) on a log axis with the per-step 95 % χ²(dof) bounds, and a
@@ -98,12 +98,16 @@ class NisPlot {
  public:
   NisPlot(QWidget* parent, const QString& title, std::size_t window = 50);
   QCustomPlot* plot() const { return plot_; }
-  void setData(const std::vector<double>* t, const std::vector<double>* nis, double dof);
+  // `average`: the run's own moving average of the NIS over `window` updates (the plot computes
+  // it over its constructor's window when null).
+  void setData(const std::vector<double>* t, const std::vector<double>* nis, double dof,
+               const std::vector<double>* average = nullptr, std::size_t window = 0);
   void draw(const Frame& f);
 
  private:
   QCustomPlot* plot_;
   std::size_t window_;
+  const std::vector<double>* avg_src_ = nullptr;
   QCPGraph *nis_ = nullptr, *lo_ = nullptr, *hi_ = nullptr, *avg_ = nullptr, *avg_lo_ = nullptr,
            *avg_hi_ = nullptr;
   QCPItemStraightLine* cursor_ = nullptr;

@@ -183,201 +183,6 @@ void setLog(QCPAxis* axis) {
 }
 
 namespace {
-
-// Drawing resolution for decimation: the plot's width in pixels (at least 600, so an export at
-// twice the on-screen size still gets one column per two pixels).
-int columnsFor(const QCPGraph* g) {
-  const int w = g->keyAxis() && g->keyAxis()->axisRect() ? g->keyAxis()->axisRect()->width() : 0;
-  return std::max(w, 600);
-}
-
-int rowsFor(const QCPGraph* g) {
-  const int h =
-      g->valueAxis() && g->valueAxis()->axisRect() ? g->valueAxis()->axisRect()->height() : 0;
-  return std::max(h, 300);
-}
-
-// Cheap log2 for binning dots on a log axis: exponent plus a linear mantissa, within 0.09 of
-// log2. Binning only chooses which dots share a 2 × 2-pixel cell; every dot drawn is exact.
-double fastLog2(double y) {
-  int e = 0;
-  const double m = std::frexp(y, &e);  // y = m·2^e, m in [0.5, 1)
-  return static_cast<double>(e) + 2.0 * m - 2.0;
-}
-
-// The finite, drawable points among the first n, visited in order.
-template <typename F>
-void forEachPoint(const std::vector<double>& x, const std::vector<double>& y, std::size_t begin,
-                  std::size_t n, bool logY, F&& f) {
-  for (std::size_t i = begin; i < n; ++i) {
-    const double xi = x[i], yi = y[i];
-    if (std::isfinite(xi) && std::isfinite(yi) && (!logY || yi > 0.0)) f(xi, yi);
-  }
-}
-
-// The bounding box of the drawable points among the first n; x0 > x1 when there are none.
-struct Extent {
-  double x0, x1, y0, y1;
-};
-Extent extent(const std::vector<double>& x, const std::vector<double>& y, std::size_t begin,
-              std::size_t n, bool logY) {
-  const double inf = std::numeric_limits<double>::infinity();
-  Extent e{inf, -inf, inf, -inf};
-  forEachPoint(x, y, begin, n, logY, [&](double xi, double yi) {
-    e.x0 = std::min(e.x0, xi);
-    e.x1 = std::max(e.x1, xi);
-    e.y0 = std::min(e.y0, yi);
-    e.y1 = std::max(e.y1, yi);
-  });
-  return e;
-}
-
-// Keeps what a raster of `cols` columns can show of a line: per column the first, lowest,
-// highest and last point in time order. Exact on screen, and 55k points become a few thousand.
-void decimateLine(const std::vector<double>& x, const std::vector<double>& y, std::size_t begin,
-                  std::size_t n, bool logY, double x0, double x1, int cols,
-                  QVector<QCPGraphData>& out) {
-  const double scale = x1 > x0 ? cols / (x1 - x0) : 0.0;
-  long col = -1;
-  QCPGraphData first, lo, hi, last;
-  std::size_t count = 0;
-  auto flush = [&] {
-    if (count == 0) return;
-    out.append(first);
-    const bool lo_first = lo.key <= hi.key;
-    const QCPGraphData& a = lo_first ? lo : hi;
-    const QCPGraphData& b = lo_first ? hi : lo;
-    if (a.key != first.key || a.value != first.value) out.append(a);
-    if (b.key != a.key || b.value != a.value) out.append(b);
-    if (count > 1 && (last.key != b.key || last.value != b.value)) out.append(last);
-  };
-  forEachPoint(x, y, begin, n, logY, [&](double xi, double yi) {
-    const long c = static_cast<long>((xi - x0) * scale);
-    const QCPGraphData p(xi, yi);
-    if (c != col) {
-      flush();
-      col = c;
-      first = lo = hi = last = p;
-      count = 1;
-      return;
-    }
-    if (yi < lo.value) lo = p;
-    if (yi > hi.value) hi = p;
-    last = p;
-    ++count;
-  });
-  flush();
-}
-
-// Keeps one dot per occupied cell of a cols × rows raster: the same picture with fewer dots
-// (a dot is 2 px wide, so cells of 2 × 2 px lose nothing visible).
-void decimateDots(const std::vector<double>& x, const std::vector<double>& y, std::size_t begin,
-                  std::size_t n, bool logY, int cols, int rows, QVector<QCPGraphData>& out) {
-  auto fy = [logY](double v) { return logY ? fastLog2(v) : v; };
-  const auto [x0, x1, y0, y1] = extent(x, y, begin, n, logY);
-  if (x0 > x1) return;
-  const double fy0 = fy(y0), fspan = fy(y1) - fy0;
-  const double cscale = x1 > x0 ? cols / (x1 - x0) : 0.0;
-  const double rscale = fspan > 0 ? rows / fspan : 0.0;
-  std::vector<unsigned char> seen(static_cast<std::size_t>(cols + 1) * (rows + 1), 0);
-  forEachPoint(x, y, begin, n, logY, [&](double xi, double yi) {
-    const auto c = std::clamp(static_cast<long>((xi - x0) * cscale), 0L, static_cast<long>(cols));
-    const auto r =
-        std::clamp(static_cast<long>((fy(yi) - fy0) * rscale), 0L, static_cast<long>(rows));
-    unsigned char& s = seen[static_cast<std::size_t>(c * (rows + 1) + r)];
-    if (!s) {
-      s = 1;
-      out.append(QCPGraphData(xi, yi));
-    }
-  });
-}
-
-// The dot raster of a graph: 2 × 2-pixel cells of its axis rect.
-void decimateDotsFor(const QCPGraph* g, const std::vector<double>& x, const std::vector<double>& y,
-                     std::size_t begin, std::size_t n, bool logY, QVector<QCPGraphData>& out) {
-  decimateDots(x, y, begin, n, logY, std::max(columnsFor(g) / 2, 300),
-               std::max(rowsFor(g) / 2, 150), out);
-}
-
-}  // namespace
-
-namespace {
-const char* const kSrcX = "kfwSrcX";
-const char* const kSrcY = "kfwSrcY";
-const char* const kSrcN = "kfwSrcN";
-void setSource(QCPGraph* g, const std::vector<double>* x, const std::vector<double>* y,
-               std::size_t n) {
-  g->setProperty(kSrcX, QVariant::fromValue(reinterpret_cast<quintptr>(x)));
-  g->setProperty(kSrcY, QVariant::fromValue(reinterpret_cast<quintptr>(y)));
-  g->setProperty(kSrcN, QVariant::fromValue(static_cast<qulonglong>(n)));
-}
-}  // namespace
-
-SeriesSource seriesSource(const QCPGraph* g) {
-  SeriesSource s;
-  s.x = reinterpret_cast<const std::vector<double>*>(g->property(kSrcX).value<quintptr>());
-  s.y = reinterpret_cast<const std::vector<double>*>(g->property(kSrcY).value<quintptr>());
-  s.n = static_cast<std::size_t>(g->property(kSrcN).toULongLong());
-  if (!s.x || !s.y) return {};
-  return s;
-}
-
-void setSeries(QCPGraph* g, const std::vector<double>& x, const std::vector<double>& y,
-               std::size_t n, bool skipNaN) {
-  n = std::min({n, x.size(), y.size()});
-  const bool logY = g->valueAxis()->scaleType() == QCPAxis::stLogarithmic;
-  const int cols = columnsFor(g);
-  const bool dots = g->lineStyle() == QCPGraph::lsNone;
-  QVector<QCPGraphData> data;
-  if (n > static_cast<std::size_t>(4 * cols) && skipNaN && g->lineStyle() != QCPGraph::lsStepLeft) {
-    // The time span of the drawable points (time is increasing, so the first and last finite x).
-    std::size_t a = 0, b = n;
-    while (a < n && !std::isfinite(x[a]))
-      ++a;
-    while (b > a && !std::isfinite(x[b - 1]))
-      --b;
-    if (b > a) {
-      data.reserve(static_cast<qsizetype>(4 * cols + 4));
-      // Zoomed in: the columns of the visible range (and a point beyond each edge).
-      double x0 = x[a], x1 = x[b - 1];
-      if (userZoomedX(g->parentPlot())) {
-        const QCPRange r = g->keyAxis()->range();
-        const auto first = x.begin() + static_cast<std::ptrdiff_t>(a);
-        const auto last = x.begin() + static_cast<std::ptrdiff_t>(b);
-        auto lo = std::lower_bound(first, last, r.lower);
-        auto hi = std::upper_bound(lo, last, r.upper);
-        if (lo != first) --lo;
-        if (hi != last) ++hi;
-        a = static_cast<std::size_t>(lo - x.begin());
-        b = static_cast<std::size_t>(hi - x.begin());
-        x0 = r.lower;
-        x1 = r.upper;
-      }
-      if (dots) {
-        decimateDotsFor(g, x, y, a, b, logY, data);
-      } else {
-        decimateLine(x, y, a, b, logY, x0, x1, cols, data);
-      }
-      g->data()->set(data, true);
-      setSource(g, &x, &y, n);
-      return;
-    }
-  }
-  setSource(g, nullptr, nullptr, 0);
-  data.reserve(static_cast<qsizetype>(n));
-  for (std::size_t i = 0; i < n; ++i) {
-    const double v = y[i];
-    const bool good = std::isfinite(v) && std::isfinite(x[i]) && (!logY || v > 0.0);
-    if (good) {
-      data.append(QCPGraphData(x[i], v));
-    } else if (!skipNaN && std::isfinite(x[i])) {
-      data.append(QCPGraphData(x[i], std::numeric_limits<double>::quiet_NaN()));
-    }
-  }
-  g->data()->set(data, true);
-}
-
-namespace {
 // c at `alpha` over white, as an opaque colour.
 QColor overWhite(const QColor& c, int alpha) {
   auto mix = [alpha](int v) { return (v * alpha + 255 * (255 - alpha) + 127) / 255; };
@@ -424,112 +229,6 @@ Band addBand(QCustomPlot* p, const QString& name, const QColor& c, bool overlaps
   b.lower->setName("");  // the band is named by its upper edge
   b.lower->removeFromLegend();
   return b;
-}
-
-void setDots(QCPGraph* g, const std::vector<double>& x, const std::vector<double>& y) {
-  const std::size_t n = std::min(x.size(), y.size());
-  const bool logY = g->valueAxis()->scaleType() == QCPAxis::stLogarithmic;
-  QVector<QCPGraphData> data;
-  if (n > static_cast<std::size_t>(4 * columnsFor(g))) {
-    decimateDotsFor(g, x, y, 0, n, logY, data);
-  } else {
-    data.reserve(static_cast<qsizetype>(n));
-    forEachPoint(x, y, 0, n, logY,
-                 [&](double xi, double yi) { data.append(QCPGraphData(xi, yi)); });
-  }
-  g->data()->set(data, false);
-}
-
-void setCurve(QCPCurve* c, const std::vector<double>& keys, const std::vector<double>& values,
-              std::size_t n) {
-  n = std::min({n, keys.size(), values.size()});
-  const auto [k0, k1, v0, v1] = extent(keys, values, 0, n, false);
-  // A point is kept when it leaves the last kept point's cell of a grid finer than any pixel
-  // raster (1000 cells over the larger extent, about a pixel of an export).
-  const double cell = std::max(k1 - k0, v1 - v0) / 1000.0;
-  const double inv = cell > 0 ? 1.0 / cell : 0.0;
-  QVector<QCPCurveData> d;
-  long last_k = std::numeric_limits<long>::min(), last_v = last_k;
-  double last_key = 0.0, last_value = 0.0;
-  bool pending = false;
-  forEachPoint(keys, values, 0, n, false, [&](double k, double v) {
-    const long ck = static_cast<long>((k - k0) * inv), cv = static_cast<long>((v - v0) * inv);
-    if (ck == last_k && cv == last_v) {
-      last_key = k;
-      last_value = v;
-      pending = true;
-      return;
-    }
-    d.append(QCPCurveData(static_cast<double>(d.size()), k, v));
-    last_k = ck;
-    last_v = cv;
-    pending = false;
-  });
-  if (pending) d.append(QCPCurveData(static_cast<double>(d.size()), last_key, last_value));
-  c->data()->set(d, true);
-}
-
-namespace {
-
-// Fills a band from per-step limits lo(i), hi(i); dense bands are reduced to their per-column
-// envelope (highest upper, lowest lower).
-template <typename Lo, typename Hi>
-void fillBand(const Band& b, const std::vector<double>& x, std::size_t n, Lo&& lo, Hi&& hi) {
-  const int cols = columnsFor(b.upper);
-  const bool dense = n > static_cast<std::size_t>(4 * cols);
-  QVector<QCPGraphData> u, l;
-  const qsizetype cap = static_cast<qsizetype>(dense ? cols + 2 : n);
-  u.reserve(cap);
-  l.reserve(cap);
-  double x0 = n ? x.front() : 0.0, span = n ? x[n - 1] - x0 : 0.0;
-  std::size_t begin = 0, end = n;
-  if (dense && userZoomedX(b.upper->parentPlot())) {
-    // Zoomed in: the columns of the visible range (and a point beyond each edge).
-    const QCPRange r = b.upper->keyAxis()->range();
-    const auto last = x.begin() + static_cast<std::ptrdiff_t>(n);
-    auto from = std::lower_bound(x.begin(), last, r.lower);
-    auto to = std::upper_bound(from, last, r.upper);
-    if (from != x.begin()) --from;
-    if (to != last) ++to;
-    begin = static_cast<std::size_t>(from - x.begin());
-    end = static_cast<std::size_t>(to - x.begin());
-    x0 = r.lower;
-    span = r.size();
-  }
-  const double scale = dense && span > 0 ? cols / span : 0.0;
-  long col = -1;
-  for (std::size_t i = begin; i < end; ++i) {
-    const double lo_i = lo(i), hi_i = hi(i);
-    if (!std::isfinite(lo_i) || !std::isfinite(hi_i) || !std::isfinite(x[i])) continue;
-    const long c = scale > 0 ? static_cast<long>((x[i] - x0) * scale) : -2;
-    if (scale > 0 && c == col && !u.isEmpty()) {
-      u.back().value = std::max(u.back().value, hi_i);
-      l.back().value = std::min(l.back().value, lo_i);
-      continue;
-    }
-    col = c;
-    u.append(QCPGraphData(x[i], hi_i));
-    l.append(QCPGraphData(x[i], lo_i));
-  }
-  b.upper->data()->set(u, true);
-  b.lower->data()->set(l, true);
-}
-
-}  // namespace
-
-void setBand(const Band& b, const std::vector<double>& x, const std::vector<double>& center,
-             const std::vector<double>& halfwidth, std::size_t n) {
-  n = std::min({n, x.size(), center.size(), halfwidth.size()});
-  fillBand(
-      b, x, n, [&](std::size_t i) { return center[i] - halfwidth[i]; },
-      [&](std::size_t i) { return center[i] + halfwidth[i]; });
-}
-
-void setBandLimits(const Band& b, const std::vector<double>& x, const std::vector<double>& lo,
-                   const std::vector<double>& hi, std::size_t n) {
-  n = std::min({n, x.size(), lo.size(), hi.size()});
-  fillBand(
-      b, x, n, [&](std::size_t i) { return lo[i]; }, [&](std::size_t i) { return hi[i]; });
 }
 
 QCPItemStraightLine* addCursor(QCustomPlot* p) {
@@ -622,13 +321,37 @@ bool isTimePlot(const QCustomPlot* p) {
   return p && p->property(kTime).toBool();
 }
 
+namespace {
+// Fits each value axis to the visible plottables' values over keys [k0, k1], with the house
+// margins (6 % below, 12 % above; ×1.5 each way on a log axis). Axes with no data there keep
+// their range.
+void fitValues(QCustomPlot* p, double k0, double k1) {
+  for (QCPAxis* a : {p->yAxis, p->yAxis2}) {
+    if (!a->visible() && a == p->yAxis2) continue;
+    bool found = false;
+    QCPRange r = valueRangeIn(p, a, k0, k1, found);
+    if (!found) continue;
+    if (a->scaleType() == QCPAxis::stLogarithmic) {
+      if (r.lower > 0 && r.upper > 0) a->setRange(r.lower / 1.5, r.upper * 1.5);
+    } else {
+      const double span = r.size() > 0 ? r.size() : std::max(1.0, std::abs(r.center()));
+      a->setRange(r.lower - 0.06 * span, r.upper + 0.12 * span);
+    }
+  }
+}
+}  // namespace
+
 void rescale(QCustomPlot* p, double x0, double x1, double settle) {
   if (x1 > x0) p->setProperty(kTime, true);
   const bool keep_x = userZoomedX(p), keep_y = userZoomedY(p);
   if (keep_x && keep_y) return;
   const QCPRange xr = p->xAxis->range(), yr = p->yAxis->range(), y2r = p->yAxis2->range();
   rescaleAuto(p, x0, x1, settle);
-  if (keep_x) p->xAxis->setRange(xr);
+  if (keep_x) {
+    // Zoomed in time: the value axes fit what is in view, not the whole run.
+    p->xAxis->setRange(xr);
+    if (!keep_y) fitValues(p, xr.lower, xr.upper);
+  }
   if (keep_y) {
     p->yAxis->setRange(yr);
     p->yAxis2->setRange(y2r);

@@ -77,6 +77,10 @@ struct Band {
 Band addBand(QCustomPlot* p, const QString& name, const QColor& c, bool overlaps = false);
 void setBand(const Band& b, const std::vector<double>& x, const std::vector<double>& center,
              const std::vector<double>& halfwidth, std::size_t n);
+// A band center ± k·√variance (center null: 0 ± k·√variance); a negative or non-finite variance
+// leaves its step out. The square roots are taken only for the steps drawn.
+void setSigmaBand(const Band& b, const std::vector<double>& x, const std::vector<double>* center,
+                  const std::vector<double>& variance, double k, std::size_t n);
 // A band between two given curves.
 void setBandLimits(const Band& b, const std::vector<double>& x, const std::vector<double>& lo,
                    const std::vector<double>& hi, std::size_t n);

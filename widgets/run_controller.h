@@ -33,6 +33,8 @@ class RunController : public QObject {
   // Asks for a run with these values; coalesced, latest wins.
   void request(const ParamValues& values);
   bool busy() const { return busy_; }
+  // The worker thread's CPU time in the last finished run (simulate + filter + metrics).
+  double lastCpuMs() const { return last_cpu_ms_; }
   // Blocks (processing events) until idle with nothing pending; false on timeout.
   bool waitIdle(int timeout_ms);
 
@@ -56,6 +58,7 @@ class RunController : public QObject {
   std::shared_ptr<const Dataset> last_dataset_;
   std::optional<ParamValues> pending_;
   bool busy_ = false;
+  double last_cpu_ms_ = 0.0;
   std::uint64_t generation_ = 0;
   std::shared_ptr<std::atomic<bool>> cancel_;
 };

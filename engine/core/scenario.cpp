@@ -106,7 +106,11 @@ Status finalize_run(RunResult& r, const Scenario& s, bool check_finite) {
       r.undefined.emplace("rmse." + st.key, "no truth for '" + st.key + "' in the data");
     }
   }
-  for (const auto& c : check_finite ? r.channels() : std::vector<InnovationChannel>{}) {
+  const auto channels = check_finite ? r.channels() : std::vector<InnovationChannel>{};
+  r.channel_names.clear();
+  for (const auto& c : channels)
+    r.channel_names.push_back({c.name, c.label, c.dof, {}, {}, {}});
+  for (const auto& c : channels) {
     for (std::size_t k = 0; k < c.nis.size(); ++k) {
       if (std::isinf(c.nis[k])) {
         return failure(step_text(r, k) + ": the NIS of channel '" + c.name +
@@ -168,7 +172,9 @@ MetricSpec describe_metric(const Scenario& s, std::string_view key, const RunRes
         }
       }
     } else if (r) {
-      for (const auto& c : r->channels()) {
+      std::vector<InnovationChannel> computed;  // a result finalize_run did not see
+      if (r->channel_names.empty()) computed = r->channels();
+      for (const auto& c : r->channel_names.empty() ? computed : r->channel_names) {
         if (c.name == name) {
           label = c.display();
           if (spec.key == "nis_mean.<channel>") out.target = c.dof;

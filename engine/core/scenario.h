@@ -54,6 +54,9 @@ struct RunResult {
   Metrics metrics;                    // finite values only (see finalize_run)
   UndefinedMetrics undefined;         // metrics undefined for this run, with the reason
   std::vector<std::string> warnings;  // numerical trouble recorded during the run, shown to users
+  // The innovation channels' names, labels and dof without their arrays (finalize_run fills it;
+  // describe_metric reads it, so the metrics table does not recompute every channel).
+  std::vector<InnovationChannel> channel_names;
   std::size_t steps() const { return t.size(); }
   // Per-step output as a CSV table (estimates, covariance diagonal, innovations, ...).
   virtual Dataset table() const = 0;

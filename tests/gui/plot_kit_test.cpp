@@ -41,6 +41,25 @@ TEST(PlotKit, DenseLineKeepsEndsAndExtremes) {
   EXPECT_DOUBLE_EQ(range.upper, *std::max_element(s.y.begin(), s.y.end()));
 }
 
+TEST(PlotKit, DenseStepGraphKeepsItsLevelsAndEnds) {
+  // A gain held between updates (NaN between them): reduced like a line, every level reached in
+  // the data is still drawn, and the last level holds to the end.
+  QCustomPlot p;
+  QCPGraph* g = plot::addGraph(&p, "gain", Qt::blue, plot::Style::kStep);
+  std::vector<double> x, y;
+  for (int i = 0; i < 60000; ++i) {
+    x.push_back(0.01 * i);
+    y.push_back(i % 3 == 0 ? 0.5 + 0.4 * std::exp(-0.001 * i) : std::nan(""));
+  }
+  plot::setSeries(g, x, y, plot::kAll);
+  EXPECT_LT(g->data()->size(), 5000);
+  bool found = false;
+  const auto range = g->data()->valueRange(found);
+  EXPECT_DOUBLE_EQ(range.upper, 0.9);
+  EXPECT_DOUBLE_EQ(range.lower, y[59997]);
+  EXPECT_DOUBLE_EQ((g->data()->constEnd() - 1)->key, x[59997]);
+}
+
 TEST(PlotKit, SparseSeriesAndPrefixAreExact) {
   QCustomPlot p;
   QCPGraph* g = plot::addGraph(&p, "line", Qt::blue);

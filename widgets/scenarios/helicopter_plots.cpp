@@ -69,7 +69,7 @@ class HelicopterView final : public ScenarioView {
     result_ = r;
     angle_->setData(&r->t, &r->theta, &r->P11, r->truth.empty() ? nullptr : &r->truth, &r->angle);
     innov_->setData(&r->t, &r->innovation, &r->S);
-    nis_->setData(&r->t, &r->nis, 1.0);
+    nis_->setData(&r->t, &r->nis, 1.0, &r->nis_avg, r->nis_window);
     bias_->setData(&r->t, &r->bias, &r->P22, r->bias_truth.empty() ? nullptr : &r->bias_truth);
     // Gain curve from the engine, wide enough to hold the operating point.
     const double b = r->beta;

@@ -159,12 +159,11 @@ class HelicopterScenario final : public Scenario {
     m["beta"] = r->beta;
     // Whiteness of the normalised innovations y/√S at the angle sensor's own rate, and the
     // moving-average NIS, for the plots; the metrics come from add_consistency_metrics.
+    const auto channels = r->channels();
     {
-      std::vector<double> e(r->steps(), kNoSample);
-      for (std::size_t k = 0; k < r->steps(); ++k) {
-        if (std::isfinite(r->nis[k])) e[k] = r->innovation[k] / std::sqrt(r->S[k]);
-      }
-      r->whiteness = ljung_box(e, 20);
+      // The channel's normalised innovations; its whiteness metric is this same test.
+      r->whiteness = ljung_box(channels.front().normalized, 20);
+      if (std::isfinite(r->whiteness.p_value)) m["whiteness_p.angle"] = r->whiteness.p_value;
       r->nis_window = static_cast<std::size_t>(param(v, "window"));
       r->nis_avg = moving_average_finite(r->nis, r->nis_window);
     }
@@ -200,7 +199,7 @@ class HelicopterScenario final : public Scenario {
       r->nees_avg = moving_average_finite(nees, r->nis_window);
       r->nees = std::move(nees);
     }
-    add_consistency_metrics(r->channels(), r->nees_series(), m, r->undefined);
+    add_consistency_metrics(channels, r->nees_series(), m, r->undefined);
     return std::shared_ptr<RunResult>(std::move(r));
   }
 

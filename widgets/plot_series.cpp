@@ -1,0 +1,291 @@
+// The series setters of plot_kit.h: dense series reduced to the raster (series_reduce.h), the
+// source arrays kept for the readout, dots, tracks and bands.
+#include <qcustomplot.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "plot_kit.h"
+#include "series_reduce.h"
+
+namespace kfw::plot {
+
+namespace {
+
+// Drawing resolution for decimation: the plot's width in pixels (at least 600, so an export at
+// twice the on-screen size still gets one column per two pixels).
+int columnsFor(const QCPGraph* g) {
+  const int w = g->keyAxis() && g->keyAxis()->axisRect() ? g->keyAxis()->axisRect()->width() : 0;
+  return std::max(w, 600);
+}
+
+int rowsFor(const QCPGraph* g) {
+  const int h =
+      g->valueAxis() && g->valueAxis()->axisRect() ? g->valueAxis()->axisRect()->height() : 0;
+  return std::max(h, 300);
+}
+
+// Cheap log2 for binning dots on a log axis: exponent plus a linear mantissa, within 0.09 of
+// log2. Binning only chooses which dots share a 2 × 2-pixel cell; every dot drawn is exact.
+double fastLog2(double y) {
+  int e = 0;
+  const double m = std::frexp(y, &e);  // y = m·2^e, m in [0.5, 1)
+  return static_cast<double>(e) + 2.0 * m - 2.0;
+}
+
+// The finite, drawable points among the first n, visited in order.
+template <typename F>
+void forEachPoint(const std::vector<double>& x, const std::vector<double>& y, std::size_t begin,
+                  std::size_t n, bool logY, F&& f) {
+  for (std::size_t i = begin; i < n; ++i) {
+    const double xi = x[i], yi = y[i];
+    if (std::isfinite(xi) && std::isfinite(yi) && (!logY || yi > 0.0)) f(xi, yi);
+  }
+}
+
+// The bounding box of the drawable points among the first n; x0 > x1 when there are none.
+struct Extent {
+  double x0, x1, y0, y1;
+};
+Extent extent(const std::vector<double>& x, const std::vector<double>& y, std::size_t begin,
+              std::size_t n, bool logY) {
+  const double inf = std::numeric_limits<double>::infinity();
+  Extent e{inf, -inf, inf, -inf};
+  forEachPoint(x, y, begin, n, logY, [&](double xi, double yi) {
+    e.x0 = std::min(e.x0, xi);
+    e.x1 = std::max(e.x1, xi);
+    e.y0 = std::min(e.y0, yi);
+    e.y1 = std::max(e.y1, yi);
+  });
+  return e;
+}
+
+// Keeps one dot per occupied cell of a cols × rows raster: the same picture with fewer dots
+// (a dot is 2 px wide, so cells of 2 × 2 px lose nothing visible).
+void decimateDots(const std::vector<double>& x, const std::vector<double>& y, std::size_t begin,
+                  std::size_t n, bool logY, int cols, int rows, QVector<QCPGraphData>& out) {
+  auto fy = [logY](double v) { return logY ? fastLog2(v) : v; };
+  const auto [x0, x1, y0, y1] = extent(x, y, begin, n, logY);
+  if (x0 > x1) return;
+  const double fy0 = fy(y0), fspan = fy(y1) - fy0;
+  const double cscale = x1 > x0 ? cols / (x1 - x0) : 0.0;
+  const double rscale = fspan > 0 ? rows / fspan : 0.0;
+  std::vector<unsigned char> seen(static_cast<std::size_t>(cols + 1) * (rows + 1), 0);
+  forEachPoint(x, y, begin, n, logY, [&](double xi, double yi) {
+    const auto c = std::clamp(static_cast<long>((xi - x0) * cscale), 0L, static_cast<long>(cols));
+    const auto r =
+        std::clamp(static_cast<long>((fy(yi) - fy0) * rscale), 0L, static_cast<long>(rows));
+    unsigned char& s = seen[static_cast<std::size_t>(c * (rows + 1) + r)];
+    if (!s) {
+      s = 1;
+      out.append(QCPGraphData(xi, yi));
+    }
+  });
+}
+
+// The dot raster of a graph: 2 × 2-pixel cells of its axis rect.
+void decimateDotsFor(const QCPGraph* g, const std::vector<double>& x, const std::vector<double>& y,
+                     std::size_t begin, std::size_t n, bool logY, QVector<QCPGraphData>& out) {
+  decimateDots(x, y, begin, n, logY, std::max(columnsFor(g) / 2, 300),
+               std::max(rowsFor(g) / 2, 150), out);
+}
+
+}  // namespace
+
+namespace {
+const char* const kSrcX = "kfwSrcX";
+const char* const kSrcY = "kfwSrcY";
+const char* const kSrcN = "kfwSrcN";
+void setSource(QCPGraph* g, const std::vector<double>* x, const std::vector<double>* y,
+               std::size_t n) {
+  g->setProperty(kSrcX, QVariant::fromValue(reinterpret_cast<quintptr>(x)));
+  g->setProperty(kSrcY, QVariant::fromValue(reinterpret_cast<quintptr>(y)));
+  g->setProperty(kSrcN, QVariant::fromValue(static_cast<qulonglong>(n)));
+}
+}  // namespace
+
+SeriesSource seriesSource(const QCPGraph* g) {
+  SeriesSource s;
+  s.x = reinterpret_cast<const std::vector<double>*>(g->property(kSrcX).value<quintptr>());
+  s.y = reinterpret_cast<const std::vector<double>*>(g->property(kSrcY).value<quintptr>());
+  s.n = static_cast<std::size_t>(g->property(kSrcN).toULongLong());
+  if (!s.x || !s.y) return {};
+  return s;
+}
+
+void setSeries(QCPGraph* g, const std::vector<double>& x, const std::vector<double>& y,
+               std::size_t n, bool skipNaN) {
+  n = std::min({n, x.size(), y.size()});
+  const bool logY = g->valueAxis()->scaleType() == QCPAxis::stLogarithmic;
+  const int cols = columnsFor(g);
+  const bool dots = g->lineStyle() == QCPGraph::lsNone;
+  QVector<QCPGraphData> data;
+  // Dense series are reduced to the raster (lines and steps: first/min/max/last per column;
+  // a step graph keeps its level changes to within a column).
+  if (n > static_cast<std::size_t>(4 * cols) && skipNaN) {
+    // The time span of the drawable points (time is increasing, so the first and last finite x).
+    std::size_t a = 0, b = n;
+    while (a < n && !std::isfinite(x[a]))
+      ++a;
+    while (b > a && !std::isfinite(x[b - 1]))
+      --b;
+    if (b > a) {
+      double x0 = x[a], x1 = x[b - 1];
+      if (userZoomedX(g->parentPlot())) {
+        // Zoomed in: the columns of the visible range (and a point beyond each edge).
+        const QCPRange r = g->keyAxis()->range();
+        visibleRange(x.data(), a, b, r.lower, r.upper);
+        x0 = r.lower;
+        x1 = r.upper;
+      }
+      std::vector<XY> reduced;
+      reduced.reserve(static_cast<std::size_t>(4 * cols + 8));
+      if (dots) {
+        reduceDots(x.data(), y.data(), a, b, logY, std::max(cols / 2, 300),
+                   std::max(rowsFor(g) / 2, 150), reduced);
+      } else {
+        reduceLine(x.data(), y.data(), a, b, logY, x0, x1, cols, reduced);
+      }
+      data.reserve(static_cast<qsizetype>(reduced.size()));
+      for (const XY& p : reduced)
+        data.append(QCPGraphData(p.x, p.y));
+      g->data()->set(data, true);
+      setSource(g, &x, &y, n);
+      return;
+    }
+  }
+  setSource(g, nullptr, nullptr, 0);
+  data.reserve(static_cast<qsizetype>(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    const double v = y[i];
+    const bool good = std::isfinite(v) && std::isfinite(x[i]) && (!logY || v > 0.0);
+    if (good) {
+      data.append(QCPGraphData(x[i], v));
+    } else if (!skipNaN && std::isfinite(x[i])) {
+      data.append(QCPGraphData(x[i], std::numeric_limits<double>::quiet_NaN()));
+    }
+  }
+  g->data()->set(data, true);
+}
+
+void setDots(QCPGraph* g, const std::vector<double>& x, const std::vector<double>& y) {
+  const std::size_t n = std::min(x.size(), y.size());
+  const bool logY = g->valueAxis()->scaleType() == QCPAxis::stLogarithmic;
+  QVector<QCPGraphData> data;
+  if (n > static_cast<std::size_t>(4 * columnsFor(g))) {
+    decimateDotsFor(g, x, y, 0, n, logY, data);
+  } else {
+    data.reserve(static_cast<qsizetype>(n));
+    forEachPoint(x, y, 0, n, logY,
+                 [&](double xi, double yi) { data.append(QCPGraphData(xi, yi)); });
+  }
+  g->data()->set(data, false);
+}
+
+void setCurve(QCPCurve* c, const std::vector<double>& keys, const std::vector<double>& values,
+              std::size_t n) {
+  n = std::min({n, keys.size(), values.size()});
+  const auto [k0, k1, v0, v1] = extent(keys, values, 0, n, false);
+  // A point is kept when it leaves the last kept point's cell of a grid finer than any pixel
+  // raster (1000 cells over the larger extent, about a pixel of an export).
+  const double cell = std::max(k1 - k0, v1 - v0) / 1000.0;
+  const double inv = cell > 0 ? 1.0 / cell : 0.0;
+  QVector<QCPCurveData> d;
+  long last_k = std::numeric_limits<long>::min(), last_v = last_k;
+  double last_key = 0.0, last_value = 0.0;
+  bool pending = false;
+  forEachPoint(keys, values, 0, n, false, [&](double k, double v) {
+    const long ck = static_cast<long>((k - k0) * inv), cv = static_cast<long>((v - v0) * inv);
+    if (ck == last_k && cv == last_v) {
+      last_key = k;
+      last_value = v;
+      pending = true;
+      return;
+    }
+    d.append(QCPCurveData(static_cast<double>(d.size()), k, v));
+    last_k = ck;
+    last_v = cv;
+    pending = false;
+  });
+  if (pending) d.append(QCPCurveData(static_cast<double>(d.size()), last_key, last_value));
+  c->data()->set(d, true);
+}
+
+namespace {
+
+// Fills a band from per-step limits (limits(i, lo, hi)); dense bands are reduced to their
+// per-column envelope (highest upper, lowest lower).
+template <typename Limits>
+void fillBand(const Band& b, const std::vector<double>& x, std::size_t n, Limits&& limits) {
+  const int cols = columnsFor(b.upper);
+  std::size_t begin = 0, end = n;
+  double x0 = n ? x.front() : 0.0, x1 = n ? x[n - 1] : 0.0;
+  if (n <= static_cast<std::size_t>(4 * cols)) {
+    x1 = x0;  // sparse: every step its own point
+  } else if (userZoomedX(b.upper->parentPlot())) {
+    // Zoomed in: the columns of the visible range (and a point beyond each edge).
+    const QCPRange r = b.upper->keyAxis()->range();
+    visibleRange(x.data(), begin, end, r.lower, r.upper);
+    x0 = r.lower;
+    x1 = r.upper;
+  }
+  std::vector<XY> u, l;
+  const std::size_t cap = x1 > x0 ? static_cast<std::size_t>(cols + 4) : n;
+  u.reserve(cap);
+  l.reserve(cap);
+  if (x1 > x0) {
+    reduceBand(x.data(), begin, end, x0, x1, cols, limits, u, l);
+  } else {
+    for (std::size_t i = 0; i < n; ++i) {
+      double lo_i = 0.0, hi_i = 0.0;
+      limits(i, lo_i, hi_i);
+      if (!drawable(lo_i, false) || !drawable(hi_i, false) || !std::isfinite(x[i])) continue;
+      u.push_back({x[i], hi_i});
+      l.push_back({x[i], lo_i});
+    }
+  }
+  auto put = [](QCPGraph* g, const std::vector<XY>& v) {
+    QVector<QCPGraphData> d;
+    d.reserve(static_cast<qsizetype>(v.size()));
+    for (const XY& p : v)
+      d.append(QCPGraphData(p.x, p.y));
+    g->data()->set(d, true);
+  };
+  put(b.upper, u);
+  put(b.lower, l);
+}
+
+}  // namespace
+
+void setBand(const Band& b, const std::vector<double>& x, const std::vector<double>& center,
+             const std::vector<double>& halfwidth, std::size_t n) {
+  n = std::min({n, x.size(), center.size(), halfwidth.size()});
+  fillBand(b, x, n, [&](std::size_t i, double& lo, double& hi) {
+    lo = center[i] - halfwidth[i];
+    hi = center[i] + halfwidth[i];
+  });
+}
+
+void setSigmaBand(const Band& b, const std::vector<double>& x, const std::vector<double>* center,
+                  const std::vector<double>& variance, double k, std::size_t n) {
+  n = std::min({n, x.size(), variance.size(), center ? center->size() : n});
+  fillBand(b, x, n, [&](std::size_t i, double& lo, double& hi) {
+    const double v = variance[i];
+    const double half = v >= 0.0 ? k * std::sqrt(v) : std::numeric_limits<double>::quiet_NaN();
+    const double c = center ? (*center)[i] : 0.0;
+    lo = c - half;
+    hi = c + half;
+  });
+}
+
+void setBandLimits(const Band& b, const std::vector<double>& x, const std::vector<double>& lo,
+                   const std::vector<double>& hi, std::size_t n) {
+  n = std::min({n, x.size(), lo.size(), hi.size()});
+  fillBand(b, x, n, [&](std::size_t i, double& l, double& h) {
+    l = lo[i];
+    h = hi[i];
+  });
+}
+
+}  // namespace kfw::plot

@@ -87,8 +87,11 @@ void setValue(QTableWidgetItem* item, const RunResult* r, const MetricSpec& spec
   item->setData(MetricsPanel::kValueRole, value);
   if (item->data(kVerdictRole).toString() != verdict || !item->data(kVerdictRole).isValid()) {
     item->setData(kVerdictRole, verdict);
-    item->setIcon(verdict.isEmpty() ? QIcon() : mark(verdict == "good"));
-    item->setForeground(verdict == "bad" ? QBrush(QColor(170, 30, 20)) : QBrush());
+    // No mark: no decoration data at all (a null QIcon still reserves the decoration's room).
+    item->setData(Qt::DecorationRole,
+                  verdict.isEmpty() ? QVariant() : QVariant(mark(verdict == "good")));
+    item->setData(Qt::ForegroundRole,
+                  verdict == "bad" ? QVariant(QBrush(QColor(170, 30, 20))) : QVariant());
   }
 }
 
@@ -106,18 +109,11 @@ MetricsPanel::MetricsPanel(QWidget* parent) : QTableWidget(0, 2, parent) {
   setHorizontalHeaderLabels({"metric", "live"});
   verticalHeader()->setVisible(false);
   // Compact rows; a name too long for its column wraps instead of being cut ("nees_in_bou…").
-  // Row heights fit the (wrapped) names: measured when the rows or the name column's width
-  // change, not on every value update (a ResizeToContents header re-measures every row then).
-  verticalHeader()->setSectionResizeMode(QHeaderView::Fixed);
+  verticalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   verticalHeader()->setMinimumSectionSize(fontMetrics().height() + 2);
-  connect(horizontalHeader(), &QHeaderView::sectionResized, this, [this](int logical, int, int) {
-    if (logical == 0) resizeRowsToContents();
-  });
   setWordWrap(true);
   setTextElideMode(Qt::ElideNone);
-  // Value columns fit their values, measured once per update (fitValueColumns): a
-  // ResizeToContents column re-measures the whole column on every cell that changes.
-  horizontalHeader()->setSectionResizeMode(QHeaderView::Fixed);
+  horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   horizontalHeader()->setSectionResizeMode(0, QHeaderView::Stretch);
   setEditTriggers(QAbstractItemView::NoEditTriggers);
   setSelectionMode(QAbstractItemView::NoSelection);
@@ -150,7 +146,7 @@ void MetricsPanel::setRuns(const Scenario& scenario, std::shared_ptr<const RunRe
   setColumnCount(static_cast<int>(headers.size()));
   setHorizontalHeaderLabels(headers);
   for (int c = 1; c < columnCount(); ++c)
-    horizontalHeader()->setSectionResizeMode(c, QHeaderView::Fixed);
+    horizontalHeader()->setSectionResizeMode(c, QHeaderView::ResizeToContents);
   if (!live) {
     setRowCount(0);
     primary_.clear();
@@ -193,6 +189,9 @@ void MetricsPanel::setRuns(const Scenario& scenario, std::shared_ptr<const RunRe
   for (const auto& r : rows)
     layout << q(r.spec.key);
   if (layout == layout_ && rowCount() > 0) {
+    // One change notice for the whole update: the headers fit their sections to the contents
+    // once, not once per changed cell (each notice re-measures every row).
+    model()->blockSignals(true);
     for (int row = 0; row < rowCount(); ++row) {
       const QTableWidgetItem* name = item(row, 0);
       if (!name || !name->data(kKeyRole).isValid()) continue;  // a group header
@@ -204,7 +203,9 @@ void MetricsPanel::setRuns(const Scenario& scenario, std::shared_ptr<const RunRe
       for (int j = 0; j < snapshots.size(); ++j)
         setValue(item(row, 2 + j), snapshots[j].second.get(), spec->spec);
     }
-    fitValueColumns();
+    model()->blockSignals(false);
+    emit model()->dataChanged(model()->index(0, 1),
+                              model()->index(rowCount() - 1, columnCount() - 1));
     return;
   }
   layout_ = layout;
@@ -273,13 +274,6 @@ void MetricsPanel::setRuns(const Scenario& scenario, std::shared_ptr<const RunRe
     ++row;
   }
   setRowCount(row);
-  fitValueColumns();
-  resizeRowsToContents();
-}
-
-void MetricsPanel::fitValueColumns() {
-  for (int c = 1; c < columnCount(); ++c)
-    resizeColumnToContents(c);
 }
 
 }  // namespace kfw

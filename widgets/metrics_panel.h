@@ -41,7 +41,6 @@ class MetricsPanel : public QTableWidget {
   static QString format(double v);
 
  private:
-  void fitValueColumns();
   QString primary_;
   QStringList layout_;  // headers, primary key and row keys of the table as built
 };

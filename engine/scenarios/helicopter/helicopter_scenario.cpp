@@ -159,7 +159,8 @@ class HelicopterScenario final : public Scenario {
     m["beta"] = r->beta;
     // Whiteness of the normalised innovations y/√S at the angle sensor's own rate, and the
     // moving-average NIS, for the plots; the metrics come from add_consistency_metrics.
-    const auto channels = r->channels();
+    r->channel_cache = r->channels();
+    const auto& channels = r->channel_cache;
     {
       // The channel's normalised innovations; its whiteness metric is this same test.
       r->whiteness = ljung_box(channels.front().normalized, 20);

@@ -18,6 +18,7 @@ Dataset HelicopterResult::table() const {
 }
 
 std::vector<InnovationChannel> HelicopterResult::channels() const {
+  if (!channel_cache.empty()) return channel_cache;
   InnovationChannel c;
   c.name = "angle";
   c.nis = nis;

@@ -42,6 +42,9 @@ struct HelicopterResult final : RunResult {
   std::vector<double> nees, nees_avg;
   double nees_dof = 1.0;
   Whiteness whiteness;
+  // The angle channel as channels() builds it, kept by the scenario's run (empty: built on
+  // demand), so finalize_run and the metrics do not take 55 k logarithms again.
+  std::vector<InnovationChannel> channel_cache;
 
   Dataset table() const override;
   std::vector<InnovationChannel> channels() const override;

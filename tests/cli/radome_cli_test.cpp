@@ -44,7 +44,7 @@ TEST(RadomeCli, ReproducesSeed001) {
 }
 
 TEST(RadomeCli, EqualGridEndsAreAWarningNamingTheKeys) {
-  const auto o = cli("run " + kPreset + " --set grid.min=0.02 --set grid.max=0.02");
+  const auto o = cli("run " + kPreset + " --set grid.min=0 --set grid.max=0");
   EXPECT_EQ(o.code, 0) << o.text;
   EXPECT_NE(o.text.find("warning: grid.min = grid.max"), std::string::npos) << o.text;
 }

@@ -169,9 +169,6 @@ TEST(BallbeamScenario, BadInputGivesClearMessages) {
     EXPECT_FALSE(f.s->simulate(v).ok());
     EXPECT_FALSE(f.s->gain(v).ok());
   }
-  ParamValues late = f.v;
-  late["sim.step_time"] = 20;
-  expect_error(late, "sim.step_time");
   // Replay needs the sensor column.
   ParamValues rv = f.v;
   rv["mode"] = 1;
@@ -183,6 +180,30 @@ TEST(BallbeamScenario, BadInputGivesClearMessages) {
   d.add("x_meas", 3) = {0.0, std::nan(""), 0.01};
   d.columns[0] = {0.0, 0.0, 0.0};  // not increasing: no sample period
   expect_data_error(d, rv, "sample period");
+}
+
+TEST(BallbeamScenario, StepAfterTheEndRunsWithoutAStep) {
+  // sim.step_time is declared up to 100 s, sim.duration from 2 s: a step at or after the end of
+  // the run leaves the set point at 0 — a warning naming sim.step_time, and the tracking RMSE
+  // (from the step on) undefined with that reason; never refused, never a NaN.
+  Fixture f;
+  ParamValues late = f.v;
+  late["sim.step_time"] = 20;
+  late["sim.duration"] = 5;
+  auto r = f.s->run(Dataset{}, late);
+  ASSERT_TRUE(r.ok()) << r.error();
+  bool warned = false;
+  for (const auto& w : (*r)->warnings)
+    warned = warned || w.find("sim.step_time") != std::string::npos;
+  EXPECT_TRUE(warned);
+  for (const char* k : {"tracking_rmse", "tracking_rmse_detect_on", "tracking_rmse_detect_off"}) {
+    ASSERT_TRUE((*r)->undefined.count(k)) << k;
+    EXPECT_NE((*r)->undefined.at(k).find("set-point step"), std::string::npos)
+        << (*r)->undefined.at(k);
+    EXPECT_FALSE((*r)->metrics.count(k)) << k;
+  }
+  for (const auto& [k, v] : (*r)->metrics)
+    EXPECT_TRUE(std::isfinite(v)) << k;
 }
 
 TEST(BallbeamScenario, GainReportsClosedFormAndDare) {

@@ -179,16 +179,16 @@ TEST(RadomeScenario, NeesOfTheCombinedPositionIsFiniteAndSensible) {
 TEST(RadomeScenario, EqualGridEndsWarnNamingTheKeys) {
   // grid.min = grid.max with n > 1 makes identical modes: a warning, not an error (a slider
   // dragged through equality should not stop the run).
-  const SimRun r = run_with({{"grid.min", 0.02}, {"grid.max", 0.02}});
+  const SimRun r = run_with({{"grid.min", 0.0}, {"grid.max", 0.0}});
   ASSERT_EQ(r.result->warnings.size(), 1u);
   const std::string& w = r.result->warnings[0];
   EXPECT_NE(w.find("grid.min"), std::string::npos) << w;
   EXPECT_NE(w.find("grid.max"), std::string::npos) << w;
   EXPECT_NE(w.find("49 modes"), std::string::npos) << w;
-  EXPECT_EQ(r.result->slope_psi.back(), 0.02);
+  EXPECT_EQ(r.result->slope_psi.back(), 0.0);
   // One value per axis is a legitimate single-mode filter; the default grid is fine too.
   EXPECT_TRUE(
-      run_with({{"grid.min", 0.02}, {"grid.max", 0.02}, {"grid.n_psi", 1}, {"grid.n_theta", 1}})
+      run_with({{"grid.min", 0.0}, {"grid.max", 0.0}, {"grid.n_psi", 1}, {"grid.n_theta", 1}})
           .result->warnings.empty());
   EXPECT_TRUE(run_with({}).result->warnings.empty());
 }

@@ -7,7 +7,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <set>
 #include <sstream>
 
 #include "core/workspace.h"
@@ -16,13 +15,6 @@ namespace kfw {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Cases that fail in scenario files owned by issue 15 (ballbeam, radome); skipped, not hidden.
-// radome: grid.min's range reaches above grid.max's preset value and vice versa (the grid must
-// not be reversed), so either end alone is refused. ballbeam: sim.step_time's range (to 100 s)
-// reaches past the preset's sim.duration (15 s).
-const std::set<std::string> kIssue15 = {"radome grid.min=max", "radome grid.max=min",
-                                        "ballbeam sim.step_time=max"};
 
 std::vector<std::string> preset_files() {
   std::vector<std::string> files;
@@ -88,7 +80,6 @@ TEST_P(RangeEnds, EveryParameterAtBothEnds) {
   auto ws = open_workspace(preset, std::nullopt, {});
   ASSERT_TRUE(ws.ok()) << ws.error();
   const ParamTable& table = ws->scenario->params();
-  std::vector<std::string> skipped;
   for (const auto& spec : table.specs()) {
     if (spec.scale == Scale::kChoice || spec.scale == Scale::kToggle) continue;
     auto range = std::make_pair(spec.min, spec.max);
@@ -98,20 +89,8 @@ TEST_P(RangeEnds, EveryParameterAtBothEnds) {
       const std::string why = check_end(preset, spec.key, v, ws->values, table);
       const std::string id = fs::path(preset).stem().string() + " " + spec.key + "=" +
                              (v == range.first ? "min" : "max");
-      // After issue 15's merge (the ball may leave the beam) several ballbeam ends leave
-      // tracking_rmse_detect_off undefined as "no finite value": listed, left to issue 15.
-      if (kIssue15.count(id) || (id.rfind("ballbeam ", 0) == 0 && !why.empty())) {
-        skipped.push_back(id + (why.empty() ? " (passes now)" : ": " + why));
-        continue;
-      }
       EXPECT_EQ(why, "") << id << " (" << v << ")";
     }
-  }
-  if (!skipped.empty()) {
-    std::string list;
-    for (const auto& s : skipped)
-      list += "\n  " + s;
-    GTEST_SKIP() << "left to issue 15 (engine/scenarios/ballbeam, radome):" << list;
   }
 }
 

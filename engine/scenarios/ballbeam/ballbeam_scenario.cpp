@@ -237,10 +237,6 @@ class BallbeamScenario final : public Scenario {
     p.seed = static_cast<std::uint64_t>(param(v, "sim.seed"));
     p.V_max = param(v, "sim.V_max");
     p.theta_max_rad = param(v, "sim.theta_max");
-    if (p.step_time_s >= p.duration_s)
-      return Error{"sim.step_time (" + num(p.step_time_s) +
-                   " s) must be before the end of the run, sim.duration (" + num(p.duration_s) +
-                   " s)"};
     if (p.duration_s / p.Ts_s > 2e6)
       return Error{"sim.duration / Ts exceeds 2 million samples; raise Ts or shorten the run"};
     return p;
@@ -314,12 +310,27 @@ class BallbeamScenario final : public Scenario {
       r->x_hat_detect_on = padded(t_on.x_hat);
       r->x_hat_detect_off = padded(t_off.x_hat);
       r->step_time_s = lp->step_time_s;
+      if (lp->step_time_s >= lp->duration_s)
+        r->warnings.push_back("sim.step_time (" + num(lp->step_time_s) +
+                              " s) is not before the end of the run (sim.duration = " +
+                              num(lp->duration_s) + " s): the set point stays at 0");
       Metrics& m = r->metrics;
       const double half_m = lp->sensor.half_length_m();
       auto variant = [&](const LoopTrace& t, const std::string& suffix, const std::string& label) {
         const std::size_t from = first_index_at(t.t, lp->step_time_s);
         m["rmse_pos" + suffix] = rmse_finite(t.x_hat, t.x_true);
         m["tracking_rmse" + suffix] = rmse_finite(t.x_true, t.setpoint, from);
+        // No sample at or after the step: the set point never moved in this run (a step at or
+        // after sim.duration), or the ball left the beam before it.
+        if (from >= t.t.size()) {
+          r->undefined.emplace(
+              "tracking_rmse" + suffix,
+              t.fell && lp->step_time_s < lp->duration_s
+                  ? "the ball left the beam at t = " + num(t.left_beam_at_s) +
+                        " s, before the set-point step at " + num(lp->step_time_s) + " s"
+                  : "no sample after the set-point step (sim.step_time = " + num(lp->step_time_s) +
+                        " s, the run ends at " + num(lp->duration_s) + " s)");
+        }
         m["max_abs_pos" + suffix] = max_abs(t.x_true);
         m["max_abs_theta" + suffix] = max_abs(t.theta);
         m["V_rms" + suffix] = std::sqrt(mean_square(t.V));
@@ -345,7 +356,10 @@ class BallbeamScenario final : public Scenario {
       m["tracking_excess_detect_off"] = rmse_finite(t_off.x_true, t_clean.x_true);
       r->detection_on = detection;
       r->trace = detection ? std::move(t_on) : std::move(t_off);
-      m["tracking_rmse"] = m[detection ? "tracking_rmse_detect_on" : "tracking_rmse_detect_off"];
+      const std::string chosen = detection ? "tracking_rmse_detect_on" : "tracking_rmse_detect_off";
+      m["tracking_rmse"] = m[chosen];
+      if (auto it = r->undefined.find(chosen); it != r->undefined.end())
+        r->undefined.emplace("tracking_rmse", it->second);
       m["tracking_excess"] =
           m[detection ? "tracking_excess_detect_on" : "tracking_excess_detect_off"];
       m["fell"] = r->trace.fell ? 1.0 : 0.0;

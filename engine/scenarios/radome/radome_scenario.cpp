@@ -74,10 +74,18 @@ ParamTable make_table() {
        "No renewal for this long after the first measurement: the IMM's start-up transient "
        "(large P0) would steer the grid. The paper does not say when renewal starts.",
        1},
-      {"grid.min", "grid minimum slope", "", -0.5, 0.5, -0.05, Scale::kLinear, G,
-       "Smallest slope of the initial grid, both axes (Kim & Back 2017, eq. 6: −0.05).", 3},
-      {"grid.max", "grid maximum slope", "", -0.5, 0.5, 0.05, Scale::kLinear, G,
-       "Largest slope of the initial grid, both axes (Kim & Back 2017, eq. 6: +0.05).", 3},
+      // The initial grid brackets zero: min in [−0.5, 0], max in [0, 0.5]. A radome's slope
+      // changes sign across the look-angle cone (the truth, eq. 5, is a sinusoid about 0) and
+      // the renewal (Kp) moves the grid from there; ranges that crossed (either end over the
+      // other's preset value) let a value inside its declared range reverse the grid.
+      {"grid.min", "grid minimum slope", "", -0.5, 0.0, -0.05, Scale::kLinear, G,
+       "Smallest slope of the initial grid, both axes (Kim & Back 2017, eq. 6: −0.05); ≤ 0: "
+       "the grid brackets zero, where a radome's slope changes sign.",
+       3},
+      {"grid.max", "grid maximum slope", "", 0.0, 0.5, 0.05, Scale::kLinear, G,
+       "Largest slope of the initial grid, both axes (Kim & Back 2017, eq. 6: +0.05); ≥ 0: "
+       "the grid brackets zero, where a radome's slope changes sign.",
+       3},
       {"grid.n_psi", "n_ψ, azimuth slopes", "", 1, 15, 7, Scale::kInteger, G,
        "Number of R̄_ψ values (Kim & Back 2017: 7)."},
       {"grid.n_theta", "n_θ, elevation slopes", "", 1, 15, 7, Scale::kInteger, G,

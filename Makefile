@@ -53,17 +53,19 @@ fuzz: setup
 	bash tests/fuzz/run.sh build-fuzz $(FUZZ_SECONDS) $(FUZZ_JOBS)
 
 # SANITIZE_GUI=OFF leaves the GUI and its tests out (the engine and CLI tests only).
-# SANITIZE_SKIP_SLOW=1 leaves out the tests matching SAN_SLOW: the real-log tuning tests (a minute
-# of NLopt over the 68 000-row IMU log in Release, several under ASan); `make test` runs them in
-# Release. .ci/run: `make test`, then `make sanitize SANITIZE_GUI=OFF SANITIZE_SKIP_SLOW=1`.
+# SANITIZE_SKIP_SLOW=1 leaves out the tests matching SAN_SLOW: the tuning runs over the real
+# 68 000-row IMU log (31 s in Release, minutes under ASan); `make test` runs them in Release.
+# .ci/run: `make test`, then `make sanitize SANITIZE_GUI=OFF SANITIZE_SKIP_SLOW=1`.
+# The test binaries run in JOBS gtest shards each (tests/run_sharded.sh), not one process per test
+# as ctest does: an ASan process takes 2-3 s to start.
 # -O1 -g1 (line tables: enough for a report's file:line), the build is the long part.
 # GCC 12 under -fsanitize at -O1 reports false maybe-uninitialized warnings inside <regex> and
 # <functional> (std::function in std::regex's NFA); the Release build keeps the warning.
 ASAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -Wno-maybe-uninitialized
 SANITIZE_GUI ?= ON
 SANITIZE_SKIP_SLOW ?=
-SAN_SLOW := ^Tuning\.RealLog|^TuneCli\..*RealLog
-SAN_CTEST_ARGS := $(if $(SANITIZE_SKIP_SLOW),-E '$(SAN_SLOW)')
+SAN_SLOW := Tuning.RealLog*:TuneCli.*RealLog*
+SAN_BINS := kfw_engine_tests kfw_cli_tests $(if $(filter ON,$(SANITIZE_GUI)),kfw_gui_tests)
 SAN_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
   LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
@@ -74,7 +76,8 @@ sanitize: setup
 	  $(filter -DCMAKE_CXX_COMPILER_LAUNCHER=%,$(CMAKE_FLAGS))
 	# The build runs the test binaries too (gtest test discovery): the same suppressions apply.
 	$(SAN_ENV) cmake --build build-asan -j $(JOBS)
-	cd build-asan && $(SAN_ENV) ctest -j $(JOBS) --output-on-failure $(SAN_CTEST_ARGS)
+	$(SAN_ENV) bash tests/run_sharded.sh build-asan $(JOBS) '$(if $(SANITIZE_SKIP_SLOW),$(SAN_SLOW))' \
+	  $(SAN_BINS)
 
 format:
 	clang-format -i $$(git ls-files '*.h' '*.cpp')

@@ -231,8 +231,13 @@ bool ParamPanel::eventFilter(QObject* watched, QEvent* event) {
   auto it = rows_.find(key);
   if (it == rows_.end()) return QWidget::eventFilter(watched, event);
   Row& row = it->second;
+  // Only mouse events are QMouseEvents (casting any other event is undefined: UBSan, issue 16).
+  const QEvent::Type type = event->type();
+  if (type != QEvent::MouseButtonPress && type != QEvent::MouseMove &&
+      type != QEvent::MouseButtonRelease)
+    return QWidget::eventFilter(watched, event);
   auto* me = static_cast<QMouseEvent*>(event);
-  switch (event->type()) {
+  switch (type) {
     case QEvent::MouseButtonPress:
       if (me->button() == Qt::LeftButton && (me->modifiers() & Qt::ShiftModifier)) {
         fine_ = FineDrag{key, qRound(me->position().x()), slider->value()};

@@ -67,8 +67,9 @@ kfw::Expected<kfw::ExportSpec> export_spec(const kfw::AppOptions& o) {
   if (!o.export_dir) {
     if (!o.plots.isEmpty()) return kfw::Error{"--plot applies to --export (see --list-plots)"};
     if ((o.size && !o.screenshot) || o.dpi || o.font_scale != 1.0) {
-      return kfw::Error{"--size, --dpi and --font-scale apply to --export (--size also to "
-                        "--screenshot)"};
+      return kfw::Error{
+          "--size, --dpi and --font-scale apply to --export (--size also to "
+          "--screenshot)"};
     }
     if (o.screenshot) {  // --size is the window's, in px (checked by screenshotSize)
       kfw::ExportSpec spec;

@@ -93,8 +93,8 @@ TEST_F(Dialogs, PinAsksForANameWithANumberedDefault) {
 }
 
 TEST_F(Dialogs, PinCancelledOrBlankPinsNothing) {
-  ASSERT_TRUE(answerModal([&] { pin->click(); },
-                          [](QWidget* m) { static_cast<QDialog*>(m)->reject(); }));
+  ASSERT_TRUE(
+      answerModal([&] { pin->click(); }, [](QWidget* m) { static_cast<QDialog*>(m)->reject(); }));
   EXPECT_EQ(w.snapshotCount(), 0);
   ASSERT_TRUE(answerModal([&] { pin->click(); },
                           [](QWidget* m) {

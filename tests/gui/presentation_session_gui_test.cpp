@@ -5,10 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <QJsonDocument>
-#include <algorithm>
 #include <QJsonObject>
 #include <QSettings>
 #include <QTemporaryDir>
+#include <algorithm>
 
 #include "main_window.h"
 

@@ -225,6 +225,9 @@ class RadomeView final : public ScenarioView {
     for (int ax = 0; ax < 3; ++ax) {
       QColor c = axis_color[ax];
       innov_band_[ax] = addBand(innov_, QString("± 2√S_%1").arg(axis_name[ax]), c, true);
+      // The three bands overlap: each edge in its colour and dash tells them apart there.
+      const Qt::PenStyle edge[3] = {Qt::SolidLine, Qt::DashLine, Qt::DotLine};
+      plot::outlineBand(innov_band_[ax], edge[ax]);
       innov_y_[ax] = addGraph(innov_, QString("innovation %1").arg(axis_name[ax]), c, Style::kDots);
     }
     innov_cursor_ = addCursor(innov_);

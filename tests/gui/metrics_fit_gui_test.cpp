@@ -19,8 +19,7 @@ namespace {
 int primaryGroupEnd(const MainWindow& w) {
   const MetricsPanel* m = w.metricsPanel();
   const std::string key = m->item(0, 0)->data(MetricsPanel::kKeyRole).toString().toStdString();
-  const QString group =
-      group_name(describe_metric(*w.scenario(), key, w.result().get()).group);
+  const QString group = group_name(describe_metric(*w.scenario(), key, w.result().get()).group);
   int end = 0;
   bool inside = false;
   for (int r = 1; r < m->rowCount(); ++r) {
@@ -54,9 +53,9 @@ TEST(MetricsFit, PrimaryGroupVisibleWithoutScrollingAt1366x768) {
     const QRect view = m->viewport()->rect();
     for (int r = 0; r <= end; ++r) {
       const QRect cell = m->visualRect(m->model()->index(r, 0));
-      EXPECT_TRUE(view.contains(cell)) << "row " << r << " of 0.." << end << " is cut: cell y "
-                                       << cell.top() << ".." << cell.bottom() << ", view height "
-                                       << view.height();
+      EXPECT_TRUE(view.contains(cell))
+          << "row " << r << " of 0.." << end << " is cut: cell y " << cell.top() << ".."
+          << cell.bottom() << ", view height " << view.height();
     }
   }
 }

@@ -1,5 +1,7 @@
 // kfw --screenshot honours --size WxH (pixels): the PNG has that size; a physical or named size,
-// or one no screen has, is an argument error (exit 2, no file).
+// or one no screen has, is an argument error (exit 2, no file). And the issue's export command
+// itself, through the command line: --export --size 3.5inx2.5in --dpi 300 writes 1050×750 px
+// PNGs and 252×180 pt PDFs (the text size in those PDFs: PaperExport in export_paper_test.cpp).
 #include <gtest/gtest.h>
 
 #include <QFileInfo>
@@ -53,6 +55,28 @@ TEST(ScreenshotSize, TheWindowIsShotAtTheGivenSize) {
   EXPECT_EQ(bad.code, 2) << bad.text;
   EXPECT_NE(bad.text.find("pixels"), std::string::npos) << bad.text;
   EXPECT_FALSE(QFileInfo::exists(b));
+}
+
+TEST(ScreenshotSize, ExportCommandOfTheIssueWritesColumnSizedFiles) {
+  if (testing::run_command("command -v pdfinfo").code != 0) {
+    GTEST_SKIP() << "pdfinfo (poppler-utils, scripts/setup.sh) is not installed";
+  }
+  QTemporaryDir dir;
+  const std::string out = dir.path().toStdString();
+  auto r = testing::run_command(std::string(KFW_GUI) + " --export " + out +
+                                " helicopter --set sim.duration=10 --plot angle --plot nis"
+                                " --format png,pdf --size 3.5inx2.5in --dpi 300 2>&1 >/dev/null");
+  ASSERT_EQ(r.code, 0) << r.text;
+  EXPECT_EQ(r.text, "");
+  for (const char* plot : {"angle", "nis"}) {
+    const QImage img(dir.filePath(QString("helicopter_%1.png").arg(plot)));
+    ASSERT_FALSE(img.isNull()) << plot;
+    EXPECT_EQ(img.size(), QSize(1050, 750)) << plot;
+    auto info = testing::run_command(
+        "pdfinfo " + dir.filePath(QString("helicopter_%1.pdf").arg(plot)).toStdString() + " 2>&1");
+    ASSERT_EQ(info.code, 0) << info.text;
+    EXPECT_NE(info.text.find("252 x 180 pts"), std::string::npos) << info.text;
+  }
 }
 
 }  // namespace

@@ -252,6 +252,10 @@ void outlineBand(const Band& b, Qt::PenStyle style, double width) {
   b.upper->setPen(edge);
   b.lower->setPen(edge);
   b.upper->setProperty("kfwOutlined", true);
+  // A paler fill: where fills overlap the blend stays faint, the edges carry the distinction.
+  QColor fill = b.lower->brush().color();
+  fill.setAlpha(std::min(fill.alpha(), 30));
+  b.lower->setBrush(fill);
 }
 
 QCPItemStraightLine* addCursor(QCustomPlot* p) {

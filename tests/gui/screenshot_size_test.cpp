@@ -34,7 +34,9 @@ TEST(ScreenshotSize, PixelsOrTheDefaults) {
     ASSERT_TRUE(o.ok()) << o.error();
     auto s = screenshotSize(*o);
     EXPECT_FALSE(s.ok()) << bad;
-    if (!s) EXPECT_NE(s.error().find("--size"), std::string::npos) << s.error();
+    if (!s) {
+      EXPECT_NE(s.error().find("--size"), std::string::npos) << s.error();
+    }
   }
 }
 

@@ -66,8 +66,17 @@ int fail(const kfw::Error& e) {
 kfw::Expected<kfw::ExportSpec> export_spec(const kfw::AppOptions& o) {
   if (!o.export_dir) {
     if (!o.plots.isEmpty()) return kfw::Error{"--plot applies to --export (see --list-plots)"};
-    if (o.size || o.dpi || o.font_scale != 1.0) {
-      return kfw::Error{"--size, --dpi and --font-scale apply to --export"};
+    if ((o.size && !o.screenshot) || o.dpi || o.font_scale != 1.0) {
+      return kfw::Error{
+          "--size, --dpi and --font-scale apply to --export (--size also to "
+          "--screenshot)"};
+    }
+    if (o.screenshot) {  // --size is the window's, in px (checked by screenshotSize)
+      kfw::ExportSpec spec;
+      auto theme = kfw::parseTheme(o.theme);
+      if (!theme) return theme.err();
+      spec.theme = *theme;
+      return spec;
     }
   }
   kfw::ExportSpec spec;
@@ -109,6 +118,8 @@ int main(int argc, char** argv) {
   }
   auto spec = export_spec(*opt);
   if (!spec) return fail(spec.err());
+  const auto shot_size = kfw::screenshotSize(*opt);
+  if (opt->screenshot && !shot_size) return fail(shot_size.err());
   std::optional<QStringList> formats;
   if (opt->export_dir) {
     auto f = kfw::parseFormats(opt->formats);
@@ -161,13 +172,10 @@ int main(int argc, char** argv) {
   if (spec->theme != kfw::Theme::kLight) w.setTheme(spec->theme);
   if (opt->screenshot) {
     w.setScreenshotMode(true);  // no live timings: two screenshots are identical
-    // Presentation mode is shot at a projector's 1366 × 768 (offscreen it is not full screen).
-    if (opt->present) {
-      w.resize(1366, 768);
-      w.setPresentation(true);
-    } else {
-      w.resize(1600, 1000);
-    }
+    // --size WxH px, else 1600 × 1000; presentation mode at a projector's 1366 × 768 (offscreen
+    // it is not full screen).
+    w.resize(*shot_size);
+    if (opt->present) w.setPresentation(true);
     w.show();
     if (!w.waitForRun()) {
       std::fprintf(stderr, "kfw: the run did not finish\n");

@@ -26,6 +26,8 @@ for preset in presets/*.json; do
 done
 # Presentation mode at a projector's 1366 × 768.
 "$kfw" --screenshot "$out/present_radome.png" --present presets/radome.json >/dev/null
+# The window on a 1366 × 768 laptop screen.
+"$kfw" --screenshot "$out/window_1366x768_radome.png" --size 1366x768 presets/radome.json >/dev/null
 # Variants shown in the README beside the defaults.
 "$kfw" --export "$out/radome_B_Kp045" presets/radome.json --set sim.amplitude=0.08 --set Kp=0.45 >/dev/null
 "$kfw" --export "$out/radome_B_Kp0" presets/radome.json --set sim.amplitude=0.08 --set Kp=0 >/dev/null

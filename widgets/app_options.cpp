@@ -1,6 +1,7 @@
 #include "app_options.h"
 
 #include <CLI/CLI.hpp>
+#include <QRegularExpression>
 #include <memory>
 #include <vector>
 
@@ -58,7 +59,8 @@ std::unique_ptr<Declaration> declare() {
       ->capture_default_str();
   add_path(app, "--size", p.size, "WxH",
            "export size: 3.5inx2.5in, 90x60mm, 1200x700 (px), column (3.5x2.5 in) or page "
-           "(7x4 in); default 1200x700 px");
+           "(7x4 in); default 1200x700 px. With --screenshot: the window in px (default "
+           "1600x1000; 1366x768 with --present)");
   app.add_option_function<double>(
          "--dpi", [&p](double v) { p.dpi = v; },
          "PNG pixels per inch (default: 300 for a size in in, mm or a named size, else 96)")
@@ -161,6 +163,22 @@ Expected<AppOptions> parseAppOptions(const QStringList& args) {
   o.list_plots = p.list_plots;
   o.present = p.present;
   return o;
+}
+
+Expected<QSize> screenshotSize(const AppOptions& o) {
+  if (!o.size) return o.present ? QSize(1366, 768) : QSize(1600, 1000);
+  static const QRegularExpression re(R"(^([0-9]+)\s*(px)?\s*x\s*([0-9]+)\s*(px)?$)");
+  const auto m = re.match(o.size->trimmed().toLower());
+  const std::string token = truncate_token(o.size->toStdString());
+  if (!m.hasMatch()) {
+    return Error{"--size: '" + token + "' is not WxH in pixels (e.g. 1366x768) for --screenshot"};
+  }
+  const int w = m.captured(1).toInt(), h = m.captured(3).toInt();
+  // A window a screen can show: 320 x 240 to 7680 x 4320 (8K).
+  if (w < 320 || h < 240 || w > 7680 || h > 4320) {
+    return Error{"--size: '" + token + "' is outside 320x240 to 7680x4320 px for --screenshot"};
+  }
+  return QSize(w, h);
 }
 
 }  // namespace kfw

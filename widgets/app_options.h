@@ -2,6 +2,7 @@
 // declaration yields the parsing, the help (appHelp) and the errors ("did you mean").
 #pragma once
 
+#include <QSize>
 #include <QString>
 #include <QStringList>
 #include <optional>
@@ -36,6 +37,10 @@ struct AppOptions {
 
 // The help text, generated from the declaration.
 std::string appHelp();
+
+// The window size of --screenshot: --size WxH in pixels ("1366x768", "1366x768px"), else
+// 1366 x 768 with --present, else 1600 x 1000. A physical or named size is an Error (exit 2).
+Expected<QSize> screenshotSize(const AppOptions& o);
 
 // Parses the arguments (without the program name). Bad arguments are an Error (exit 2) of one
 // line; --help and --version set their flags.

@@ -213,6 +213,10 @@ class MainWindow : public QMainWindow {
   };
   void refreshSnapshots();
   void fillMetrics();
+  // Gives the metrics table (leftSplit) the height that shows the primary metric's group without
+  // scrolling, from the parameters above it, unless the user has moved that splitter.
+  void fitMetricsPanel();
+  bool metrics_split_by_user_ = false;
   Status adoptDocument(Document doc);
   // Reads `path` for the scenario; with no mapping, tries the file as it is, then a mapping
   // remembered for its header, then (interactive) the mapping dialog. `used` gets the mapping.

@@ -122,6 +122,23 @@ void MainWindow::fillMetrics() {
     cols.append({q(p.snap.name), p.result});
   metrics_->setRuns(*scenario_, result_, cols, primary_metric_);
   status_->setText(statusText());
+  fitMetricsPanel();
+}
+
+void MainWindow::fitMetricsPanel() {
+  auto* split = findChild<QSplitter*>("leftSplit");
+  if (!split || metrics_split_by_user_ || split->count() != 2) return;
+  if (!split->property("kfwWatched").toBool()) {  // splitterMoved: the user's drags only
+    split->setProperty("kfwWatched", true);
+    connect(split, &QSplitter::splitterMoved, this, [this] { metrics_split_by_user_ = true; });
+  }
+  const int need = metrics_->heightThrough(metrics_->primaryGroupEnd());
+  QList<int> sizes = split->sizes();
+  const int total = sizes[0] + sizes[1];
+  if (total <= 0 || sizes[1] >= need) return;
+  // The parameters keep at least 40 % (they scroll); the table gets the rest it needs.
+  const int metrics = std::min(need, total - total * 2 / 5);
+  split->setSizes({total - metrics, metrics});
 }
 
 void MainWindow::setPrimaryMetric(const std::string& key) {

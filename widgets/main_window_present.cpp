@@ -4,6 +4,8 @@
 
 #include <QAction>
 #include <QGuiApplication>
+#include <QJsonArray>
+#include <QJsonObject>
 #include <QLabel>
 #include <QMenu>
 #include <QMenuBar>
@@ -78,6 +80,32 @@ void MainWindow::buildViewMenu() {
   connect(dark, &QAction::toggled, this,
           [this](bool on) { setTheme(on ? Theme::kDark : Theme::kLight); });
   connect(this, &MainWindow::resultApplied, this, &MainWindow::restyleLook);
+  // Presentation in the session's view state: on/off, the text scale and the chosen plots.
+  addViewStatePart(
+      "presentation",
+      [this] {
+        QJsonObject o;
+        o["on"] = presentation();
+        o["scale"] = presentationScale();
+        o["plots"] = QJsonArray::fromStringList(presentedPlots());
+        return QJsonValue(o);
+      },
+      [this](const QJsonValue& v) {
+        const QJsonObject o = v.toObject();
+        if (o["scale"].isDouble()) present_->setScale(o["scale"].toDouble());
+        if (o["plots"].isArray()) {
+          QStringList names;
+          for (const QJsonValue& n : o["plots"].toArray()) {
+            if (n.isString()) names << n.toString();
+          }
+          if (!names.isEmpty()) setPresentedPlots(names);
+        }
+        if (o["on"].isBool() && o["on"].toBool() != presentation()) {
+          setPresentation(o["on"].toBool());
+        } else if (presentation()) {
+          setPresentation(true);  // the new scale and plots
+        }
+      });
 }
 
 void MainWindow::restyleLook() {

@@ -8,10 +8,12 @@
 #include <QLineEdit>
 #include <QPlainTextEdit>
 #include <QTextEdit>
+#include <limits>
 
 #include "consistency_panel.h"
 #include "main_window.h"
 #include "plot_kit.h"
+#include "plot_readout.h"
 #include "plot_zoom.h"
 #include "transport_bar.h"
 
@@ -110,6 +112,18 @@ void MainWindow::applyTimeWindow(double t0, double t1) {
 void MainWindow::setupReplay() {
   qApp->installEventFilter(new ReplayKeys(this));
   connect(transport_, &TransportBar::timeWindowChanged, this, &MainWindow::applyTimeWindow);
+  // The readout follows the replay cursor (while playing, or with the cursor before the end) when
+  // the mouse is over no plot: the cursor line and the values at the replay time.
+  auto follow = [this] {
+    if (!zoom_ || !zoom_->readout()) return;
+    const std::size_t i = transport_->cursor();
+    const bool shown =
+        result_ && i < result_->t.size() && (transport_->playing() || i + 1 < result_->t.size());
+    zoom_->readout()->setReplayTime(shown ? result_->t[i]
+                                          : std::numeric_limits<double>::quiet_NaN());
+  };
+  connect(transport_, &TransportBar::cursorChanged, this, follow);
+  connect(this, &MainWindow::resultApplied, this, follow);
   addViewStatePart(
       "replay", [this] { return QJsonValue(transport_->saveState()); },
       [this](const QJsonValue& v) {

@@ -6,6 +6,7 @@
 #include <QHeaderView>
 #include <QPainter>
 #include <QPixmap>
+#include <QScrollBar>
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -274,6 +275,34 @@ void MetricsPanel::setRuns(const Scenario& scenario, std::shared_ptr<const RunRe
     ++row;
   }
   setRowCount(row);
+  primary_group_.clear();
+  for (const auto& r : rows) {
+    if (r.spec.key == first) primary_group_ = group_name(r.spec.group);
+  }
+}
+
+int MetricsPanel::primaryGroupEnd() const {
+  if (rowCount() == 0) return -1;
+  int end = 0;
+  bool inside = false;
+  for (int r = 1; r < rowCount(); ++r) {
+    const QVariant g = item(r, 0) ? item(r, 0)->data(kGroupRole) : QVariant();
+    if (g.isValid()) {
+      if (inside) break;  // the next group's header
+      inside = g.toString() == primary_group_;
+      if (!inside) continue;
+    }
+    if (inside) end = r;
+  }
+  return end;
+}
+
+int MetricsPanel::heightThrough(int row) const {
+  int h = 2 * frameWidth() + (horizontalHeader()->isVisible() ? horizontalHeader()->height() : 0);
+  for (int r = 0; r <= row && r < rowCount(); ++r)
+    h += std::max(sizeHintForRow(r), verticalHeader()->minimumSectionSize());
+  if (horizontalScrollBar()->isVisible()) h += horizontalScrollBar()->height();
+  return h;
 }
 
 }  // namespace kfw

@@ -37,12 +37,18 @@ class MetricsPanel : public QTableWidget {
                const Columns& snapshots, const std::string& primary);
   // The metric shown first, "" before a run.
   QString primaryKey() const { return primary_; }
+  // The last row of the primary metric's group (the rows a user must see without scrolling:
+  // the primary, the groups before its own, its own group); -1 before a run.
+  int primaryGroupEnd() const;
+  // The table's height (header, frame) that shows rows 0..row whole at the current column widths.
+  int heightThrough(int row) const;
   // Four significant digits, no trailing zeros ("0.01235", "1.235e+06").
   static QString format(double v);
 
  private:
   QString primary_;
-  QStringList layout_;  // headers, primary key and row keys of the table as built
+  QStringList layout_;     // headers, primary key and row keys of the table as built
+  QString primary_group_;  // group_name() of the primary's group
 };
 
 }  // namespace kfw

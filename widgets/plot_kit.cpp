@@ -201,9 +201,22 @@ class BandEdge final : public QCPGraph {
   void drawLegendIcon(QCPPainter* painter, const QRectF& rect) const override {
     QColor f = fill_;
     f.setAlpha(std::max(f.alpha(), 120));
-    painter->setPen(QPen(pen().color().darker(130)));
+    const QRectF r = rect.adjusted(1.0, 2.0, -1.0, -2.0);
+    if (!property("kfwOutlined").toBool()) {
+      painter->setPen(QPen(pen().color().darker(130)));
+      painter->setBrush(f);
+      painter->drawRect(r);
+      return;
+    }
+    // An outlined band (outlineBand): the fill between its two edge lines, as in the plot.
+    painter->setPen(Qt::NoPen);
     painter->setBrush(f);
-    painter->drawRect(rect.adjusted(1.0, 2.0, -1.0, -2.0));
+    painter->drawRect(r);
+    QPen edge = pen();
+    edge.setWidthF(std::min(edge.widthF(), 2.0));
+    painter->setPen(edge);
+    painter->drawLine(r.topLeft(), r.topRight());
+    painter->drawLine(r.bottomLeft(), r.bottomRight());
   }
 
  private:
@@ -229,6 +242,20 @@ Band addBand(QCustomPlot* p, const QString& name, const QColor& c, bool overlaps
   b.lower->setName("");  // the band is named by its upper edge
   b.lower->removeFromLegend();
   return b;
+}
+
+void outlineBand(const Band& b, Qt::PenStyle style, double width) {
+  QColor c = b.upper->pen().color();
+  c.setAlpha(255);
+  QPen edge(c, width, style);
+  edge.setCapStyle(Qt::FlatCap);
+  b.upper->setPen(edge);
+  b.lower->setPen(edge);
+  b.upper->setProperty("kfwOutlined", true);
+  // A paler fill: where fills overlap the blend stays faint, the edges carry the distinction.
+  QColor fill = b.lower->brush().color();
+  fill.setAlpha(std::min(fill.alpha(), 30));
+  b.lower->setBrush(fill);
 }
 
 QCPItemStraightLine* addCursor(QCustomPlot* p) {

@@ -81,6 +81,10 @@ void setBand(const Band& b, const std::vector<double>& x, const std::vector<doub
 // leaves its step out. The square roots are taken only for the steps drawn.
 void setSigmaBand(const Band& b, const std::vector<double>& x, const std::vector<double>* center,
                   const std::vector<double>& variance, double k, std::size_t n);
+// Bands that overlap others (drawn translucent): both edges drawn in the band's own colour,
+// opaque, `width` px, in `style` (solid, dashed, dotted: one per band), so each band reads where
+// the fills blend; the legend swatch shows the same edge lines.
+void outlineBand(const Band& b, Qt::PenStyle style, double width = 1.5);
 // A band between two given curves.
 void setBandLimits(const Band& b, const std::vector<double>& x, const std::vector<double>& lo,
                    const std::vector<double>& hi, std::size_t n);

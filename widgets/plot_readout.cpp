@@ -77,7 +77,8 @@ QList<QPair<QString, double>> curveValuesAt(const QCustomPlot* p, double t) {
   return out;
 }
 
-PlotReadout::PlotReadout(const QList<PlotPanel>& plots, QObject* parent) : QObject(parent) {
+PlotReadout::PlotReadout(const QList<PlotPanel>& plots, QObject* parent)
+    : QObject(parent), replay_t_(kNaN) {
   for (const PlotPanel& panel : plots) {
     QCustomPlot* p = panel.plot;
     if (!p) continue;
@@ -143,10 +144,7 @@ void PlotReadout::showTime(double t, QCustomPlot* hovered) {
     m.line->point2->setCoords(t, 1);
     m.line->setVisible(true);
     if (m.plot == hovered) {
-      QString text = QString("t = %1 s").arg(number(t));
-      for (const auto& [name, v] : curveValuesAt(m.plot, t))
-        text += QString("\n%1: %2").arg(name, number(v));
-      place(m, text, m.plot->xAxis->coordToPixel(t));
+      place(m, timeText(m.plot, t), m.plot->xAxis->coordToPixel(t));
     } else {
       m.label->setVisible(false);
     }
@@ -185,10 +183,50 @@ void PlotReadout::showPoint(QCustomPlot* p, const QPointF& pos) {
   m->layer->replot();
 }
 
+QString PlotReadout::timeText(const QCustomPlot* p, double t) const {
+  QString text = QString("t = %1 s").arg(number(t));
+  for (const auto& [name, v] : curveValuesAt(p, t))
+    text += QString("\n%1: %2").arg(name, number(v));
+  return text;
+}
+
+void PlotReadout::showReplay() {
+  // Every time plot: the line and its values at the replay time (nobody hovers one to choose).
+  for (Marks& m : marks_) {
+    if (!isTimePlot(m.plot)) {
+      if (m.line->visible() || m.label->visible()) {
+        m.line->setVisible(false);
+        m.label->setVisible(false);
+        m.layer->replot();
+      }
+      continue;
+    }
+    m.line->point1->setCoords(replay_t_, 0);
+    m.line->point2->setCoords(replay_t_, 1);
+    m.line->setVisible(true);
+    place(m, timeText(m.plot, replay_t_), m.plot->xAxis->coordToPixel(replay_t_));
+    m.layer->replot();
+  }
+}
+
+void PlotReadout::setReplayTime(double t) {
+  replay_t_ = t;
+  if (hovering_) return;  // the mouse's readout stays; the replay's comes back when it leaves
+  if (std::isfinite(t)) {
+    showReplay();
+  } else {
+    hideAll();
+  }
+}
+
 void PlotReadout::mouseMoved(QCustomPlot* p, const QPointF& pos) {
   if (!p->axisRect()->rect().contains(pos.toPoint())) {
     hide();
     return;
+  }
+  if (!hovering_) {
+    hovering_ = true;
+    hideAll();  // the replay's labels on the other plots
   }
   if (isTimePlot(p)) {
     showTime(p->xAxis->pixelToCoord(pos.x()), p);
@@ -205,6 +243,15 @@ void PlotReadout::mouseMoved(QCustomPlot* p, const QPointF& pos) {
 }
 
 void PlotReadout::hide() {
+  hovering_ = false;
+  if (std::isfinite(replay_t_)) {
+    showReplay();
+  } else {
+    hideAll();
+  }
+}
+
+void PlotReadout::hideAll() {
   for (Marks& m : marks_) {
     if (!m.line->visible() && !m.label->visible()) continue;
     m.line->setVisible(false);
@@ -218,6 +265,13 @@ QString PlotReadout::text(const QCustomPlot* p) const {
     if (m.plot == p) return m.label->visible() ? m.label->text() : QString();
   }
   return {};
+}
+
+double PlotReadout::lineAt(const QCustomPlot* p) const {
+  for (const Marks& m : marks_) {
+    if (m.plot == p) return m.line->visible() ? m.line->point1->coords().x() : kNaN;
+  }
+  return kNaN;
 }
 
 }  // namespace kfw::plot

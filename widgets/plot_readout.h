@@ -38,9 +38,18 @@ class PlotReadout final : public QObject {
   // The value under the pixel `pos` of a plot whose x axis is not time.
   void showPoint(QCustomPlot* p, const QPointF& pos);
   void mouseMoved(QCustomPlot* p, const QPointF& pos);
+  // The mouse left the plots: back to the replay cursor when one is set, else nothing shown.
   void hide();
+  // The replay cursor at t (s): while the mouse is over no plot, the cursor line and the values
+  // of every time plot are those at t. NaN: no replay cursor (the whole run is shown).
+  void setReplayTime(double t);
+  double replayTime() const { return replay_t_; }
+  // True while the mouse is over a plot's data (the readout follows it, not the replay).
+  bool hovering() const { return hovering_; }
   // The text shown on p (empty when none), for tests.
   QString text(const QCustomPlot* p) const;
+  // The time (x) of the cursor line shown on p; NaN when none is shown.
+  double lineAt(const QCustomPlot* p) const;
 
  private:
   struct Marks {
@@ -51,7 +60,12 @@ class PlotReadout final : public QObject {
   };
   Marks* find(const QCustomPlot* p);
   void place(Marks& m, const QString& text, double x_px);
+  QString timeText(const QCustomPlot* p, double t) const;
+  void showReplay();
+  void hideAll();
   std::vector<Marks> marks_;
+  double replay_t_;
+  bool hovering_ = false;
 };
 
 }  // namespace kfw::plot

@@ -225,6 +225,9 @@ class RadomeView final : public ScenarioView {
     for (int ax = 0; ax < 3; ++ax) {
       QColor c = axis_color[ax];
       innov_band_[ax] = addBand(innov_, QString("± 2√S_%1").arg(axis_name[ax]), c, true);
+      // The three bands overlap: each edge in its colour and dash tells them apart there.
+      const Qt::PenStyle edge[3] = {Qt::SolidLine, Qt::DashLine, Qt::DotLine};
+      plot::outlineBand(innov_band_[ax], edge[ax]);
       innov_y_[ax] = addGraph(innov_, QString("innovation %1").arg(axis_name[ax]), c, Style::kDots);
     }
     innov_cursor_ = addCursor(innov_);
@@ -291,14 +294,7 @@ class RadomeView final : public ScenarioView {
     for (std::size_t i = 0; i < top_graphs_.size(); ++i) {
       QCPGraph* g = top_graphs_[i];
       if (i < top_ids_.size()) {
-        const int j = top_ids_[i];
-        const int a = j % r->n_psi, b = j / r->n_psi;
-        // Named by its slopes (at t = 0: the grid moves when Kp > 0), not by grid indices.
-        const auto gp = r->grid_psi(0), gt = r->grid_theta(0);
-        const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
-        g->setName(QString("μ of R̄_ψ = %1, R̄_θ = %2")
-                       .arg(ua < gp.size() ? gp[ua] : 0.0, 0, 'f', 3)
-                       .arg(ub < gt.size() ? gt[ub] : 0.0, 0, 'f', 3));
+        // Named by its slopes (drawUpTo: at the shown time), not by grid indices.
         g->setVisible(true);
         g->addToLegend();
       } else {
@@ -306,6 +302,13 @@ class RadomeView final : public ScenarioView {
         g->setVisible(false);
         g->removeFromLegend();
       }
+    }
+    // With renewal (Kp > 0) the grid's centre moves: a mode's slopes depend on the time.
+    grid_moves_ = false;
+    for (const auto* c : {&r->center_psi, &r->center_theta}) {
+      if (c->empty()) continue;
+      const auto [lo, hi] = std::minmax_element(c->begin(), c->end());
+      grid_moves_ = grid_moves_ || *hi > *lo;
     }
     heat_map_->data()->setSize(r->n_psi, r->n_theta);
     nis_->setData(&r->t, &r->nis, 3.0);
@@ -385,6 +388,18 @@ class RadomeView final : public ScenarioView {
             .arg(tt, 0, 'f', 3));
   }
 
+  // A mode by the slopes it stands for at step k (the grid centre + its offsets); when the grid
+  // moves (renewal), with the time they hold at.
+  QString modeName(const RadomeResult& r, int j, std::size_t k) const {
+    const auto gp = r.grid_psi(k), gt = r.grid_theta(k);
+    const auto a = static_cast<std::size_t>(j % r.n_psi), b = static_cast<std::size_t>(j / r.n_psi);
+    QString name = QString("μ of R̄_ψ = %1, R̄_θ = %2")
+                       .arg(a < gp.size() ? gp[a] : kNoSample, 0, 'f', 3)
+                       .arg(b < gt.size() ? gt[b] : kNoSample, 0, 'f', 3);
+    if (grid_moves_ && k < r.t.size()) name += QString(" at t = %1 s").arg(r.t[k], 0, 'f', 1);
+    return name;
+  }
+
   void drawUpTo(std::size_t index) {
     const RadomeResult& r = *result_;
     const std::size_t steps = r.steps();
@@ -421,6 +436,7 @@ class RadomeView final : public ScenarioView {
     setSeries(los_est_theta_, r.t, los_est_err_[1], n);
     for (std::size_t i = 0; i < top_ids_.size() && i < top_graphs_.size(); ++i) {
       setSeries(top_graphs_[i], r.t, top_mu_[i], n);
+      top_graphs_[i]->setName(modeName(r, top_ids_[i], n - 1));
     }
     for (int ax = 0; ax < 3; ++ax) {
       plot::setBand(innov_band_[ax], r.t, zero_, two_sqrt_S_[ax], n);
@@ -460,6 +476,7 @@ class RadomeView final : public ScenarioView {
   SlopePlot slope_[2];
   std::vector<double> env_lo_[2], env_hi_[2], los_err_[2], los_est_err_[2], two_sqrt_S_[3], zero_;
   std::vector<int> top_ids_;
+  bool grid_moves_ = false;
   std::vector<std::vector<double>> top_mu_;
 
   QCustomPlot *alpha_ = nullptr, *los_ = nullptr, *heat_ = nullptr, *top_ = nullptr,

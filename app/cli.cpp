@@ -72,6 +72,11 @@ void add_import(CLI::App* c, ImportArgs& m) {
        "the separator: comma, semicolon, tab, whitespace (default: detected)")
       ->type_name("SEP");
   c->add_option_function<std::string>(
+       "--header", [&m](const std::string& v) { m.header = v; },
+       "the first row: first (the column names), none (data: columns col1, col2, ...), detect "
+       "(default: no header when every cell is a number)")
+      ->type_name("first|none|detect");
+  c->add_option_function<std::string>(
        "--mapping", [&m](const std::string& v) { m.mapping_file = v; },
        "a mapping file (the preset's \"mapping\" block); options above override it")
       ->type_name("FILE.json");

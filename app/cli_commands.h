@@ -22,9 +22,10 @@ inline constexpr std::size_t kDefaultMaxPoints = 1000000;
 struct ImportArgs {
   std::vector<std::string> map, unit, scale, offset, flip;  // ROLE=COLUMN, ROLE=UNIT, ...; ROLE
   std::optional<std::string> time, sep, mapping_file;       // COLUMN[:UNIT|:iso], SEP, FILE
+  std::optional<std::string> header;                        // first, none, detect
   bool any() const {
     return !map.empty() || !unit.empty() || !scale.empty() || !offset.empty() || !flip.empty() ||
-           time || sep || mapping_file;
+           time || sep || header || mapping_file;
   }
 };
 

@@ -1,4 +1,5 @@
-// kfw-cli's import options (--map, --unit, --time, --scale, --offset, --flip, --sep, --mapping)
+// kfw-cli's import options (--map, --unit, --time, --scale, --offset, --flip, --sep, --header,
+// --mapping)
 // and the `inspect` command. Declared with the other options in cli.cpp.
 #include <fast_float/fast_float.h>
 
@@ -59,12 +60,24 @@ Status check_iso_zone(const std::string& option, const std::string& unit) {
 
 }  // namespace
 
-Status apply_import_args(const ImportArgs& imp, Workspace& ws) {
+namespace {
+// --sep and --header: the file's format, over the mapping's.
+Status apply_format_args(const ImportArgs& imp, Mapping& m) {
   if (imp.sep) {
     auto s = parse_separator(*imp.sep);
     if (!s) return Error{"--sep: " + s.error()};
-    ws.separator = *s;
+    m.separator = *s;
   }
+  if (imp.header) {
+    auto h = parse_header_row(*imp.header);
+    if (!h) return Error{"--header: " + h.error()};
+    m.header = *h;
+  }
+  return Ok{};
+}
+}  // namespace
+
+Status apply_import_args(const ImportArgs& imp, Workspace& ws) {
   if (imp.mapping_file) {
     auto j = read_json_document(*imp.mapping_file, "mapping");
     if (!j) return j.err();
@@ -72,10 +85,10 @@ Status apply_import_args(const ImportArgs& imp, Workspace& ws) {
     const nlohmann::json& block = j->is_object() && j->contains("mapping") ? (*j)["mapping"] : *j;
     auto m = mapping_from_json(block, *imp.mapping_file + ": mapping");
     if (!m) return m.err();
-    for (const auto& [role, r] : *m)
-      ws.mapping[role] = r;
+    ws.mapping.override_with(*m);
     ws.mapping_path = imp.mapping_file;
   }
+  if (auto st = apply_format_args(imp, ws.mapping); !st) return st;
   std::vector<std::string> roles{"t"};
   for (const auto& c : ws.scenario->columns()) {
     if (c.name != "t") roles.push_back(c.name);
@@ -198,15 +211,8 @@ std::string num(double v) {
 }  // namespace
 
 int cmd_inspect(const CliArgs& a, std::ostream& out, std::ostream& err) {
-  TableOptions opt;
-  if (a.import.sep) {
-    auto s = parse_separator(*a.import.sep);
-    if (!s) return fail(err, Error{"--sep: " + s.error()});
-    opt.separator = *s;
-  }
-  auto t = read_table(a.target, opt);
-  if (!t) return fail(err, t.err());
-  // The roles: the preset's (or scenario's), else time alone.
+  // The roles: the preset's (or scenario's), else time alone; the format: the preset's mapping's
+  // (with the options over it), else the options'.
   std::vector<ColumnSpec> roles;
   Mapping given;
   std::string scenario;
@@ -219,7 +225,12 @@ int cmd_inspect(const CliArgs& a, std::ostream& out, std::ostream& err) {
     roles = ws->scenario->columns();
     given = ws->mapping;
     scenario = ws->scenario->name();
-  } else if (a.import.any()) {
+  } else if (auto st = apply_format_args(a.import, given); !st) {
+    return fail(err, st.err());
+  }
+  auto t = read_table(a.target, given.table_options());
+  if (!t) return fail(err, t.err());
+  if (!a.inspect_preset && a.import.any()) {
     ImportArgs imp = a.import;
     if (!imp.map.empty() || !imp.unit.empty() || !imp.scale.empty() || !imp.offset.empty() ||
         !imp.flip.empty() || imp.mapping_file) {
@@ -237,8 +248,7 @@ int cmd_inspect(const CliArgs& a, std::ostream& out, std::ostream& err) {
   }
   Mapping guess = guess_mapping(*t, roles);
   Mapping mapping = guess;
-  for (const auto& [role, r] : given)
-    mapping[role] = r;
+  mapping.override_with(given);
   std::vector<std::string> missing;
   for (const auto& c : roles_with_time(roles)) {
     if (c.required && role_column(*t, mapping, c.name) < 0) missing.push_back(c.name);
@@ -250,7 +260,8 @@ int cmd_inspect(const CliArgs& a, std::ostream& out, std::ostream& err) {
     j["file"] = a.target;
     j["separator"] = t->separator_name();
     j["decimal_comma"] = t->decimal_comma;
-    j["header_line"] = t->header_line;
+    j["header_line"] = t->header_line;  // 0: no header (columns col1, col2, ...)
+    j["header"] = t->has_header() ? "first" : "none";
     j["rows"] = t->rows();
     Json cols = Json::array();
     for (std::size_t c = 0; c < t->columns(); ++c) {
@@ -286,7 +297,11 @@ int cmd_inspect(const CliArgs& a, std::ostream& out, std::ostream& err) {
   out << "file: " << a.target << "\n";
   out << "separator: " << t->separator_name() << (t->decimal_comma ? " (decimal comma)" : "")
       << "\n";
-  out << "rows: " << t->rows() << " (header on line " << t->header_line << ")\n";
+  out << "rows: " << t->rows();
+  if (t->has_header())
+    out << " (header on line " << t->header_line << ")\n";
+  else
+    out << " (no header: columns named by position, col1 .. col" << t->columns() << ")\n";
   out << "columns: " << t->columns() << "\n";
   for (std::size_t c = 0; c < t->columns(); ++c) {
     out << "  " << std::setw(3) << c + 1 << "  " << t->names[c];

@@ -172,7 +172,7 @@ int cmd_tune(const CliArgs& a, std::ostream& out, std::ostream& err) {
     names.push_back(ws->data_path ? *ws->data_path : "simulated");
   }
   for (const auto& f : *files) {
-    auto d = load_dataset_file(*ws->scenario, f, ws->mapping, ws->separator);
+    auto d = load_dataset_file(*ws->scenario, f, ws->mapping);
     if (!d) return fail(err, d.err());
     data.push_back(std::move(*d));
     names.push_back(f);

@@ -12,6 +12,7 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QPushButton>
+#include <QSignalBlocker>
 #include <QTableWidget>
 #include <QVBoxLayout>
 #include <algorithm>
@@ -55,30 +56,35 @@ ImportDialog::ImportDialog(std::shared_ptr<const Table> table, const std::vector
   setWindowTitle("Import " + QFileInfo(q(table_->source)).fileName());
   setObjectName("importDialog");
   auto* lay = new QVBoxLayout(this);
-  lay->addWidget(new QLabel(QString("<b>%1</b>: %2 rows, %3 columns, %4-separated%5")
-                                .arg(QFileInfo(q(table_->source)).fileName())
-                                .arg(table_->rows())
-                                .arg(table_->columns())
-                                .arg(q(table_->separator_name()))
-                                .arg(table_->decimal_comma ? ", decimal comma" : "")));
+  auto* format = new QHBoxLayout;
+  sep_ = new QComboBox(this);
+  sep_->setObjectName("importSeparator");
+  sep_->addItem("detected", 0);
+  for (char c : {',', ';', '\t', kWhitespaceSeparator})
+    sep_->addItem(q(separator_key(c)), static_cast<int>(c));
+  header_ = new QComboBox(this);
+  header_->setObjectName("importHeader");
+  header_->addItem("detected", static_cast<int>(HeaderRow::detect));
+  header_->addItem("first row: column names", static_cast<int>(HeaderRow::first));
+  header_->addItem("none: col1, col2, …", static_cast<int>(HeaderRow::none));
+  header_->setToolTip(
+      "Detected: a first row of numbers only is data (columns named col1, col2, ... by "
+      "position); otherwise it names the columns.");
+  sep_->setCurrentIndex(std::max(sep_->findData(static_cast<int>(start.separator)), 0));
+  header_->setCurrentIndex(std::max(header_->findData(static_cast<int>(start.header)), 0));
+  format->addWidget(new QLabel("Separator:"));
+  format->addWidget(sep_);
+  format->addSpacing(12);
+  format->addWidget(new QLabel("Header:"));
+  format->addWidget(header_);
+  format->addStretch(1);
+  lay->addLayout(format);
+  info_ = new QLabel(this);
+  info_->setObjectName("importInfo");
+  lay->addWidget(info_);
   preview_ = new QTableWidget(this);
   preview_->setObjectName("importPreview");
-  const int nrows = static_cast<int>(std::min<std::size_t>(table_->rows(), kPreviewRows));
-  preview_->setRowCount(nrows);
-  preview_->setColumnCount(static_cast<int>(table_->columns()));
-  QStringList headers;
-  for (const auto& n : table_->names)
-    headers << q(n);
-  preview_->setHorizontalHeaderLabels(headers);
-  for (int r = 0; r < nrows; ++r) {
-    for (int c = 0; c < static_cast<int>(table_->columns()); ++c) {
-      preview_->setItem(r, c,
-                        new QTableWidgetItem(q(table_->cell(static_cast<std::size_t>(r),
-                                                            static_cast<std::size_t>(c)))));
-    }
-  }
   preview_->setEditTriggers(QAbstractItemView::NoEditTriggers);
-  preview_->resizeColumnsToContents();
   preview_->setMaximumHeight(200);
   lay->addWidget(preview_);
 
@@ -92,9 +98,6 @@ ImportDialog::ImportDialog(std::shared_ptr<const Table> table, const std::vector
     const QString key = q(role.name);
     row.column = new QComboBox(this);
     row.column->setObjectName("column." + key);
-    row.column->addItem("(none)", QString());
-    for (const auto& n : table_->names)
-      row.column->addItem(q(n), q(n));
     row.unit = new QComboBox(this);
     row.unit->setObjectName("unit." + key);
     row.unit->addItem(role.unit.empty() ? QString("as is") : "= " + q(role.unit), QString());
@@ -111,9 +114,8 @@ ImportDialog::ImportDialog(std::shared_ptr<const Table> table, const std::vector
     row.scale->setValue(1.0);
     row.flip = new QCheckBox(this);
     row.flip->setObjectName("flip." + key);
-    auto g = guess.find(role.name);
-    auto* guessed = new QLabel(g == guess.end() ? QString("—") : describe(g->second));
-    guessed->setObjectName("guess." + key);
+    row.guess = new QLabel(this);
+    row.guess->setObjectName("guess." + key);
     QString label = key + (role.unit.empty() ? "" : " [" + q(role.unit) + "]");
     if (!role.required) label += " (optional)";
     auto* name = new QLabel(label);
@@ -139,7 +141,7 @@ ImportDialog::ImportDialog(std::shared_ptr<const Table> table, const std::vector
     grid->addWidget(row.scale, line, 3);
     grid->addWidget(row.offset, line, 4);
     grid->addWidget(row.flip, line, 5);
-    grid->addWidget(guessed, line, 6);
+    grid->addWidget(row.guess, line, 6);
     ++line;
     rows_.push_back(row);
   }
@@ -153,6 +155,7 @@ ImportDialog::ImportDialog(std::shared_ptr<const Table> table, const std::vector
   problem_ = new QLabel(this);
   problem_->setObjectName("importProblem");
   problem_->setStyleSheet("color: #a01e14");
+  problem_->setWordWrap(true);
   lay->addWidget(problem_);
   auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, this);
   ok_ = buttons->button(QDialogButtonBox::Ok);
@@ -160,10 +163,73 @@ ImportDialog::ImportDialog(std::shared_ptr<const Table> table, const std::vector
   connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
   lay->addWidget(buttons);
 
+  for (auto& row : rows_) {
+    auto g = guess.find(row.role.name);
+    row.guess->setText(g == guess.end() ? QString("—") : describe(g->second));
+  }
+  showTable(start);
+  for (auto& row : rows_) {
+    connect(row.column, &QComboBox::currentIndexChanged, this, &ImportDialog::refresh);
+    connect(row.unit, &QComboBox::currentIndexChanged, this, &ImportDialog::refresh);
+    connect(row.scale, &QDoubleSpinBox::valueChanged, this, &ImportDialog::refresh);
+    connect(row.offset, &QDoubleSpinBox::valueChanged, this, &ImportDialog::refresh);
+    connect(row.flip, &QCheckBox::toggled, this, &ImportDialog::refresh);
+  }
+  if (zone_) connect(zone_, &QLineEdit::textChanged, this, &ImportDialog::refresh);
+  connect(sep_, &QComboBox::currentIndexChanged, this, &ImportDialog::reread);
+  connect(header_, &QComboBox::currentIndexChanged, this, &ImportDialog::reread);
+  refresh();
+}
+
+QString ImportDialog::summary() const {
+  const Table& t = *table_;
+  return QString("<b>%1</b>: %2 rows, %3 columns, %4-separated%5, %6")
+      .arg(QFileInfo(q(t.source)).fileName())
+      .arg(t.rows())
+      .arg(t.columns())
+      .arg(q(t.separator_name()))
+      .arg(t.decimal_comma ? ", decimal comma" : "")
+      .arg(t.has_header() ? QString("header on line %1").arg(t.header_line)
+                          : QString("no header (columns named by position: col1, col2, …)"));
+}
+
+// Fills what depends on the file's reading (preview, columns, the "detected" labels) and sets
+// each role from `keep` (else the column of the role's own name, else none).
+void ImportDialog::showTable(const Mapping& keep) {
+  const bool sep_detected = sep_->currentData().toInt() == 0;
+  sep_->setItemText(0, sep_detected ? "detected: " + q(table_->separator_name()) : "detected");
+  const bool head_detected = header_->currentData().toInt() == static_cast<int>(HeaderRow::detect);
+  header_->setItemText(0, !head_detected         ? QString("detected")
+                          : table_->has_header() ? QString("detected: first row")
+                                                 : QString("detected: none (col1, col2, …)"));
+  info_->setText(summary());
+  const int nrows = static_cast<int>(std::min<std::size_t>(table_->rows(), kPreviewRows));
+  preview_->clear();
+  preview_->setRowCount(nrows);
+  preview_->setColumnCount(static_cast<int>(table_->columns()));
+  QStringList headers;
+  for (const auto& n : table_->names)
+    headers << q(n);
+  preview_->setHorizontalHeaderLabels(headers);
+  for (int r = 0; r < nrows; ++r) {
+    for (int c = 0; c < static_cast<int>(table_->columns()); ++c) {
+      preview_->setItem(r, c,
+                        new QTableWidgetItem(q(table_->cell(static_cast<std::size_t>(r),
+                                                            static_cast<std::size_t>(c)))));
+    }
+  }
+  preview_->resizeColumnsToContents();
+  for (auto& row : rows_) {
+    const QSignalBlocker block(row.column);
+    row.column->clear();
+    row.column->addItem("(none)", QString());
+    for (const auto& n : table_->names)
+      row.column->addItem(q(n), q(n));
+  }
   for (const auto& row : rows_) {
-    auto it = start.find(row.role.name);
+    auto it = keep.find(row.role.name);
     RoleMapping m;
-    if (it != start.end())
+    if (it != keep.end())
       m = it->second;
     else if (table_->index(row.role.name) >= 0)
       m.column = row.role.name;
@@ -173,15 +239,52 @@ ImportDialog::ImportDialog(std::shared_ptr<const Table> table, const std::vector
     setOffset(row.role.name, m.offset);
     setFlip(row.role.name, m.flip);
   }
-  for (auto& row : rows_) {
-    connect(row.column, &QComboBox::currentIndexChanged, this, &ImportDialog::refresh);
-    connect(row.unit, &QComboBox::currentIndexChanged, this, &ImportDialog::refresh);
-    connect(row.scale, &QDoubleSpinBox::valueChanged, this, &ImportDialog::refresh);
-    connect(row.offset, &QDoubleSpinBox::valueChanged, this, &ImportDialog::refresh);
-    connect(row.flip, &QCheckBox::toggled, this, &ImportDialog::refresh);
+}
+
+void ImportDialog::reread() {
+  Mapping keep = mapping();
+  auto t = read_table(table_->source, keep.table_options());
+  if (!t) {
+    read_error_ = q(t.error());
+    refresh();
+    return;
   }
-  if (zone_) connect(zone_, &QLineEdit::textChanged, this, &ImportDialog::refresh);
+  read_error_.clear();
+  table_ = std::make_shared<const Table>(std::move(*t));
+  // Roles keep their columns where the new reading has them, else take the new guess.
+  const Mapping guess = guess_mapping(*table_, roles_);
+  for (auto& row : rows_) {
+    const std::string& role = row.role.name;
+    auto g = guess.find(role);
+    row.guess->setText(g == guess.end() ? QString("—") : describe(g->second));
+    auto k = keep.find(role);
+    if (k != keep.end() && table_->index(k->second.column) >= 0) continue;
+    if (g != guess.end())
+      keep[role] = g->second;
+    else if (k != keep.end())
+      keep.erase(k);
+  }
+  {
+    std::vector<QSignalBlocker> blocks;
+    for (auto& row : rows_) {
+      blocks.emplace_back(row.column);
+      blocks.emplace_back(row.unit);
+      blocks.emplace_back(row.scale);
+      blocks.emplace_back(row.offset);
+      blocks.emplace_back(row.flip);
+    }
+    if (zone_) blocks.emplace_back(zone_);
+    showTable(keep);
+  }
   refresh();
+}
+
+void ImportDialog::setSeparator(char sep) {
+  sep_->setCurrentIndex(std::max(sep_->findData(static_cast<int>(sep)), 0));
+}
+
+void ImportDialog::setHeader(HeaderRow header) {
+  header_->setCurrentIndex(std::max(header_->findData(static_cast<int>(header)), 0));
 }
 
 ImportDialog::Row* ImportDialog::row(const std::string& role) {
@@ -222,6 +325,8 @@ void ImportDialog::setFlip(const std::string& role, bool flip) {
 
 Mapping ImportDialog::mapping() const {
   Mapping m;
+  m.separator = static_cast<char>(sep_->currentData().toInt());
+  m.header = static_cast<HeaderRow>(header_->currentData().toInt());
   for (const auto& r : rows_) {
     const std::string col = r.column->currentData().toString().toStdString();
     if (col.empty()) continue;
@@ -240,6 +345,7 @@ Mapping ImportDialog::mapping() const {
 }
 
 QString ImportDialog::problem() const {
+  if (!read_error_.isEmpty()) return read_error_;
   const QString p = roleProblem();
   return p.isEmpty() ? import_error_ : p;
 }

@@ -1,6 +1,7 @@
-// The import dialog: opens on every Open CSV… — a preview of the file's first rows, a small plot
-// of the chosen columns, and per role (time first) a column, the unit the column is in, a scale,
-// an offset and a sign flip. Starts from the guess (import.h) over the remembered mapping; shows
+// The import dialog: opens on every Open CSV… — the separator and header row (detected, or
+// chosen: the file is read again at once), a preview of the file's first rows, a small plot of
+// the chosen columns, and per role (time first) a column, the unit the column is in, a scale, an
+// offset and a sign flip. Starts from the guess (import.h) over the remembered mapping; shows
 // what was guessed; refuses OK while a required role has no column or a column has two roles.
 #pragma once
 
@@ -38,6 +39,10 @@ class ImportDialog : public QDialog {
   void setScale(const std::string& role, double scale);
   void setOffset(const std::string& role, double offset);
   void setFlip(const std::string& role, bool flip);
+  // The file's format: 0 / HeaderRow::detect is "detected". Re-reads the file and the preview;
+  // roles keep their columns where the new reading has them.
+  void setSeparator(char sep);
+  void setHeader(HeaderRow header);
 
   Mapping mapping() const;
   // Why OK is refused (a required role unassigned, a column assigned twice, or the import's own
@@ -46,6 +51,10 @@ class ImportDialog : public QDialog {
   void accept() override;
 
   QTableWidget* preview() const { return preview_; }
+  // The file as currently read (with the chosen separator and header row).
+  const Table& table() const { return *table_; }
+  // "<file>: N rows, M columns, comma-separated, header on line 1" (or "no header").
+  QString summary() const;
   // The mapped roles over time (converted, as they will load; over the row number until the
   // mapping imports).
   QCustomPlot* plot() const { return plot_; }
@@ -59,15 +68,22 @@ class ImportDialog : public QDialog {
     QDoubleSpinBox* scale = nullptr;
     QDoubleSpinBox* offset = nullptr;
     QCheckBox* flip = nullptr;
+    QLabel* guess = nullptr;
   };
   Row* row(const std::string& role);
   QString roleProblem() const;
   void refresh();
+  void reread();  // the separator or header choice changed
+  void showTable(const Mapping& keep);
   void plotRows(const Mapping& m);
 
   std::shared_ptr<const Table> table_;
   std::vector<ColumnSpec> roles_;
+  QComboBox* sep_ = nullptr;     // data: the separator character, 0 = detected
+  QComboBox* header_ = nullptr;  // data: HeaderRow
+  QLabel* info_ = nullptr;
   QLineEdit* zone_ = nullptr;  // time zone of an ISO time column without offsets
+  QString read_error_;         // the file does not read with the chosen format
   QString import_error_;
   std::vector<Row> rows_;
   QTableWidget* preview_ = nullptr;

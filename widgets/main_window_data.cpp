@@ -57,33 +57,44 @@ void remember(const Table& t, const Mapping& m) {
 
 Expected<Dataset> MainWindow::readMapped(const QString& path, const Mapping* map, Mapping& used) {
   const std::string file = path.toStdString();
-  auto table = read_table(file);
+  // Read with the given mapping's format (separator, header row), else the preset's; a mapping
+  // remembered for the file's header may choose another, and the file is then read again.
+  used = map ? *map : doc_->preset().mapping;
+  auto table = read_table(file, used.table_options());
+  const bool ask = !map && (interactive_ || import_hook_);
+  if (!table && ask && !Mapping{}.same_format(used)) {
+    used.separator = 0;  // the dialog starts from the detected format
+    used.header = HeaderRow::detect;
+    table = read_table(file);
+  }
   if (!table) return table.err();
-  const auto shared = std::make_shared<const Table>(std::move(*table));
+  auto shared = std::make_shared<const Table>(std::move(*table));
   if (map) {
-    used = *map;
     auto d = import_dataset(*scenario_, *shared, used);
-    if (d && !map->empty()) remember(*shared, used);
+    if (d && !map->blank()) remember(*shared, used);
     return d;
   }
-  used = doc_->preset().mapping;
   if (auto r = remembered(*shared)) {
-    for (const auto& [role, rm] : *r)
-      used[role] = rm;
+    const Mapping before = used;
+    used.override_with(*r);
+    if (!before.same_format(used)) {
+      auto again = read_table(file, used.table_options());
+      if (!again) return again.err();
+      shared = std::make_shared<const Table>(std::move(*again));
+    }
   }
   if (!interactive_ && !import_hook_) return import_dataset(*scenario_, *shared, used);
   // The dialog starts from the guess, overridden by the preset's and the remembered mapping.
   const Mapping guess = guess_mapping(*shared, scenario_->columns());
   Mapping start = guess;
-  for (const auto& [role, rm] : used)
-    start[role] = rm;
+  start.override_with(used);
   ImportDialog dialog(shared, scenario_->columns(), start, guess, this);
   const bool accepted = import_hook_ ? import_hook_(dialog) && dialog.problem().isEmpty()
                                      : dialog.exec() == QDialog::Accepted;
   if (!accepted) return Error{file + ": import cancelled", kExitOk};  // exit 0: not a failure
-  used = dialog.mapping();
-  auto d = import_dataset(*scenario_, *shared, used);
-  if (d) remember(*shared, used);
+  used = dialog.mapping();  // the file as the dialog last read it (its separator and header)
+  auto d = import_dataset(*scenario_, dialog.table(), used);
+  if (d) remember(dialog.table(), used);
   return d;
 }
 
@@ -123,7 +134,7 @@ Status MainWindow::openFile(const QString& path, const Mapping* map) {
 Status MainWindow::editMapping() {
   if (!doc_ || !doc_->data()) return Error{"no file loaded (the data are simulated)"};
   const DataRef current = *doc_->data();
-  auto table = read_table(current.path);
+  auto table = read_table(current.path, current.mapping.table_options());
   if (!table) return table.err();
   const auto shared = std::make_shared<const Table>(std::move(*table));
   ImportDialog dialog(shared, scenario_->columns(), current.mapping,
@@ -132,20 +143,20 @@ Status MainWindow::editMapping() {
                                      : dialog.exec() == QDialog::Accepted;
   if (!accepted) return Ok{};
   const Mapping m = dialog.mapping();
-  auto d = import_dataset(*scenario_, *shared, m);
+  auto d = import_dataset(*scenario_, dialog.table(), m);
   if (!d) {
     showError(q(d.error()));
     return d.err();
   }
   if (auto st = doc_->set_mapping(m); !st) return st;
-  remember(*shared, m);
+  remember(dialog.table(), m);
   syncFromDocument();  // reads the file with the new mapping; undo restores the old one
   return Ok{};
 }
 
 Status MainWindow::forgetMapping() {
   if (!doc_ || !doc_->data()) return Error{"no file loaded (the data are simulated)"};
-  auto table = read_table(doc_->data()->path);
+  auto table = read_table(doc_->data()->path, doc_->data()->mapping.table_options());
   if (!table) return table.err();
   QSettings("kfw", "kfw").remove(mapKey(*table));
   status_->setText("Forgot the mapping remembered for " +

@@ -101,6 +101,11 @@ Expected<Dataset> parse_csv_text(std::string text, const std::string& source,
   topt.progress = opt.progress;
   auto t = parse_table(std::move(text), source, topt);
   if (!t) return t.err();
+  if (!t->has_header()) {  // kfw's own format names its columns
+    return Error{source_position(source, t->line_of(0), 1) +
+                 ": the first row must be a header row of column names, found the number '" +
+                 t->cell(0, 0) + "'"};
+  }
   if (t->index(opt.time_column) < 0) {
     return Error{source + ":" + std::to_string(t->header_line) + ": no time column '" +
                  opt.time_column + "' in the header"};

@@ -129,8 +129,7 @@ bool Document::redo() {
 
 Mapping Document::mapping_with(const Mapping& overrides) const {
   Mapping m = preset_.mapping;
-  for (const auto& [role, r] : overrides)
-    m[role] = r;
+  m.override_with(overrides);
   return m;
 }
 

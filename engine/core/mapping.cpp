@@ -67,11 +67,39 @@ std::string iso_zone(const std::string& unit) {
   return is_iso_unit(unit) && unit.size() > 4 ? unit.substr(4) : std::string();
 }
 
+void Mapping::override_with(const Mapping& over) {
+  for (const auto& [role, r] : over)
+    (*this)[role] = r;
+  if (over.separator) separator = over.separator;
+  if (over.header != HeaderRow::detect) header = over.header;
+}
+
+TableOptions Mapping::table_options() const {
+  TableOptions o;
+  o.separator = separator;
+  o.header = header;
+  return o;
+}
+
 Expected<Mapping> mapping_from_json(const json& j, const std::string& where) {
   if (!j.is_object()) return Error{where + ": must be an object of role -> column"};
   Mapping m;
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string at = key_path(where, it.key());
+    if (it.key() == "sep" || it.key() == "header") {  // how the file is read, not a role
+      if (!it->is_string()) return Error{at + ": must be a string, not " + json_type_name(*it)};
+      const std::string v = it->get<std::string>();
+      if (it.key() == "sep") {
+        auto s = parse_separator(v);
+        if (!s) return Error{at + ": " + s.error()};
+        m.separator = *s;
+      } else {
+        auto h = parse_header_row(v);
+        if (!h) return Error{at + ": " + h.error()};
+        m.header = *h;
+      }
+      continue;
+    }
     RoleMapping r;
     if (it->is_string()) {
       r.column = it->get<std::string>();
@@ -111,6 +139,8 @@ Expected<Mapping> mapping_from_json(const json& j, const std::string& where) {
 
 nlohmann::ordered_json mapping_to_json(const Mapping& m) {
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  if (m.separator) j["sep"] = separator_key(m.separator);
+  if (m.header != HeaderRow::detect) j["header"] = header_row_name(m.header);
   for (const auto& [role, r] : m) {
     if (r.unit.empty() && r.scale == 1.0 && r.offset == 0.0 && !r.flip) {
       j[role] = r.column.empty() ? role : r.column;

@@ -10,6 +10,7 @@
 
 #include "core/dataset.h"
 #include "core/expected.h"
+#include "core/table.h"
 
 namespace kfw {
 
@@ -22,8 +23,23 @@ struct RoleMapping {
   bool operator==(const RoleMapping&) const = default;
 };
 
-// role -> mapping; "t" is the time column.
-using Mapping = std::map<std::string, RoleMapping>;
+// role -> mapping ("t" is the time column), and how the file is read: its separator and whether
+// its first row is a header (the block's "sep" and "header" keys; by default both are detected).
+struct Mapping : std::map<std::string, RoleMapping> {
+  using std::map<std::string, RoleMapping>::map;
+  char separator = 0;                    // 0: detected; else ',' ';' '\t' kWhitespaceSeparator
+  HeaderRow header = HeaderRow::detect;  // first row: detected, the header, or data
+  bool operator==(const Mapping&) const = default;
+
+  // Nothing given: no role and the file's format detected.
+  bool blank() const { return empty() && separator == 0 && header == HeaderRow::detect; }
+  // `over`'s roles replace these, and its separator and header replace these where given.
+  void override_with(const Mapping& over);
+  TableOptions table_options() const;
+  bool same_format(const Mapping& o) const {
+    return separator == o.separator && header == o.header;
+  }
+};
 
 // A dataset by path, with the mapping that reads it.
 struct DataRef {
@@ -44,7 +60,9 @@ std::string iso_zone(const std::string& unit);
 const std::vector<std::string>& known_units();
 
 // The "mapping" block: {"gyro": "omega_dps"} or {"gyro": {"column": ..., "unit": ..., "scale":
-// ..., "offset": ..., "flip": ...}}. `where` is the dotted key path for messages.
+// ..., "offset": ..., "flip": ...}}, plus "sep" (comma, semicolon, tab, whitespace) and "header"
+// (first, none; detected when absent): these two keys are not roles. `where` is the dotted key
+// path for messages.
 Expected<Mapping> mapping_from_json(const nlohmann::json& j, const std::string& where);
 nlohmann::ordered_json mapping_to_json(const Mapping& m);
 

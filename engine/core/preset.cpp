@@ -362,7 +362,7 @@ std::string preset_to_json(const Preset& preset) {
     }
   }
   j["parameters"] = params;
-  if (!preset.mapping.empty()) j["mapping"] = mapping_to_json(preset.mapping);
+  if (!preset.mapping.blank()) j["mapping"] = mapping_to_json(preset.mapping);
   if (!preset.model.is_null()) j["model"] = preset.model;
   if (preset.sim_x0_from_prior) j["sim"] = {{"x0_from_prior", true}};
   return j.dump(2) + "\n";

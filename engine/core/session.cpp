@@ -92,8 +92,7 @@ Expected<Session> session_from_json(const json& j, const std::string& path) {
     if (!j.contains(key)) continue;
     auto m = mapping_from_json(j[key], key);
     if (!m) return Error{path + ": " + m.error()};
-    for (auto& [role, r] : *m)
-      s.mapping[role] = r;
+    s.mapping.override_with(*m);
   }
   if (j.contains("tuning_set")) {
     if (!j["tuning_set"].is_array()) return Error{path + ": tuning_set: must be an array"};

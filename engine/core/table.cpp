@@ -190,16 +190,7 @@ int Table::index(std::string_view name) const {
 }
 
 std::string Table::separator_name() const {
-  switch (separator) {
-    case ';':
-      return "semicolon";
-    case '\t':
-      return "tab";
-    case kWhitespaceSeparator:
-      return "whitespace";
-    default:
-      return "comma";
-  }
+  return separator_key(separator ? separator : ',');
 }
 
 namespace {
@@ -239,6 +230,36 @@ Expected<char> parse_separator(const std::string& s) {
   if (s == "\t" || s == "\\t" || s == "tab") return '\t';
   if (s == " " || s == "space" || s == "whitespace") return kWhitespaceSeparator;
   return Error{"unknown separator '" + s + "' (comma, semicolon, tab, whitespace)"};
+}
+
+std::string separator_key(char sep) {
+  switch (sep) {
+    case 0:
+      return "";
+    case ';':
+      return "semicolon";
+    case '\t':
+      return "tab";
+    case kWhitespaceSeparator:
+      return "whitespace";
+    default:
+      return "comma";
+  }
+}
+
+Expected<HeaderRow> parse_header_row(const std::string& s) {
+  if (s == "detect" || s == "auto") return HeaderRow::detect;
+  if (s == "first") return HeaderRow::first;
+  if (s == "none") return HeaderRow::none;
+  return Error{"unknown header '" + s + "' (detect, first, none)"};
+}
+
+std::string header_row_name(HeaderRow h) {
+  return h == HeaderRow::first ? "first" : h == HeaderRow::none ? "none" : "detect";
+}
+
+std::string positional_name(std::size_t index0) {
+  return "col" + std::to_string(index0 + 1);
 }
 
 Expected<Table> parse_table(std::string text, const std::string& source, const TableOptions& opt) {
@@ -281,7 +302,6 @@ Expected<Table> parse_table(std::string text, const std::string& source, const T
   auto got = next(header);
   if (!got) return got.err();
   if (!*got) return Error{source + ": empty file (expected a header row)"};
-  t.header_line = header.number;
   // Detection looks at the header and up to 50 rows after it.
   t.separator = opt.separator;
   if (!t.separator) {
@@ -308,24 +328,47 @@ Expected<Table> parse_table(std::string text, const std::string& source, const T
     return Error{source_position(source, header.number) + ": " + std::to_string(fields.size()) +
                  " columns: more than the limit of " + std::to_string(kMaxCsvColumns)};
   }
-  std::unordered_set<std::string_view> seen;
-  for (std::size_t c = 0; c < fields.size(); ++c) {
-    const std::string_view name = fields[c].text;
-    double dummy = 0.0;
-    if (name.empty()) {
-      return Error{source_position(source, header.number, fields[c].col) + ": column " +
-                   std::to_string(c + 1) + " has an empty header name"};
+  auto is_number = [&](std::string_view f) {
+    double v = 0.0;
+    return !f.empty() && fast_number(f.data(), f.data() + f.size(), v, t.decimal_comma);
+  };
+  HeaderRow mode = opt.header;
+  if (mode == HeaderRow::detect) {
+    // Data, not names: every cell a number or a missing-value word, at least one a number.
+    bool numbers = false, all = true;
+    for (const auto& f : fields) {
+      if (is_number(f.text))
+        numbers = true;
+      else if (!slow_number(f.text, t.decimal_comma))
+        all = false;
     }
-    if (c == 0 && fast_number(name.data(), name.data() + name.size(), dummy, t.decimal_comma)) {
-      return Error{source_position(source, header.number, 1) +
-                   ": the first row must be a header row of column names, found the number '" +
-                   shown_field(name) + "'"};
+    mode = numbers && all ? HeaderRow::none : HeaderRow::first;
+  }
+  if (mode == HeaderRow::none) {
+    for (std::size_t c = 0; c < fields.size(); ++c)
+      t.names.push_back(positional_name(c));
+    pos = header.start;  // the first row is data: read it again below
+    line_no = header.number - 1;
+  } else {
+    t.header_line = header.number;
+    std::unordered_set<std::string_view> seen;
+    for (std::size_t c = 0; c < fields.size(); ++c) {
+      const std::string_view name = fields[c].text;
+      if (name.empty()) {
+        return Error{source_position(source, header.number, fields[c].col) + ": column " +
+                     std::to_string(c + 1) + " has an empty header name"};
+      }
+      if (c == 0 && opt.header == HeaderRow::detect && is_number(name)) {
+        return Error{source_position(source, header.number, 1) +
+                     ": the first row must be a header row of column names, found the number '" +
+                     shown_field(name) + "' next to text (a file without a header: all numbers)"};
+      }
+      if (!seen.insert(name).second) {
+        return Error{source_position(source, header.number, fields[c].col) +
+                     ": duplicate column '" + shown_field(name) + "'"};
+      }
+      t.names.emplace_back(name);
     }
-    if (!seen.insert(name).second) {
-      return Error{source_position(source, header.number, fields[c].col) + ": duplicate column '" +
-                   shown_field(name) + "'"};
-    }
-    t.names.emplace_back(name);
   }
   const std::size_t ncols = t.names.size();
   t.values.resize(ncols);
@@ -349,7 +392,8 @@ Expected<Table> parse_table(std::string text, const std::string& source, const T
     }
     if (fields.size() != ncols) {
       return Error{source_position(source, l.number) + ": expected " + std::to_string(ncols) +
-                   " fields as in the header, found " + std::to_string(fields.size())};
+                   " fields as in the " + (t.has_header() ? "header" : "first row") + ", found " +
+                   std::to_string(fields.size())};
     }
     for (std::size_t c = 0; c < ncols; ++c) {
       const std::string_view f = fields[c].text;
@@ -373,7 +417,7 @@ Expected<Table> parse_table(std::string text, const std::string& source, const T
       return Error{source + ": reading cancelled"};
     }
   }
-  if (t.rows() == 0) return Error{source + ": no data rows after the header"};
+  if (t.rows() == 0) return Error{source + ": no data rows after the header"};  // header only
   t.text_ = std::move(text);
   return t;
 }

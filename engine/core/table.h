@@ -19,8 +19,14 @@ namespace kfw {
 
 inline constexpr char kWhitespaceSeparator = ' ';  // runs of blanks
 
+// Whether the first row (not a comment) names the columns. Detected: a row whose every cell is
+// a number (or a missing-value word, at least one a number) is data, and the columns are named
+// by position: col1, col2, ...; any other first row is the header.
+enum class HeaderRow { detect, first, none };
+
 struct TableOptions {
   char separator = 0;                    // 0: detect; ',' ';' '\t' or kWhitespaceSeparator
+  HeaderRow header = HeaderRow::detect;  // first: names even if numeric; none: col1, col2, ...
   std::function<bool(double)> progress;  // fraction read; return false to cancel
 };
 
@@ -39,7 +45,7 @@ struct Table {
   std::vector<std::vector<double>> values;  // NaN: no sample or not a number
   std::vector<std::size_t> invalid;         // per column: cells that are not numbers
   std::vector<CellIssue> first_invalid;     // per column, when invalid > 0
-  std::size_t header_line = 0;
+  std::size_t header_line = 0;              // 0: no header row (columns named col1, col2, ...)
 
   std::size_t rows() const { return row_line_.size(); }
   std::size_t columns() const { return names.size(); }
@@ -50,6 +56,7 @@ struct Table {
   std::size_t cell_column(std::size_t row, std::size_t col) const;
   // "comma", "semicolon", "tab", "whitespace".
   std::string separator_name() const;
+  bool has_header() const { return header_line > 0; }
 
   // Filled by the reader: the text and where each row starts (cells are re-read on demand).
   std::string text_;
@@ -62,6 +69,13 @@ std::string source_position(const std::string& source, std::size_t line, std::si
 
 // A separator by name or character: "," ";" "tab" "\t" "space" "whitespace" "comma" "semicolon".
 Expected<char> parse_separator(const std::string& s);
+// The separator's name as parse_separator reads it ("comma", ...); "" for 0 (detected).
+std::string separator_key(char sep);
+// "detect" (or "auto"), "first", "none"; and back.
+Expected<HeaderRow> parse_header_row(const std::string& s);
+std::string header_row_name(HeaderRow h);
+// The name a column gets in a file without a header: "col" + its 1-based position.
+std::string positional_name(std::size_t index0);
 
 // Errors name FILE:LINE[:COL]: an empty file, a header only, a binary file (NUL byte), ragged
 // rows, an empty or duplicate header name, an unterminated quote, the line and column limits.

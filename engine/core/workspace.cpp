@@ -37,6 +37,8 @@ std::string mapping_options(const Mapping& m) {
     if (r.offset != 0.0) s += " --offset " + role + "=" + std::to_string(r.offset);
     if (r.flip) s += " --flip " + role;
   }
+  if (m.separator) s += " --sep " + separator_key(m.separator);
+  if (m.header != HeaderRow::detect) s += " --header " + header_row_name(m.header);
   return s;
 }
 
@@ -51,12 +53,12 @@ Expected<Dataset> import_dataset(const Scenario& scenario, const Table& table,
     }
     std::string msg = table.source + ": missing required column '" + c.name + "'";
     if (!c.meaning.empty()) msg += " (" + c.meaning + (c.unit.empty() ? "" : ", " + c.unit) + ")";
-    msg += "; columns present:";
+    msg += table.has_header() ? "; columns present:"
+                              : "; no header (the first row is numbers), columns by position:";
     for (const auto& n : table.names)
       msg += " " + n;
     Mapping guess = guess_mapping(table, columns);
-    for (const auto& [role, r] : mapping)
-      guess[role] = r;
+    guess.override_with(mapping);
     if (guess.count(c.name)) msg += "; map them, e.g. " + mapping_options(guess);
     return Error{msg};
   }
@@ -67,17 +69,15 @@ Expected<Dataset> import_dataset(const Scenario& scenario, const Table& table,
 }
 
 Expected<Dataset> load_dataset_file(const Scenario& scenario, const std::string& path,
-                                    const Mapping& mapping, char separator) {
-  TableOptions opt;
-  opt.separator = separator;
-  auto t = read_table(path, opt);
+                                    const Mapping& mapping) {
+  auto t = read_table(path, mapping.table_options());
   if (!t) return t.err();
   return import_dataset(scenario, *t, mapping);
 }
 
 Expected<Dataset> load_dataset(const Workspace& ws) {
   if (!ws.data_path) return ws.scenario->simulate(ws.values);
-  auto d = load_dataset_file(*ws.scenario, *ws.data_path, ws.mapping, ws.separator);
+  auto d = load_dataset_file(*ws.scenario, *ws.data_path, ws.mapping);
   if (!d && ws.data_from_preset) {
     std::error_code ec;
     if (!std::filesystem::exists(*ws.data_path, ec)) {

@@ -3,6 +3,7 @@
 #include <QBrush>
 #include <QColor>
 #include <QFont>
+#include <QHash>
 #include <QHeaderView>
 #include <QPainter>
 #include <QPixmap>
@@ -193,16 +194,16 @@ void MetricsPanel::setRuns(const Scenario& scenario, std::shared_ptr<const RunRe
     // One change notice for the whole update: the headers fit their sections to the contents
     // once, not once per changed cell (each notice re-measures every row).
     model()->blockSignals(true);
+    QHash<QString, const MetricSpec*> specs;
+    for (const auto& r : rows)
+      specs.insert(q(r.spec.key), &r.spec);
     for (int row = 0; row < rowCount(); ++row) {
       const QTableWidgetItem* name = item(row, 0);
-      if (!name || !name->data(kKeyRole).isValid()) continue;  // a group header
-      const auto spec = std::find_if(rows.begin(), rows.end(), [&](const Row& r) {
-        return q(r.spec.key) == name->data(kKeyRole).toString();
-      });
-      if (spec == rows.end()) continue;
-      setValue(item(row, 1), live.get(), spec->spec);
+      const MetricSpec* spec = name ? specs.value(name->data(kKeyRole).toString()) : nullptr;
+      if (!spec) continue;  // a group header
+      setValue(item(row, 1), live.get(), *spec);
       for (int j = 0; j < snapshots.size(); ++j)
-        setValue(item(row, 2 + j), snapshots[j].second.get(), spec->spec);
+        setValue(item(row, 2 + j), snapshots[j].second.get(), *spec);
     }
     model()->blockSignals(false);
     emit model()->dataChanged(model()->index(0, 1),

@@ -131,6 +131,10 @@ void PlotReadout::place(Marks& m, const QString& text, double x_px) {
 }
 
 void PlotReadout::showTime(double t, QCustomPlot* hovered) {
+  drawTime(t, hovered, false);
+}
+
+void PlotReadout::drawTime(double t, const QCustomPlot* hovered, bool label_all) {
   for (Marks& m : marks_) {
     if (!isTimePlot(m.plot)) {
       if (m.line->visible() || m.label->visible()) {
@@ -143,7 +147,7 @@ void PlotReadout::showTime(double t, QCustomPlot* hovered) {
     m.line->point1->setCoords(t, 0);
     m.line->point2->setCoords(t, 1);
     m.line->setVisible(true);
-    if (m.plot == hovered) {
+    if (label_all || m.plot == hovered) {
       place(m, timeText(m.plot, t), m.plot->xAxis->coordToPixel(t));
     } else {
       m.label->setVisible(false);
@@ -192,21 +196,7 @@ QString PlotReadout::timeText(const QCustomPlot* p, double t) const {
 
 void PlotReadout::showReplay() {
   // Every time plot: the line and its values at the replay time (nobody hovers one to choose).
-  for (Marks& m : marks_) {
-    if (!isTimePlot(m.plot)) {
-      if (m.line->visible() || m.label->visible()) {
-        m.line->setVisible(false);
-        m.label->setVisible(false);
-        m.layer->replot();
-      }
-      continue;
-    }
-    m.line->point1->setCoords(replay_t_, 0);
-    m.line->point2->setCoords(replay_t_, 1);
-    m.line->setVisible(true);
-    place(m, timeText(m.plot, replay_t_), m.plot->xAxis->coordToPixel(replay_t_));
-    m.layer->replot();
-  }
+  drawTime(replay_t_, nullptr, true);
 }
 
 void PlotReadout::setReplayTime(double t) {

@@ -62,6 +62,8 @@ class PlotReadout final : public QObject {
   void place(Marks& m, const QString& text, double x_px);
   QString timeText(const QCustomPlot* p, double t) const;
   void showReplay();
+  // The time cursor at t on every time plot, labelled on `hovered` (or on all of them).
+  void drawTime(double t, const QCustomPlot* hovered, bool label_all);
   void hideAll();
   std::vector<Marks> marks_;
   double replay_t_;

@@ -26,14 +26,6 @@ int rowsFor(const QCPGraph* g) {
   return std::max(h, 300);
 }
 
-// Cheap log2 for binning dots on a log axis: exponent plus a linear mantissa, within 0.09 of
-// log2. Binning only chooses which dots share a 2 × 2-pixel cell; every dot drawn is exact.
-double fastLog2(double y) {
-  int e = 0;
-  const double m = std::frexp(y, &e);  // y = m·2^e, m in [0.5, 1)
-  return static_cast<double>(e) + 2.0 * m - 2.0;
-}
-
 // The finite, drawable points among the first n, visited in order.
 template <typename F>
 void forEachPoint(const std::vector<double>& x, const std::vector<double>& y, std::size_t begin,
@@ -65,7 +57,7 @@ Extent extent(const std::vector<double>& x, const std::vector<double>& y, std::s
 // (a dot is 2 px wide, so cells of 2 × 2 px lose nothing visible).
 void decimateDots(const std::vector<double>& x, const std::vector<double>& y, std::size_t begin,
                   std::size_t n, bool logY, int cols, int rows, QVector<QCPGraphData>& out) {
-  auto fy = [logY](double v) { return logY ? fastLog2(v) : v; };
+  auto fy = [logY](double v) { return logY ? coarseLog2(v) : v; };
   const auto [x0, x1, y0, y1] = extent(x, y, begin, n, logY);
   if (x0 > x1) return;
   const double fy0 = fy(y0), fspan = fy(y1) - fy0;

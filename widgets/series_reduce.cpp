@@ -1,7 +1,6 @@
 #include "series_reduce.h"
 
 #include <cstdint>
-#include <cstring>
 
 namespace kfw::plot {
 
@@ -43,14 +42,7 @@ void reduceDots(const double* x, const double* y, std::size_t a, std::size_t b, 
                 int rows, std::vector<XY>& out) {
   // Rows over the drawable values' extent (log2 on a log axis: a coarse log is enough to choose
   // which dots share a cell; every dot drawn is exact).
-  auto fy = [logY](double v) {
-    if (!logY) return v;
-    // A positive double's bits, read as an integer, grow with its log2 (exponent, then a linear
-    // mantissa): within 0.09 of log2 and monotonic.
-    std::int64_t bits = 0;
-    std::memcpy(&bits, &v, sizeof bits);
-    return static_cast<double>(bits) * 0x1p-52 - 1023.0;
-  };
+  auto fy = [logY](double v) { return logY ? coarseLog2(v) : v; };
   double y0 = std::numeric_limits<double>::infinity(), y1 = -y0;
   std::size_t first = b, last = a;
   for (std::size_t i = a; i < b; ++i) {

@@ -18,18 +18,20 @@
 
 #include "common/import_files.h"
 #include "core/session.h"
+#include "gui/import_window.h"
 #include "import_dialog.h"
 #include "main_window.h"
 
 namespace kfw {
 namespace {
 
-class ImportFormatGui : public ::testing::Test {
+class ImportFormatGui : public testing::ImportWindow {
  protected:
+  ImportFormatGui() : ImportWindow(3000) {}
   void SetUp() override {
-    QSettings("kfw", "kfw").remove("columnMaps");
-    if (!testing::make_import_files(dir.path().toStdString(), 3000, files))
-      GTEST_SKIP() << "no real log";
+    ImportWindow::SetUp();
+    if (IsSkipped() || HasFatalFailure()) return;
+    // The reference file without its header row.
     std::ifstream in(files.reference);
     std::string line, body;
     std::getline(in, line);
@@ -37,31 +39,6 @@ class ImportFormatGui : public ::testing::Test {
       body += line + "\n";
     nohead = dir.filePath("nohead.csv").toStdString();
     std::ofstream(nohead) << body;
-    ASSERT_TRUE(w.loadPreset("broad_imu").ok());
-    ASSERT_TRUE(w.waitForRun());
-  }
-  void TearDown() override { QSettings("kfw", "kfw").remove("columnMaps"); }
-
-  Metrics open(const std::string& file, const std::function<void(ImportDialog&)>& set) {
-    w.setImportHook([&](ImportDialog& d) {
-      set(d);
-      EXPECT_EQ(d.problem(), QString()) << file;
-      return true;
-    });
-    const auto st = w.openDataset(QString::fromStdString(file));
-    EXPECT_TRUE(st.ok()) << st.error();
-    EXPECT_TRUE(w.waitForRun());
-    EXPECT_EQ(w.dataset()->source, file);
-    return w.result() ? w.result()->metrics : Metrics{};
-  }
-
-  void expect_same(const Metrics& got, const Metrics& want, const char* what) {
-    ASSERT_TRUE(want.count("rmse"));
-    for (const auto& [k, v] : want) {
-      ASSERT_TRUE(got.count(k)) << what << ": " << k;
-      EXPECT_TRUE(testing::close12(got.at(k), v))
-          << what << ": " << k << " " << got.at(k) << " vs " << v;
-    }
   }
 
   static QComboBox* combo(ImportDialog& d, const char* name) {
@@ -70,10 +47,7 @@ class ImportFormatGui : public ::testing::Test {
     return c;
   }
 
-  QTemporaryDir dir;
-  testing::ImportFiles files;
   std::string nohead;
-  MainWindow w;
 };
 
 TEST_F(ImportFormatGui, TheSeparatorChoiceRereadsThePreviewAndIsKept) {

@@ -19,49 +19,16 @@
 
 #include "common/import_files.h"
 #include "core/dataset.h"
+#include "gui/import_window.h"
 #include "import_dialog.h"
 #include "main_window.h"
 
 namespace kfw {
 namespace {
 
-class ImportGui : public ::testing::Test {
+class ImportGui : public testing::ImportWindow {
  protected:
-  void SetUp() override {
-    QSettings("kfw", "kfw").remove("columnMaps");
-    if (!testing::make_import_files(dir.path().toStdString(), 4000, files))
-      GTEST_SKIP() << "no real log";
-    ASSERT_TRUE(w.loadPreset("broad_imu").ok());
-    ASSERT_TRUE(w.waitForRun());
-  }
-  void TearDown() override { QSettings("kfw", "kfw").remove("columnMaps"); }
-
-  // Opens `file` through the dialog, configured by `set`; returns the run's metrics.
-  Metrics open(const std::string& file, const std::function<void(ImportDialog&)>& set) {
-    w.setImportHook([&](ImportDialog& d) {
-      set(d);
-      EXPECT_EQ(d.problem(), QString()) << file;
-      return true;
-    });
-    const auto st = w.openDataset(QString::fromStdString(file));
-    EXPECT_TRUE(st.ok()) << st.error();
-    EXPECT_TRUE(w.waitForRun());
-    EXPECT_EQ(w.dataset()->source, file);
-    return w.result() ? w.result()->metrics : Metrics{};
-  }
-
-  void expect_same(const Metrics& got, const Metrics& want, const char* what) {
-    ASSERT_TRUE(want.count("rmse"));
-    for (const auto& [k, v] : want) {
-      ASSERT_TRUE(got.count(k)) << what << ": " << k;
-      EXPECT_TRUE(testing::close12(got.at(k), v))
-          << what << ": " << k << " " << got.at(k) << " vs " << v;
-    }
-  }
-
-  QTemporaryDir dir;
-  testing::ImportFiles files;
-  MainWindow w;
+  ImportGui() : ImportWindow(4000) {}
 };
 
 TEST_F(ImportGui, FourLayoutsMatchTheKfwFile) {

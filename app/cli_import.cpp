@@ -279,10 +279,14 @@ int cmd_inspect(const CliArgs& a, std::ostream& out, std::ostream& err) {
       time["start_s"] = ts.start;
       time["end_s"] = ts.end;
       time["span_s"] = ts.end - ts.start;
-      time["median_step_s"] = ts.median_dt;
-      time["min_step_s"] = ts.min_dt;
-      time["max_step_s"] = ts.max_dt;
-      time["rate_hz"] = rate;
+      if (std::isfinite(ts.median_dt)) {
+        time["median_step_s"] = ts.median_dt;
+        time["min_step_s"] = ts.min_dt;
+        time["max_step_s"] = ts.max_dt;
+        time["rate_hz"] = rate;
+      } else {
+        time["rate_undefined"] = "fewer than two time samples";
+      }
       if (!ts.origin.empty()) time["origin"] = ts.origin;
     } else {
       time["error"] = ts.error;
@@ -315,8 +319,12 @@ int cmd_inspect(const CliArgs& a, std::ostream& out, std::ostream& err) {
   if (ts.error.empty()) {
     out << "time: column '" << ts.column << "' (" << ts.unit << "), " << num(ts.start) << " .. "
         << num(ts.end) << " s, span " << num(ts.end - ts.start) << " s\n";
-    out << "rate: " << num(rate) << " Hz (median step " << num(ts.median_dt) << " s, min "
-        << num(ts.min_dt) << ", max " << num(ts.max_dt) << ")\n";
+    if (std::isfinite(ts.median_dt)) {
+      out << "rate: " << num(rate) << " Hz (median step " << num(ts.median_dt) << " s, min "
+          << num(ts.min_dt) << ", max " << num(ts.max_dt) << ")\n";
+    } else {
+      out << "rate: undefined (fewer than two time samples)\n";
+    }
     if (!ts.origin.empty()) out << "time origin: " << ts.origin << " (t = 0)\n";
   } else {
     out << "time: " << ts.error << "\n";

@@ -185,3 +185,22 @@ TEST_F(ImportFormatCli, InspectTextForEachLayout) {
 }
 
 }  // namespace
+
+namespace {
+// One time sample: no step, so no rate — said in words and left out of the JSON, never a NaN.
+TEST(ImportInspectCli, OneRowHasNoRateAndNoNaN) {
+  const auto file = fs::path(::testing::TempDir()) / "kfw_inspect_one_row.csv";
+  std::ofstream(file) << "t,gyro\n0.5,2\n";
+  const auto text = cli("inspect " + file.string());
+  EXPECT_EQ(text.code, 0) << text.text;
+  EXPECT_NE(text.text.find("rate: undefined (fewer than two time samples)"), std::string::npos)
+      << text.text;
+  EXPECT_EQ(text.text.find("nan"), std::string::npos) << text.text;
+  const auto json = cli("inspect " + file.string() + " --json", "2>/dev/null");
+  ASSERT_EQ(json.code, 0) << json.text;
+  const auto j = Json::parse(json.text);
+  EXPECT_FALSE(j["time"].contains("median_step_s"));
+  EXPECT_FALSE(j["time"].contains("rate_hz"));
+  EXPECT_EQ(j["time"]["rate_undefined"], "fewer than two time samples");
+}
+}  // namespace

@@ -6,6 +6,8 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <limits>
 #include <mutex>
 #include <numbers>
 #include <regex>
@@ -109,15 +111,89 @@ SymbolicScope make_scope(const Symbols& s) {
   return scope;
 }
 
-GiNaC::ex parse_symbolic(const std::string& text, const SymbolicScope& scope) {
-  GiNaC::parser reader(scope.table, true);
-  return reader(text);
-}
-
 std::string number_text(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.17g", v);
   return v < 0.0 ? "(" + std::string(buf) + ")" : std::string(buf);
+}
+
+// A power with a constant exponent beyond this is refused: GiNaC raises exact numbers to exact
+// powers at once, and 8888^6888888 (or 2^(2^(2^5))) would take hours and gigabytes.
+constexpr double kMaxExponent = 1000.0;
+
+// The numbers of an expression as symbols while GiNaC reads it (so it evaluates none of them),
+// and the number each stands for.
+struct Literals {
+  std::string text;  // the expression with each number replaced by its symbol's name
+  GiNaC::symtab table;
+  GiNaC::exmap values;  // symbol -> the number as GiNaC reads it
+  GiNaC::exmap floats;  // symbol -> the number as a double
+};
+
+Literals hide_literals(const std::string& text, const SymbolicScope& scope) {
+  Literals out{"", scope.table, {}, {}};
+  GiNaC::parser number_reader;
+  auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  auto digit = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; };
+  for (std::size_t i = 0; i < text.size();) {
+    const bool starts =
+        digit(text[i]) || (text[i] == '.' && i + 1 < text.size() && digit(text[i + 1]));
+    if (!starts || (i > 0 && ident(text[i - 1]))) {
+      out.text += text[i++];
+      continue;
+    }
+    std::size_t j = i;
+    while (j < text.size() && digit(text[j]))
+      ++j;
+    if (j < text.size() && text[j] == '.') ++j;
+    while (j < text.size() && digit(text[j]))
+      ++j;
+    if (j < text.size() && (text[j] == 'e' || text[j] == 'E')) {
+      std::size_t k = j + 1;
+      if (k < text.size() && (text[k] == '+' || text[k] == '-')) ++k;
+      if (k < text.size() && digit(text[k])) {
+        j = k;
+        while (j < text.size() && digit(text[j]))
+          ++j;
+      }
+    }
+    const std::string number = text.substr(i, j - i);
+    std::string name = "kfw_number_" + std::to_string(out.values.size());
+    while (out.table.count(name))
+      name += "_";
+    const GiNaC::realsymbol sym(name);
+    out.table[name] = sym;
+    out.values[sym] = number_reader(number);
+    const double d = std::strtod(number.c_str(), nullptr);
+    out.floats[sym] = GiNaC::numeric(std::isfinite(d) ? d : std::numeric_limits<double>::max());
+    out.text += " " + name + " ";
+    i = j;
+  }
+  return out;
+}
+
+// Throws when a power's exponent is a constant beyond ±kMaxExponent (children first, so an
+// exponent is evaluated only once its own powers have passed).
+void check_powers(const GiNaC::ex& e, const Literals& lit) {
+  for (std::size_t i = 0; i < e.nops(); ++i)
+    check_powers(e.op(i), lit);
+  if (!GiNaC::is_a<GiNaC::power>(e)) return;
+  const GiNaC::ex exponent = e.op(1).subs(lit.floats).evalf();
+  if (!GiNaC::is_a<GiNaC::numeric>(exponent)) return;  // depends on symbols
+  const GiNaC::numeric& n = GiNaC::ex_to<GiNaC::numeric>(exponent);
+  const double v = n.is_real() ? n.to_double() : HUGE_VAL;
+  if (!(std::fabs(v) <= kMaxExponent)) {
+    throw std::runtime_error("a constant exponent beyond ±1000 (" +
+                             (std::isfinite(v) ? number_text(v) : std::string("too large")) + ")");
+  }
+}
+
+GiNaC::ex parse_symbolic(const std::string& text, const SymbolicScope& scope) {
+  const Literals lit = hide_literals(text, scope);
+  GiNaC::parser reader(lit.table, true);
+  const GiNaC::ex e = reader(lit.text);
+  check_powers(e, lit);
+  return e.subs(lit.values);
 }
 
 // GiNaC expression -> muparser source, fully parenthesised, function names mapped.
@@ -165,6 +241,11 @@ std::string to_muparser(const GiNaC::ex& e) {
     return s + ")";
   }
   throw std::runtime_error("a term of type " + std::string(ex_to<basic>(e).class_name()));
+}
+
+// The first line of a library's message, cut to a readable length.
+std::string first_line(std::string_view what) {
+  return truncate_token(what.substr(0, what.find('\n')), 200);
 }
 
 // The text as written, cut and made printable (an expression may hold a newline or be 10 MB).
@@ -376,7 +457,15 @@ Expected<Expr> compile_expr(const std::string& text, const std::string& key, con
     const auto scope = make_scope(symbols);
     (void)parse_symbolic(text, scope);
   } catch (const std::exception& e) {
-    return Error{key + ": not accepted by the symbolic differentiator (" + e.what() +
+    // GiNaC's message: its first line (the rest is the reader's call stack).
+    const std::string what = first_line(e.what());
+    static const std::regex kNoFunction(R"(no function \"(\w+)\")");
+    if (std::smatch m; std::regex_search(what, m, kNoFunction)) {
+      const std::size_t pos = find_identifier(text, m[1].str());
+      return at(key, "unknown function '" + m[1].str() + "'", pos == std::string::npos ? 0 : pos,
+                text);
+    }
+    return Error{key + ": not accepted by the symbolic differentiator (" + what +
                  "); add parentheses: " + quoted(text)};
   }
   return out;
@@ -403,7 +492,7 @@ Expected<std::vector<Expr>> derivatives(const Expr& e, const std::string& key,
         }
       }
     } catch (const std::exception& ex) {
-      return Error{key + ": cannot differentiate " + quoted(e.text) + ": " + ex.what()};
+      return Error{key + ": cannot differentiate " + quoted(e.text) + ": " + first_line(ex.what())};
     }
   }
   for (std::size_t i = 0; i < wrt.size(); ++i) {

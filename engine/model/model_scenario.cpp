@@ -10,6 +10,7 @@
 #include "core/consistency.h"
 #include "core/dare.h"
 #include "core/statistics.h"
+#include "core/suggest.h"
 #include "model/model_eval.h"
 #include "model/model_filter.h"
 #include "model/model_filter_detail.h"
@@ -28,7 +29,8 @@ Expected<Scale> scale_from(const std::string& s, const std::string& where) {
   if (s == "integer") return Scale::kInteger;
   if (s == "choice") return Scale::kChoice;
   if (s == "toggle") return Scale::kToggle;
-  return Error{where + ".scale: '" + s + "' is not one of linear, log, integer, choice, toggle"};
+  return Error{where + ".scale: " + quote_token(s) +
+               " is not one of linear, log, integer, choice, toggle"};
 }
 
 std::string default_group(const std::string& key) {
@@ -313,7 +315,8 @@ Expected<ParamTable> parse_param_table(const json& params, const std::string& pa
     if (v.is_string() && s.scale == Scale::kChoice) {
       auto c = std::find(s.choices.begin(), s.choices.end(), v.get<std::string>());
       if (c == s.choices.end()) {
-        return Error{where + ".value: '" + v.get<std::string>() + "' is not one of the choices"};
+        return Error{where + ".value: " + quote_token(v.get<std::string>()) +
+                     " is not one of the choices"};
       }
       s.def = static_cast<double>(c - s.choices.begin());
     } else if (v.is_number()) {

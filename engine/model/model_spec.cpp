@@ -5,6 +5,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "core/suggest.h"
+
 namespace kfw::model {
 
 using nlohmann::json;
@@ -164,10 +166,11 @@ class Reader {
 Status check_name(const Reader& p, const Symbols& symbols, const std::string& name,
                   const std::string& key) {
   if (!is_identifier(name)) {
-    return p.error(key, "'" + name + "' is not a name (letters, digits and _, not first a digit)");
+    return p.error(key,
+                   quote_token(name) + " is not a name (letters, digits and _, not first a digit)");
   }
-  if (is_reserved_name(name)) return p.error(key, "'" + name + "' is reserved");
-  if (symbols.find(name) >= 0) return p.error(key, "'" + name + "' is already a symbol");
+  if (is_reserved_name(name)) return p.error(key, quote_token(name) + " is reserved");
+  if (symbols.find(name) >= 0) return p.error(key, quote_token(name) + " is already a symbol");
   return Ok{};
 }
 
@@ -295,7 +298,8 @@ Expected<ChannelSpec> parse_channel(const Reader& p, const std::string& name, co
       return p.error(rkey, "a role needs a name other than the time column 't'");
     }
     if (!roles_seen.insert(role.name).second) {
-      return p.error(rkey, "role '" + role.name + "' is read by another channel or an input");
+      return p.error(rkey,
+                     "role " + quote_token(role.name) + " is read by another channel or an input");
     }
     c.roles.push_back(role);
   }
@@ -341,7 +345,7 @@ Expected<ChannelSpec> parse_channel(const Reader& p, const std::string& name, co
     } else if (it->is_string()) {
       c.every_param = it->get<std::string>();
       if (!params.find(c.every_param)) {
-        return p.error(key + ".every", "unknown parameter '" + c.every_param + "'");
+        return p.error(key + ".every", "unknown parameter " + quote_token(c.every_param));
       }
     } else {
       return p.error(key + ".every", "expected an integer ≥ 1 or a parameter name");

@@ -194,7 +194,7 @@ int main(int argc, char** argv) {
     const auto s = kfw::measureLatency(w, opt->bench_changes);
     std::printf("latency p50 %.1f ms p95 %.1f ms (max %.1f ms, %d changes, %zu steps)\n", s.p50_ms,
                 s.p95_ms, s.max_ms, opt->bench_changes, w.result() ? w.result()->steps() : 0);
-    std::printf("cpu (worker + GUI thread) p50 %.1f ms p95 %.1f ms\n", s.cpu_p50_ms, s.cpu_p95_ms);
+    std::printf("cpu (all threads) p50 %.1f ms p95 %.1f ms\n", s.cpu_p50_ms, s.cpu_p95_ms);
     std::printf("readout per mouse move p50 %.1f ms p95 %.1f ms\n", s.readout_p50_ms,
                 s.readout_p95_ms);
     return 0;

@@ -30,6 +30,7 @@
 #include "consistency_panel.h"
 #include "core/statistics.h"
 #include "core/workspace.h"
+#include "draw_batch.h"
 #include "metrics_panel.h"
 #include "monte_carlo_dialog.h"
 #include "param_panel.h"
@@ -182,6 +183,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   transport_->setObjectName("transport");
   cl->addWidget(transport_);
   connect(transport_, &TransportBar::cursorChanged, this, [this](std::size_t i) {
+    plot::DrawBatch batch;  // a replay frame: reductions on both cores
     if (view_) view_->setCursor(i);
   });
 
@@ -419,6 +421,7 @@ void MainWindow::rebuildScenarioUi() {
   zoom_ = new plot::ZoomGroup(
       plots_,
       [this] {
+        plot::DrawBatch batch;
         if (view_ && result_) view_->setCursor(transport_->cursor());
       },
       plot_host_);
@@ -459,10 +462,13 @@ void MainWindow::applyResult(std::shared_ptr<const RunResult> r, const ParamValu
   apply.start();
   const std::size_t cursor_before = transport_->cursor();
   transport_->setTimes(r->t);
-  view_->setDataset(runner_->dataset());
-  view_->setResult(r, v);      // draws up to the view's cursor
+  {
+    plot::DrawBatch batch;  // the view's reductions on both cores (draw_batch.h)
+    view_->setDataset(runner_->dataset());
+    view_->setResult(r, v);  // draws up to the view's cursor
+    if (transport_->cursor() != cursor_before) view_->setCursor(transport_->cursor());
+  }
   consistency_->setResult(r);  // drawn when its tab is shown
-  if (transport_->cursor() != cursor_before) view_->setCursor(transport_->cursor());
   if (qEnvironmentVariableIsSet("KFW_TIMING")) {
     qInfo("run %.1f ms, plots %.1f ms, since request %.1f ms", ms, apply.nsecsElapsed() / 1e6,
           since_request_.nsecsElapsed() / 1e6);

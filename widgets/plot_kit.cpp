@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include "draw_batch.h"
+
 namespace kfw::plot {
 
 QColor color::cycle(int i) {
@@ -300,6 +302,7 @@ void setHLine(QCPItemStraightLine* line, double y) {
 namespace {
 // The value range of the visible plottables on `axis` over keys in [k0, k1]; invalid if none.
 QCPRange valueRangeIn(QCustomPlot* p, QCPAxis* axis, double k0, double k1, bool& found) {
+  settleDraws(p);
   found = false;
   QCPRange all;
   const auto sign = axis->scaleType() == QCPAxis::stLogarithmic ? QCP::sdPositive : QCP::sdBoth;
@@ -369,6 +372,7 @@ void fitValues(QCustomPlot* p, double k0, double k1) {
 }  // namespace
 
 void rescale(QCustomPlot* p, double x0, double x1, double settle) {
+  settleDraws(p);
   if (x1 > x0) p->setProperty(kTime, true);
   const bool keep_x = userZoomedX(p), keep_y = userZoomedY(p);
   if (keep_x && keep_y) return;
@@ -386,6 +390,7 @@ void rescale(QCustomPlot* p, double x0, double x1, double settle) {
 }
 
 void rescaleAuto(QCustomPlot* p, double x0, double x1, double settle) {
+  settleDraws(p);
   p->rescaleAxes(true);
   if (x1 > x0 && settle > x0) {
     for (QCPAxis* a : {p->yAxis, p->yAxis2}) {
@@ -414,7 +419,7 @@ void rescaleAuto(QCustomPlot* p, double x0, double x1, double settle) {
 }
 
 void replot(QCustomPlot* p) {
-  p->replot(QCustomPlot::rpQueuedRefresh);
+  requestReplot(p);
 }
 
 }  // namespace kfw::plot

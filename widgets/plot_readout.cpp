@@ -84,8 +84,10 @@ PlotReadout::PlotReadout(const QList<PlotPanel>& plots, QObject* parent)
     if (!p) continue;
     Marks m;
     m.plot = p;
-    if (!p->layer("readout")) p->addLayer("readout", nullptr, QCustomPlot::limAbove);
-    m.layer = p->layer("readout");
+    // QCustomPlot's topmost layer, buffered already (the box zoom's rectangle): a layer of its
+    // own would split the plot's other layers into more paint buffers, each cleared on every
+    // replot and drawn on every repaint.
+    m.layer = p->layer("overlay");
     m.layer->setMode(QCPLayer::lmBuffered);
     const QString previous = p->currentLayer()->name();
     p->setCurrentLayer(m.layer);

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
+#include "draw_batch.h"
 #include "plot_kit.h"
 #include "series_reduce.h"
 
@@ -76,13 +78,6 @@ void decimateDots(const std::vector<double>& x, const std::vector<double>& y, st
   });
 }
 
-// The dot raster of a graph: 2 × 2-pixel cells of its axis rect.
-void decimateDotsFor(const QCPGraph* g, const std::vector<double>& x, const std::vector<double>& y,
-                     std::size_t begin, std::size_t n, bool logY, QVector<QCPGraphData>& out) {
-  decimateDots(x, y, begin, n, logY, std::max(columnsFor(g) / 2, 300),
-               std::max(rowsFor(g) / 2, 150), out);
-}
-
 }  // namespace
 
 namespace {
@@ -112,9 +107,9 @@ void setSeries(QCPGraph* g, const std::vector<double>& x, const std::vector<doub
   const bool logY = g->valueAxis()->scaleType() == QCPAxis::stLogarithmic;
   const int cols = columnsFor(g);
   const bool dots = g->lineStyle() == QCPGraph::lsNone;
-  QVector<QCPGraphData> data;
+  auto data = std::make_shared<QVector<QCPGraphData>>();
   // Dense series are reduced to the raster (lines and steps: first/min/max/last per column;
-  // a step graph keeps its level changes to within a column).
+  // a step graph keeps its level changes to within a column), on either core (draw_batch.h).
   if (n > static_cast<std::size_t>(4 * cols) && skipNaN) {
     // The time span of the drawable points (time is increasing, so the first and last finite x).
     std::size_t a = 0, b = n;
@@ -131,85 +126,100 @@ void setSeries(QCPGraph* g, const std::vector<double>& x, const std::vector<doub
         x0 = r.lower;
         x1 = r.upper;
       }
-      std::vector<XY> reduced;
-      reduced.reserve(static_cast<std::size_t>(4 * cols + 8));
-      if (dots) {
-        reduceDots(x.data(), y.data(), a, b, logY, std::max(cols / 2, 300),
-                   std::max(rowsFor(g) / 2, 150), reduced);
-      } else {
-        reduceLine(x.data(), y.data(), a, b, logY, x0, x1, cols, reduced);
-      }
-      data.reserve(static_cast<qsizetype>(reduced.size()));
-      for (const XY& p : reduced)
-        data.append(QCPGraphData(p.x, p.y));
-      g->data()->set(data, true);
-      setSource(g, &x, &y, n);
+      const int rows = std::max(rowsFor(g) / 2, 150);
+      const double* px = x.data();
+      const double* py = y.data();
+      auto compute = [=] {
+        std::vector<XY> reduced;
+        reduced.reserve(static_cast<std::size_t>(4 * cols + 8));
+        if (dots) {
+          reduceDots(px, py, a, b, logY, std::max(cols / 2, 300), rows, reduced);
+        } else {
+          reduceLine(px, py, a, b, logY, x0, x1, cols, reduced);
+        }
+        data->reserve(static_cast<qsizetype>(reduced.size()));
+        for (const XY& p : reduced)
+          data->append(QCPGraphData(p.x, p.y));
+      };
+      submitDraw(g->parentPlot(), compute, [g, data, &x, &y, n] {
+        g->data()->set(*data, true);
+        setSource(g, &x, &y, n);
+      });
       return;
     }
   }
-  setSource(g, nullptr, nullptr, 0);
-  data.reserve(static_cast<qsizetype>(n));
+  data->reserve(static_cast<qsizetype>(n));
   for (std::size_t i = 0; i < n; ++i) {
     const double v = y[i];
     const bool good = std::isfinite(v) && std::isfinite(x[i]) && (!logY || v > 0.0);
     if (good) {
-      data.append(QCPGraphData(x[i], v));
+      data->append(QCPGraphData(x[i], v));
     } else if (!skipNaN && std::isfinite(x[i])) {
-      data.append(QCPGraphData(x[i], std::numeric_limits<double>::quiet_NaN()));
+      data->append(QCPGraphData(x[i], std::numeric_limits<double>::quiet_NaN()));
     }
   }
-  g->data()->set(data, true);
+  submitDraw(g->parentPlot(), nullptr, [g, data] {
+    setSource(g, nullptr, nullptr, 0);
+    g->data()->set(*data, true);
+  });
 }
 
 void setDots(QCPGraph* g, const std::vector<double>& x, const std::vector<double>& y) {
   const std::size_t n = std::min(x.size(), y.size());
   const bool logY = g->valueAxis()->scaleType() == QCPAxis::stLogarithmic;
-  QVector<QCPGraphData> data;
-  if (n > static_cast<std::size_t>(4 * columnsFor(g))) {
-    decimateDotsFor(g, x, y, 0, n, logY, data);
+  auto data = std::make_shared<QVector<QCPGraphData>>();
+  const int cols = columnsFor(g), rows = rowsFor(g);
+  // Computed at once: callers pass arrays they build for the call.
+  if (n > static_cast<std::size_t>(4 * cols)) {
+    decimateDots(x, y, 0, n, logY, std::max(cols / 2, 300), std::max(rows / 2, 150), *data);
   } else {
-    data.reserve(static_cast<qsizetype>(n));
+    data->reserve(static_cast<qsizetype>(n));
     forEachPoint(x, y, 0, n, logY,
-                 [&](double xi, double yi) { data.append(QCPGraphData(xi, yi)); });
+                 [&](double xi, double yi) { data->append(QCPGraphData(xi, yi)); });
   }
-  g->data()->set(data, false);
+  submitDraw(g->parentPlot(), nullptr, [g, data] { g->data()->set(*data, false); });
 }
 
 void setCurve(QCPCurve* c, const std::vector<double>& keys, const std::vector<double>& values,
               std::size_t n) {
   n = std::min({n, keys.size(), values.size()});
-  const auto [k0, k1, v0, v1] = extent(keys, values, 0, n, false);
-  // A point is kept when it leaves the last kept point's cell of a grid finer than any pixel
-  // raster (1000 cells over the larger extent, about a pixel of an export).
-  const double cell = std::max(k1 - k0, v1 - v0) / 1000.0;
-  const double inv = cell > 0 ? 1.0 / cell : 0.0;
-  QVector<QCPCurveData> d;
-  long last_k = std::numeric_limits<long>::min(), last_v = last_k;
-  double last_key = 0.0, last_value = 0.0;
-  bool pending = false;
-  forEachPoint(keys, values, 0, n, false, [&](double k, double v) {
-    const long ck = static_cast<long>((k - k0) * inv), cv = static_cast<long>((v - v0) * inv);
-    if (ck == last_k && cv == last_v) {
-      last_key = k;
-      last_value = v;
-      pending = true;
-      return;
-    }
-    d.append(QCPCurveData(static_cast<double>(d.size()), k, v));
-    last_k = ck;
-    last_v = cv;
-    pending = false;
-  });
-  if (pending) d.append(QCPCurveData(static_cast<double>(d.size()), last_key, last_value));
-  c->data()->set(d, true);
+  auto d = std::make_shared<QVector<QCPCurveData>>();
+  auto compute = [&keys, &values, n, d] {
+    const auto [k0, k1, v0, v1] = extent(keys, values, 0, n, false);
+    // A point is kept when it leaves the last kept point's cell of a grid finer than any pixel
+    // raster (1000 cells over the larger extent, about a pixel of an export).
+    const double cell = std::max(k1 - k0, v1 - v0) / 1000.0;
+    const double inv = cell > 0 ? 1.0 / cell : 0.0;
+    long last_k = std::numeric_limits<long>::min(), last_v = last_k;
+    double last_key = 0.0, last_value = 0.0;
+    bool pending = false;
+    forEachPoint(keys, values, 0, n, false, [&](double k, double v) {
+      const long ck = static_cast<long>((k - k0) * inv), cv = static_cast<long>((v - v0) * inv);
+      if (ck == last_k && cv == last_v) {
+        last_key = k;
+        last_value = v;
+        pending = true;
+        return;
+      }
+      d->append(QCPCurveData(static_cast<double>(d->size()), k, v));
+      last_k = ck;
+      last_v = cv;
+      pending = false;
+    });
+    if (pending) d->append(QCPCurveData(static_cast<double>(d->size()), last_key, last_value));
+  };
+  submitDraw(c->parentPlot(), compute, [c, d] { c->data()->set(*d, true); });
 }
 
 namespace {
 
 // Fills a band from per-step limits (limits(i, lo, hi)); dense bands are reduced to their
 // per-column envelope (highest upper, lowest lower).
-template <typename Limits>
-void fillBand(const Band& b, const std::vector<double>& x, std::size_t n, Limits&& limits) {
+// `finish` turns the reduced limits into the band's edges (the identity for most bands).
+template <typename Limits, typename Finish = void (*)(std::vector<XY>&, std::vector<XY>&)>
+void fillBand(
+    const Band& b, const std::vector<double>& x, std::size_t n, Limits limits,
+    Finish finish = [](std::vector<XY>&, std::vector<XY>&) {}) {
   const int cols = columnsFor(b.upper);
   std::size_t begin = 0, end = n;
   double x0 = n ? x.front() : 0.0, x1 = n ? x[n - 1] : 0.0;
@@ -222,30 +232,38 @@ void fillBand(const Band& b, const std::vector<double>& x, std::size_t n, Limits
     x0 = r.lower;
     x1 = r.upper;
   }
-  std::vector<XY> u, l;
-  const std::size_t cap = x1 > x0 ? static_cast<std::size_t>(cols + 4) : n;
-  u.reserve(cap);
-  l.reserve(cap);
-  if (x1 > x0) {
-    reduceBand(x.data(), begin, end, x0, x1, cols, limits, u, l);
-  } else {
-    for (std::size_t i = 0; i < n; ++i) {
-      double lo_i = 0.0, hi_i = 0.0;
-      limits(i, lo_i, hi_i);
-      if (!drawable(lo_i, false) || !drawable(hi_i, false) || !std::isfinite(x[i])) continue;
-      u.push_back({x[i], hi_i});
-      l.push_back({x[i], lo_i});
+  auto u = std::make_shared<QVector<QCPGraphData>>(), l = std::make_shared<QVector<QCPGraphData>>();
+  auto compute = [=, &x] {
+    std::vector<XY> up, lo;
+    const std::size_t cap = x1 > x0 ? static_cast<std::size_t>(cols + 4) : n;
+    up.reserve(cap);
+    lo.reserve(cap);
+    if (x1 > x0) {
+      reduceBand(x.data(), begin, end, x0, x1, cols, limits, up, lo);
+    } else {
+      for (std::size_t i = 0; i < n; ++i) {
+        double lo_i = 0.0, hi_i = 0.0;
+        limits(i, lo_i, hi_i);
+        if (!drawable(lo_i, false) || !drawable(hi_i, false) || !std::isfinite(x[i])) continue;
+        up.push_back({x[i], hi_i});
+        lo.push_back({x[i], lo_i});
+      }
     }
-  }
-  auto put = [](QCPGraph* g, const std::vector<XY>& v) {
-    QVector<QCPGraphData> d;
-    d.reserve(static_cast<qsizetype>(v.size()));
-    for (const XY& p : v)
-      d.append(QCPGraphData(p.x, p.y));
-    g->data()->set(d, true);
+    finish(up, lo);
+    auto put = [](QVector<QCPGraphData>& d, const std::vector<XY>& v) {
+      d.reserve(static_cast<qsizetype>(v.size()));
+      for (const XY& p : v)
+        d.append(QCPGraphData(p.x, p.y));
+    };
+    put(*u, up);
+    put(*l, lo);
   };
-  put(b.upper, u);
-  put(b.lower, l);
+  const bool dense = x1 > x0;  // sparse bands are computed at once
+  if (!dense) compute();
+  submitDraw(b.upper->parentPlot(), dense ? std::function<void()>(compute) : nullptr, [b, u, l] {
+    b.upper->data()->set(*u, true);
+    b.lower->data()->set(*l, true);
+  });
 }
 
 }  // namespace
@@ -253,30 +271,49 @@ void fillBand(const Band& b, const std::vector<double>& x, std::size_t n, Limits
 void setBand(const Band& b, const std::vector<double>& x, const std::vector<double>& center,
              const std::vector<double>& halfwidth, std::size_t n) {
   n = std::min({n, x.size(), center.size(), halfwidth.size()});
-  fillBand(b, x, n, [&](std::size_t i, double& lo, double& hi) {
-    lo = center[i] - halfwidth[i];
-    hi = center[i] + halfwidth[i];
-  });
+  fillBand(b, x, n,
+           [c = center.data(), h = halfwidth.data()](std::size_t i, double& lo, double& hi) {
+             lo = c[i] - h[i];
+             hi = c[i] + h[i];
+           });
 }
 
 void setSigmaBand(const Band& b, const std::vector<double>& x, const std::vector<double>* center,
                   const std::vector<double>& variance, double k, std::size_t n) {
   n = std::min({n, x.size(), variance.size(), center ? center->size() : n});
-  fillBand(b, x, n, [&](std::size_t i, double& lo, double& hi) {
-    const double v = variance[i];
+  if (!center) {
+    // 0 ± k·√v: the envelope of a column is ± k·√(its largest v), one square root a column.
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    fillBand(
+        b, x, n,
+        [var = variance.data(), nan](std::size_t i, double& lo, double& hi) {
+          const double v = var[i];
+          hi = v >= 0.0 ? v : nan;
+          lo = -hi;
+        },
+        [k](std::vector<XY>& up, std::vector<XY>& lo) {
+          for (std::size_t i = 0; i < up.size(); ++i) {
+            up[i].y = k * std::sqrt(up[i].y);
+            lo[i].y = -up[i].y;
+          }
+        });
+    return;
+  }
+  const double* c = center->data();
+  fillBand(b, x, n, [c, var = variance.data(), k](std::size_t i, double& lo, double& hi) {
+    const double v = var[i];
     const double half = v >= 0.0 ? k * std::sqrt(v) : std::numeric_limits<double>::quiet_NaN();
-    const double c = center ? (*center)[i] : 0.0;
-    lo = c - half;
-    hi = c + half;
+    lo = c[i] - half;
+    hi = c[i] + half;
   });
 }
 
 void setBandLimits(const Band& b, const std::vector<double>& x, const std::vector<double>& lo,
                    const std::vector<double>& hi, std::size_t n) {
   n = std::min({n, x.size(), lo.size(), hi.size()});
-  fillBand(b, x, n, [&](std::size_t i, double& l, double& h) {
-    l = lo[i];
-    h = hi[i];
+  fillBand(b, x, n, [pl = lo.data(), ph = hi.data()](std::size_t i, double& l, double& h) {
+    l = pl[i];
+    h = ph[i];
   });
 }
 

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "draw_batch.h"
+#include "plot_fast.h"
 
 namespace kfw::plot {
 
@@ -130,7 +131,7 @@ void setExportLook(QCustomPlot* p, bool exporting) {
 }
 
 QCPGraph* addGraph(QCustomPlot* p, const QString& name, const QColor& c, Style s, double width) {
-  QCPGraph* g = p->addGraph();
+  QCPGraph* g = s == Style::kDots ? newDotGraph(p->xAxis, p->yAxis) : p->addGraph();
   g->setName(name);
   QPen pen(c);
   pen.setWidthF(width);
@@ -237,7 +238,7 @@ Band addBand(QCustomPlot* p, const QString& name, const QColor& c, bool overlaps
   b.upper->addToLegend();
   b.upper->setPen(QPen(edge));
   b.upper->setBrush(Qt::NoBrush);
-  b.lower = p->addGraph();
+  b.lower = newBandFill(p->xAxis, p->yAxis);
   b.lower->setPen(QPen(edge));
   b.lower->setBrush(QBrush(fill));
   b.lower->setChannelFillGraph(b.upper);

@@ -522,6 +522,7 @@ bool MainWindow::waitForRun(int timeout_ms) {
     QEventLoop loop;
     connect(this, &MainWindow::resultApplied, &loop, &QEventLoop::quit);
     connect(runner_, &RunController::failed, &loop, &QEventLoop::quit);
+    if (view_) connect(view_.get(), &ScenarioView::idle, &loop, &QEventLoop::quit);
     QTimer::singleShot(std::max<qint64>(1, std::min<qint64>(deadline.remainingTime(), 50)), &loop,
                        &QEventLoop::quit);
     loop.exec();

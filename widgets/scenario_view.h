@@ -57,6 +57,8 @@ class ScenarioView : public QObject {
  signals:
   // A control of createControls() changed a parameter (key, new value).
   void parameterEdited(const QString& key, double value);
+  // The background work busy() reported is done and drawn.
+  void idle();
 };
 
 class ViewRegistry {

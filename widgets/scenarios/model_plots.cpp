@@ -256,12 +256,13 @@ class ModelView final : public ScenarioView {
     const auto c = curve_watcher_.result();
     if (!c->ok()) {
       curve_->setMessage(q(c->error()));
-      return;
+    } else {
+      const GainCurve& g = **c;
+      const ParamSpec* p = scenario_->params().find(g.key);
+      curve_->setCurve(g, q(p && !p->label.empty() ? p->label : g.key),
+                       q(p ? p->unit : std::string()));
     }
-    const GainCurve& g = **c;
-    const ParamSpec* p = scenario_->params().find(g.key);
-    curve_->setCurve(g, q(p && !p->label.empty() ? p->label : g.key),
-                     q(p ? p->unit : std::string()));
+    emit idle();
   }
 
   void drawUpTo(std::size_t index) {

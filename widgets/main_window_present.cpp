@@ -111,11 +111,13 @@ void MainWindow::buildViewMenu() {
 void MainWindow::restyleLook() {
   if (scenario_) present_->setScenario(QString::fromStdString(scenario_->name()));
   if (screenshot_mode_) status_->setText(withoutTimings(status_->text()));
-  if (theme_ == Theme::kLight && !present_->on()) return;  // plot_kit's look: nothing to do
   QList<QCustomPlot*> others;
   for (const PlotPanel& p : consistency_->plots())
     others << p.plot;
   if (data_plot_) others << data_plot_;
+  // Long titles wrap at a narrow window's width (they were cut at both ends at 1366 × 768).
+  present_->wrapTitles(plots_, others);
+  if (theme_ == Theme::kLight && !present_->on()) return;  // plot_kit's look: nothing more
   present_->refresh(plots_, others, theme_);
 }
 

@@ -30,6 +30,7 @@ class ExportLook {
  public:
   ExportLook(QCustomPlot* p, const ExportSpec& spec) : p_(p), before_(plotLook(p)) {
     plot::setExportLook(p_, true);
+    p_->setProperty(kExportingProperty, true);  // titles keep the export's wrap (plot_look.h)
     setPlotLook(p_, {spec.theme, spec.font_scale, false});
     // QCustomPlot draws a log axis' exponents at int(0.75 × the tick font's whole points): 6 pt
     // under 9-pt ticks. At least 7 pt on paper: such ticks get 10 pt (× the font scale).
@@ -65,6 +66,7 @@ class ExportLook {
     }
   }
   ~ExportLook() {
+    p_->setProperty(kExportingProperty, QVariant());
     for (const auto& [t, count] : tick_counts_)
       t->setTickCount(count);
     for (const auto& [t, text] : titles_)

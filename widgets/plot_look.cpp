@@ -20,6 +20,7 @@ const char* const kFontScale = "kfwFontScale";
 const char* const kStrong = "kfwStrong";
 const char* const kTitleText = "kfwTitleText";
 const char* const kWrapped = "kfwTitleWrapped";
+const char* const kWrapKey = "kfwTitleWrapKey";  // width|text of the last wrap
 
 Look lookOf(const QCustomPlot* p) {
   Look l;
@@ -292,10 +293,18 @@ QString wrapText(const QString& text, const QFont& font, int width) {
 
 bool wrapTitlesToWidth(QCustomPlot* plot) {
   bool changed = false;
-  const int width = plot->width() - 12;
+  if (plot->property(kExportingProperty).toBool()) return false;
   for (QCPLayoutElement* e : plot->plotLayout()->elements(true)) {
     auto* t = qobject_cast<QCPTextElement*>(e);
     if (!t) continue;
+    // The title's own cell once laid out (a title over one column of several, the heat map's
+    // beside its colour scale, has less than the plot's width).
+    const int cell = t->rect().width();
+    const int width = cell > 0 ? std::min(cell, plot->width() - 12) : plot->width() - 12;
+    // Nothing to do when neither the title nor the width changed since the last wrap (this
+    // runs before every replot).
+    const QString key = QString::number(width) + '|' + t->text();
+    if (t->property(kWrapKey).toString() == key) continue;
     // The unwrapped text: recorded, unless the view set a new title since the last wrap.
     QString text = t->text();
     if (t->property(kWrapped).toString() == text && t->property(kTitleText).isValid()) {
@@ -308,6 +317,7 @@ bool wrapTitlesToWidth(QCustomPlot* plot) {
       t->setText(wrapped);
       changed = true;
     }
+    t->setProperty(kWrapKey, QString::number(width) + '|' + t->text());
   }
   return changed;
 }

@@ -74,13 +74,26 @@ void Presentation::style(QCustomPlot* p, Theme theme, bool force) {
   if (!force && p->property(kStamp).toString() == stamp) return;
   p->setProperty(kStamp, stamp);
   setPlotLook(p, look);
-  if (on_) {
-    wrapTitlesToWidth(p);
-    p->installEventFilter(this);
-  } else {
-    p->removeEventFilter(this);
-  }
+  wrapTitlesToWidth(p);
+  p->removeEventFilter(this);
+  p->installEventFilter(this);
   p->replot(QCustomPlot::rpQueuedReplot);
+}
+
+void Presentation::wrapTitles(const QList<PlotPanel>& plots, const QList<QCustomPlot*>& others) {
+  QList<QCustomPlot*> all = others;
+  for (const PlotPanel& p : plots)
+    all << p.plot;
+  for (QCustomPlot* p : all) {
+    if (wrapTitlesToWidth(p)) p->replot(QCustomPlot::rpQueuedReplot);
+    // Before every replot too: a view may set a new title with its data.
+    if (!p->property("kfwWrapOnReplot").toBool()) {
+      p->setProperty("kfwWrapOnReplot", true);
+      connect(p, &QCustomPlot::beforeReplot, p, [p] { wrapTitlesToWidth(p); });
+    }
+    p->removeEventFilter(this);
+    p->installEventFilter(this);
+  }
 }
 
 void Presentation::refresh(const QList<PlotPanel>& plots, const QList<QCustomPlot*>& others,
@@ -190,8 +203,9 @@ void Presentation::restoreLayout(const QList<PlotPanel>& plots) {
 }
 
 bool Presentation::eventFilter(QObject* watched, QEvent* event) {
-  if (on_ && event->type() == QEvent::Resize) {
-    if (auto* p = qobject_cast<QCustomPlot*>(watched)) wrapTitlesToWidth(p);
+  if (event->type() == QEvent::Resize) {
+    auto* p = qobject_cast<QCustomPlot*>(watched);
+    if (p && wrapTitlesToWidth(p)) p->replot(QCustomPlot::rpQueuedReplot);
   }
   return QObject::eventFilter(watched, event);
 }

@@ -41,6 +41,8 @@ class Presentation : public QObject {
   void setScenario(const QString& scenario);
   // Applies the look (and, when on, the layout) to plots made since (a new preset) or changed
   // (new curves): cheap when nothing changed.
+  // Titles wrap to their plot's width now and on every resize (in and out of presentation).
+  void wrapTitles(const QList<PlotPanel>& plots, const QList<QCustomPlot*>& others);
   void refresh(const QList<PlotPanel>& plots, const QList<QCustomPlot*>& others, Theme theme);
 
  protected:

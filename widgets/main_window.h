@@ -182,6 +182,8 @@ class MainWindow : public QMainWindow {
 
  protected:
   void closeEvent(QCloseEvent* event) override;
+  // Re-fits the metrics table to the new height (fitMetricsPanel) once the layout has settled.
+  void resizeEvent(QResizeEvent* event) override;
 
  private:
   void buildMenus();

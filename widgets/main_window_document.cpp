@@ -8,6 +8,7 @@
 #include <QLabel>
 #include <QSettings>
 #include <QSplitter>
+#include <QTimer>
 #include <algorithm>
 #include <cmath>
 
@@ -125,6 +126,11 @@ void MainWindow::fillMetrics() {
   fitMetricsPanel();
 }
 
+void MainWindow::resizeEvent(QResizeEvent* event) {
+  QMainWindow::resizeEvent(event);
+  QTimer::singleShot(0, this, [this] { fitMetricsPanel(); });
+}
+
 void MainWindow::fitMetricsPanel() {
   auto* split = findChild<QSplitter*>("leftSplit");
   if (!split || metrics_split_by_user_ || split->count() != 2) return;
@@ -132,7 +138,9 @@ void MainWindow::fitMetricsPanel() {
     split->setProperty("kfwWatched", true);
     connect(split, &QSplitter::splitterMoved, this, [this] { metrics_split_by_user_ = true; });
   }
-  const int need = metrics_->heightThrough(metrics_->primaryGroupEnd());
+  // The table's rows, plus what its pane holds around it (a title, margins).
+  const int chrome = std::max(0, split->widget(1)->height() - metrics_->height());
+  const int need = metrics_->heightThrough(metrics_->primaryGroupEnd()) + chrome;
   QList<int> sizes = split->sizes();
   const int total = sizes[0] + sizes[1];
   if (total <= 0 || sizes[1] >= need) return;

@@ -301,7 +301,7 @@ int MetricsPanel::primaryGroupEnd() const {
 int MetricsPanel::heightThrough(int row) const {
   int h = 2 * frameWidth() + (horizontalHeader()->isVisible() ? horizontalHeader()->height() : 0);
   for (int r = 0; r <= row && r < rowCount(); ++r)
-    h += std::max(sizeHintForRow(r), verticalHeader()->minimumSectionSize());
+    h += std::max({rowHeight(r), sizeHintForRow(r), verticalHeader()->minimumSectionSize()});
   if (horizontalScrollBar()->isVisible()) h += horizontalScrollBar()->height();
   return h;
 }

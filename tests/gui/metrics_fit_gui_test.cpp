@@ -34,6 +34,38 @@ int primaryGroupEnd(const MainWindow& w) {
   return end;
 }
 
+// Rows 0..end of the table lie inside its viewport, unscrolled.
+void expectRowsVisible(const MetricsPanel* m, int end) {
+  EXPECT_EQ(m->verticalScrollBar()->value(), 0);
+  const QRect view = m->viewport()->rect();
+  for (int r = 0; r <= end; ++r) {
+    const QRect cell = m->visualRect(m->model()->index(r, 0));
+    EXPECT_TRUE(view.contains(cell))
+        << "row " << r << " of 0.." << end << " is cut: cell y " << cell.top() << ".."
+        << cell.bottom() << ", view height " << view.height();
+  }
+}
+
+TEST(MetricsFit, AResizedWindowReFitsWithoutANewRun) {
+  MainWindow w;
+  ASSERT_TRUE(w.loadPreset("radome").ok());
+  w.resize(1366, 768);
+  w.show();
+  ASSERT_TRUE(QTest::qWaitForWindowExposed(&w));
+  ASSERT_TRUE(w.waitForRun(60000));
+  QApplication::processEvents();
+  // The table squeezed by a layout change (not by the user: no splitterMoved), then a resize.
+  auto* split = w.findChild<QSplitter*>("leftSplit");
+  ASSERT_NE(split, nullptr);
+  const QList<int> sizes = split->sizes();
+  split->setSizes({sizes[0] + sizes[1] - 60, 60});
+  const QString before = w.metricsPanel()->item(0, 1)->text();
+  w.resize(1400, 780);
+  QTest::qWait(100);  // the resize, the re-fit after it, the splitter's layout
+  EXPECT_EQ(w.metricsPanel()->item(0, 1)->text(), before);  // the same run, no new one
+  expectRowsVisible(w.metricsPanel(), primaryGroupEnd(w));
+}
+
 TEST(MetricsFit, PrimaryGroupVisibleWithoutScrollingAt1366x768) {
   for (const char* preset : {"radome", "underwater", "helicopter", "ballbeam"}) {
     SCOPED_TRACE(preset);

@@ -28,6 +28,7 @@ test: build
 	cd $(BUILD) && ctest -j $(JOBS) --output-on-failure
 
 bench: build
+	cmake --build $(BUILD) -j $(JOBS) --target kfw_bench
 	$(BUILD)/bench/kfw_bench
 
 screenshots: build

@@ -68,6 +68,18 @@ void BM_HelicopterModelRun(benchmark::State& state) {
 }
 BENCHMARK(BM_HelicopterModelRun)->Unit(benchmark::kMillisecond);
 
+// The same linear model under the UKF (sigma points on the real log).
+void BM_HelicopterModelUkf(benchmark::State& state) {
+  auto s = load_model("helicopter_indirect.json");
+  ParamValues v = broad_tuning(*s);
+  if (auto st = s->params().apply_assignment("filter=ukf", v); !st) {
+    state.SkipWithError(st.error().c_str());
+    return;
+  }
+  run_scenario(state, *s, helicopter_data(), v);
+}
+BENCHMARK(BM_HelicopterModelUkf)->Unit(benchmark::kMillisecond);
+
 // Range-bearing target (4 states, nonlinear h, 2-D channel), 10 min at 10 Hz; per step:
 // EKF target ≤ 2 µs, UKF ≤ 5 µs.
 void run_range_bearing(benchmark::State& state, const char* filter) {

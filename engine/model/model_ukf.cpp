@@ -21,6 +21,43 @@ struct Weights {
   double cw(Eigen::Index j) const { return j == 0 ? c0 : i; }
 };
 
+// Lower Cholesky factor of a symmetric A (only its lower triangle read): false if A is not
+// positive definite. Plain loops: n ≤ 6 on the fixed-size path, where Eigen's LLT costs more to
+// compile than to run.
+template <class Mat>
+bool cholesky_lower(const Mat& A, Mat& L) {
+  const Eigen::Index n = A.rows();
+  L.setZero();
+  for (Eigen::Index j = 0; j < n; ++j) {
+    double d = A(j, j);
+    for (Eigen::Index k = 0; k < j; ++k)
+      d -= L(j, k) * L(j, k);
+    if (!(d > 0.0)) return false;
+    const double ljj = std::sqrt(d);
+    L(j, j) = ljj;
+    for (Eigen::Index i = j + 1; i < n; ++i) {
+      double v = A(i, j);
+      for (Eigen::Index k = 0; k < j; ++k)
+        v -= L(i, k) * L(j, k);
+      L(i, j) = v / ljj;
+    }
+  }
+  return true;
+}
+
+// The symmetric square root of a positive semi-definite A (a singular P, e.g. a state the noise
+// does not drive); false if A has an eigenvalue below −1e-9 of its largest. Dynamic size: a rare
+// path, compiled once.
+bool symmetric_sqrt(const MatX& A, MatX& L) {
+  Eigen::SelfAdjointEigenSolver<MatX> es(A);
+  if (es.info() != Eigen::Success) return false;
+  const double scale = es.eigenvalues().cwiseAbs().maxCoeff();
+  if (es.eigenvalues().minCoeff() < -1e-9 * scale) return false;
+  L = es.eigenvectors() * es.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
+      es.eigenvectors().transpose();
+  return true;
+}
+
 // The 2n + 1 sigma points of N(x, P): x and x ± the columns of √((n + λ) P). A P that lost
 // definiteness beyond rounding returns false.
 template <int N, class Sig>
@@ -28,17 +65,12 @@ bool sigma_points(const typename Types<N>::VecN& x, const typename Types<N>::Mat
                   const Weights& w, Sig& X) {
   using MatN = typename Types<N>::MatN;
   const Eigen::Index n = x.size();
+  const MatN A = w.c * P;
   MatN L(n, n);
-  Eigen::LLT<MatN> llt(w.c * P);
-  if (llt.info() == Eigen::Success) {
-    L = llt.matrixL();
-  } else {
-    // Singular P (e.g. a state the noise does not drive): the symmetric square root.
-    Eigen::SelfAdjointEigenSolver<MatN> es(w.c * P);
-    const double scale = es.eigenvalues().cwiseAbs().maxCoeff();
-    if (es.info() != Eigen::Success || es.eigenvalues().minCoeff() < -1e-9 * scale) return false;
-    L = es.eigenvectors() * es.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
-        es.eigenvectors().transpose();
+  if (!cholesky_lower(A, L)) {
+    MatX Ls;
+    if (!symmetric_sqrt(A, Ls)) return false;
+    L = Ls;
   }
   X.col(0) = x;
   for (Eigen::Index j = 0; j < n; ++j) {

@@ -172,9 +172,7 @@ TEST(ModelCv, ChannelsAtTheirOwnRatesAndAGate) {
 
 // KF and EKF to 1e-12, UKF (α = 1, β = 0, κ = 0: exact for a linear model) to 1e-9, on the
 // scalar channel of cv1d and the 2-D channel of cv2d.
-void expect_filters_agree(const std::string& file) {
-  SCOPED_TRACE(file);
-  auto s = load_model(file);
+void expect_filters_agree(const Scenario* s) {
   ASSERT_TRUE(s);
   ParamValues v = s->params().defaults();
   auto d = s->simulate(v);
@@ -215,9 +213,30 @@ void expect_filters_agree(const std::string& file) {
 }
 
 TEST(ModelCv, KfEkfUkfAgreeOnALinearModel) {
-  expect_filters_agree("cv1d.json");
-  expect_filters_agree("cv2d.json");
-  expect_filters_agree("ca1d.json");
+  for (const char* file : {"cv1d.json", "cv2d.json", "ca1d.json"}) {
+    SCOPED_TRACE(file);
+    expect_filters_agree(load_model(file).get());
+  }
+}
+
+// A zero initial velocity variance: P has no Cholesky factor at the first update and prediction,
+// so the UKF draws its sigma points from the symmetric square root — and still equals the KF.
+TEST(ModelCv, UkfOfASingularCovarianceEqualsTheKf) {
+  std::ifstream in(kDir + "cv1d.json");
+  auto j = nlohmann::json::parse(in);
+  j["model"]["P0"] = {"P0_x", "0"};
+  auto s = make_model_scenario(j, "cv1d with P0_v = 0");
+  ASSERT_TRUE(s.ok()) << s.error();
+  expect_filters_agree(s->get());
+  ParamValues v = (*s)->params().defaults();
+  ASSERT_TRUE((*s)->params().apply_assignment("filter=ukf", v).ok());
+  auto d = (*s)->simulate(v);
+  ASSERT_TRUE(d.ok());
+  auto r = (*s)->run(*d, v);
+  ASSERT_TRUE(r.ok()) << r.error();
+  const auto& m = as_model(*r);
+  EXPECT_EQ(m.P[m.diag[1]][0], 0.0);  // the velocity variance after the first update
+  EXPECT_GT(m.P[m.diag[1]][1], 0.0);  // the prediction's Q drives it
 }
 
 TEST(ModelCv, ContinuousFormIsVanLoan) {

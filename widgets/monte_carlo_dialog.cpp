@@ -85,7 +85,7 @@ MonteCarloDialog::MonteCarloDialog(std::shared_ptr<const Scenario> scenario,
       progress_->setValue(progress_->maximum());
       showSummary(summarize_monte_carlo(*r));
     }
-    emit done();
+    emit runFinished();
   });
 }
 

@@ -36,7 +36,7 @@ class MonteCarloDialog : public QDialog {
   QCustomPlot* consistencyPlot() const { return consistency_plot_; }
 
  signals:
-  void done();
+  void runFinished();  // the run ended (finished, failed or cancelled)
 
  private:
   void showSummary(const MonteCarloSummary& s);

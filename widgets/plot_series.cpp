@@ -60,7 +60,9 @@ Extent extent(const std::vector<double>& x, const std::vector<double>& y, std::s
 void decimateDots(const std::vector<double>& x, const std::vector<double>& y, std::size_t begin,
                   std::size_t n, bool logY, int cols, int rows, QVector<QCPGraphData>& out) {
   auto fy = [logY](double v) { return logY ? coarseLog2(v) : v; };
-  const auto [x0, x1, y0, y1] = extent(x, y, begin, n, logY);
+  // Plain variables, not a structured binding: clang 14 cannot capture one in a lambda.
+  const Extent e = extent(x, y, begin, n, logY);
+  const double x0 = e.x0, x1 = e.x1, y0 = e.y0, y1 = e.y1;
   if (x0 > x1) return;
   const double fy0 = fy(y0), fspan = fy(y1) - fy0;
   const double cscale = x1 > x0 ? cols / (x1 - x0) : 0.0;
@@ -185,7 +187,8 @@ void setCurve(QCPCurve* c, const std::vector<double>& keys, const std::vector<do
   n = std::min({n, keys.size(), values.size()});
   auto d = std::make_shared<QVector<QCPCurveData>>();
   auto compute = [&keys, &values, n, d] {
-    const auto [k0, k1, v0, v1] = extent(keys, values, 0, n, false);
+    const Extent e = extent(keys, values, 0, n, false);
+    const double k0 = e.x0, k1 = e.x1, v0 = e.y0, v1 = e.y1;
     // A point is kept when it leaves the last kept point's cell of a grid finer than any pixel
     // raster (1000 cells over the larger extent, about a pixel of an export).
     const double cell = std::max(k1 - k0, v1 - v0) / 1000.0;

@@ -152,7 +152,7 @@ SweepDialog::SweepDialog(std::shared_ptr<const Scenario> scenario,
       last_ = *r;
       showResult(*r, running_metric_);
     }
-    emit done();
+    emit runFinished();
   });
 }
 

@@ -48,7 +48,7 @@ class SweepDialog : public QDialog {
   int progressValue() const;
 
  signals:
-  void done();
+  void runFinished();  // the run ended (finished, failed or cancelled)
   // A point of the grid was clicked: every key's value (the base with the axes' values).
   void pointChosen(const kfw::ParamValues& values);
 

@@ -255,9 +255,12 @@ class UnderwaterView final : public ScenarioView {
                          r.has_stats ? std::abs(r.stats.covariance(i, j)) : 0.0});
       }
     }
-    const auto [scale, unit] = vmax >= 1.0    ? std::pair{1.0, QString("m²")}
-                               : vmax >= 1e-4 ? std::pair{1e4, QString("cm²")}
-                                              : std::pair{1e6, QString("mm²")};
+    // Not a structured binding: clang 14 cannot capture one in a lambda (number, below).
+    const std::pair<double, QString> su = vmax >= 1.0    ? std::pair{1.0, QString("m²")}
+                                          : vmax >= 1e-4 ? std::pair{1e4, QString("cm²")}
+                                                         : std::pair{1e6, QString("mm²")};
+    const double scale = su.first;
+    const QString& unit = su.second;
     const double top = vmax * scale;
     const int decimals = top >= 100.0 ? 0 : top >= 10.0 ? 1 : 2;
     auto number = [&](double v) {

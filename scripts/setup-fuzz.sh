@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The fuzz build's extra Debian packages (make fuzz only; make test and CI do not need them):
-# clang and the compiler-rt runtime that ships libFuzzer and the sanitizers.
+# The extra Debian packages of the clang builds, make fuzz and make sanitize (CI's second step;
+# make test does not need them): clang and the compiler-rt runtime that ships libFuzzer and the
+# sanitizers.
 set -euo pipefail
 packages=(clang libclang-rt-14-dev)
 missing=()

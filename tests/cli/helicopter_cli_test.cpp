@@ -15,10 +15,10 @@ namespace {
 
 using kfw::testing::cli;
 
-const std::string kPreset = std::string(KFW_SOURCE_DIR) + "/presets/helicopter.json";
+const std::string kHelicopter = std::string(KFW_SOURCE_DIR) + "/presets/helicopter.json";
 
 TEST(HelicopterCli, GainPrintsClosedFormAndDare) {
-  auto o = cli("gain " + kPreset + " --set m=25");
+  auto o = cli("gain " + kHelicopter + " --set m=25");
   ASSERT_EQ(o.code, 0) << o.text;
   auto j = nlohmann::json::parse(o.text);
   for (const char* k : {"k1", "p11_over_R", "k1_dare", "beta"})
@@ -30,7 +30,7 @@ TEST(HelicopterCli, GainPrintsClosedFormAndDare) {
 TEST(HelicopterCli, RunWritesMetricsAndEstimates) {
   const std::string dir = ::testing::TempDir();
   const std::string est = dir + "/kfw_est.csv", met = dir + "/kfw_met.json";
-  auto o = cli("run " + kPreset + " --data " + KFW_SOURCE_DIR + "/data/helicopter.csv --out " +
+  auto o = cli("run " + kHelicopter + " --data " + KFW_SOURCE_DIR + "/data/helicopter.csv --out " +
                est + " --metrics " + met);
   ASSERT_EQ(o.code, 0) << o.text;
   auto j = nlohmann::json::parse(o.text);
@@ -67,11 +67,11 @@ TEST(HelicopterCli, BadInputExitsNonZeroWithOneLine) {
     fclose(f);
   }
   for (const Case& c :
-       {Case{"run " + kPreset + " --set bogus=1", "unknown parameter 'bogus'"},
-        Case{"run " + kPreset + " --set R=-3", "'R' = -3 is out of range"},
-        Case{"run " + kPreset + " --set m=2.5", "must be a whole number"},
-        Case{"run " + kPreset + " --data /no/such.csv", "/no/such.csv: cannot open"},
-        Case{"run " + kPreset + " --data " + bad_csv, ":4:1: time is not increasing"},
+       {Case{"run " + kHelicopter + " --set bogus=1", "unknown parameter 'bogus'"},
+        Case{"run " + kHelicopter + " --set R=-3", "'R' = -3 is out of range"},
+        Case{"run " + kHelicopter + " --set m=2.5", "must be a whole number"},
+        Case{"run " + kHelicopter + " --data /no/such.csv", "/no/such.csv: cannot open"},
+        Case{"run " + kHelicopter + " --data " + bad_csv, ":4:1: time is not increasing"},
         Case{"run /no/preset.json", "cannot open preset"}, Case{"frobnicate", "unknown command"},
         Case{"simulate helicopter", "--out is required"}}) {
     auto o = cli(c.args);

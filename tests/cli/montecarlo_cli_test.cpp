@@ -3,37 +3,21 @@
 // --out-dir writes one estimates file per seed.
 #include <gtest/gtest.h>
 
-#include <array>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "common/cli_runner.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Output {
-  int status = -1;
-  std::string text;
-};
+using kfw::testing::cli;
 
-Output cli(const std::string& args, const std::string& redirect = "2>&1") {
-  const std::string cmd = std::string(KFW_CLI) + " " + args + " " + redirect;
-  Output out;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return out;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), pipe))
-    out.text += buf.data();
-  const int st = pclose(pipe);
-  out.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return out;
-}
-
-const std::string kCv = std::string(KFW_SOURCE_DIR) + "/presets/models/cv1d.json";
+const std::string kCv1d = std::string(KFW_SOURCE_DIR) + "/presets/models/cv1d.json";
 const std::string kShort = " --set sim.duration=3";
 
 fs::path temp_dir(const std::string& name) {
@@ -44,8 +28,8 @@ fs::path temp_dir(const std::string& name) {
 }
 
 TEST(MonteCarloCli, SummarisesEveryMetricOverTheSeeds) {
-  const Output o = cli("run " + kCv + " --seeds 1..5" + kShort, "2>/dev/null");
-  ASSERT_EQ(o.status, 0) << o.text;
+  const auto o = cli("run " + kCv1d + " --seeds 1..5" + kShort, "2>/dev/null");
+  ASSERT_EQ(o.code, 0) << o.text;
   const auto j = nlohmann::json::parse(o.text);
   EXPECT_EQ(j.at("seeds"), 5);
   EXPECT_EQ(j.at("completed"), 5);
@@ -57,40 +41,40 @@ TEST(MonteCarloCli, SummarisesEveryMetricOverTheSeeds) {
   EXPECT_EQ(j.at("consistency").at("anees").at("runs"), 5);
   EXPECT_FALSE(j.contains("steps"));  // the per-step arrays go to --metrics
 
-  const Output t = cli("run " + kCv + " --seeds 1..5 --table" + kShort, "2>/dev/null");
-  ASSERT_EQ(t.status, 0) << t.text;
+  const auto t = cli("run " + kCv1d + " --seeds 1..5 --table" + kShort, "2>/dev/null");
+  ASSERT_EQ(t.code, 0) << t.text;
   EXPECT_NE(t.text.find("5 seeds, 5 completed"), std::string::npos) << t.text;
   EXPECT_NE(t.text.find("ANEES (2 dof, 5 runs)"), std::string::npos) << t.text;
 }
 
 TEST(MonteCarloCli, SeedsAreRefusedWithDataFilesAndBadSets) {
-  EXPECT_EQ(cli("run " + kCv + " --seeds 1..3 --data x.csv").status, 2);
-  const Output broad = cli("run broad_imu --seeds 1..3");
-  EXPECT_EQ(broad.status, 2) << broad.text;
+  EXPECT_EQ(cli("run " + kCv1d + " --seeds 1..3 --data x.csv").code, 2);
+  const auto broad = cli("run broad_imu --seeds 1..3");
+  EXPECT_EQ(broad.code, 2) << broad.text;
   EXPECT_NE(broad.text.find("--seeds simulates"), std::string::npos) << broad.text;
-  EXPECT_EQ(cli("run " + kCv + " --seeds 5..1").status, 2);
-  EXPECT_EQ(cli("run " + kCv + " --seeds 1..3 --shard 1/2").status, 2);  // no --out
-  EXPECT_EQ(cli("run " + kCv + " --shard 1/2").status, 2);               // no --seeds
-  EXPECT_EQ(cli("run " + kCv + " --seeds 1,2000000").status, 2);         // outside sim.seed
+  EXPECT_EQ(cli("run " + kCv1d + " --seeds 5..1").code, 2);
+  EXPECT_EQ(cli("run " + kCv1d + " --seeds 1..3 --shard 1/2").code, 2);  // no --out
+  EXPECT_EQ(cli("run " + kCv1d + " --shard 1/2").code, 2);               // no --seeds
+  EXPECT_EQ(cli("run " + kCv1d + " --seeds 1,2000000").code, 2);         // outside sim.seed
 }
 
 TEST(MonteCarloCli, MergedShardsEqualTheUnshardedRun) {
   const fs::path dir = temp_dir("merge");
-  const Output whole =
-      cli("run " + kCv + " --seeds 1..7" + kShort + " --metrics " + (dir / "whole.json").string(),
+  const auto whole =
+      cli("run " + kCv1d + " --seeds 1..7" + kShort + " --metrics " + (dir / "whole.json").string(),
           "2>/dev/null");
-  ASSERT_EQ(whole.status, 0) << whole.text;
+  ASSERT_EQ(whole.code, 0) << whole.text;
   std::string parts;
   for (int i = 1; i <= 3; ++i) {
     const std::string part = (dir / ("part_" + std::to_string(i) + ".json")).string();
-    const Output o = cli("run " + kCv + " --seeds 1..7" + kShort + " --shard " + std::to_string(i) +
-                         "/3 --out " + part);
-    ASSERT_EQ(o.status, 0) << o.text;
+    const auto o = cli("run " + kCv1d + " --seeds 1..7" + kShort + " --shard " + std::to_string(i) +
+                       "/3 --out " + part);
+    ASSERT_EQ(o.code, 0) << o.text;
     parts += " " + part;
   }
-  const Output m =
+  const auto m =
       cli("merge" + parts + " --metrics " + (dir / "merged.json").string(), "2>/dev/null");
-  ASSERT_EQ(m.status, 0) << m.text;
+  ASSERT_EQ(m.code, 0) << m.text;
   auto read = [&](const std::string& name) {
     std::ifstream in(dir / name);
     return nlohmann::json::parse(in);
@@ -110,24 +94,24 @@ TEST(MonteCarloCli, MergedShardsEqualTheUnshardedRun) {
     EXPECT_LE(std::abs(x - y), 1e-12 * std::abs(x)) << "step " << k;
   }
   // A shard missing, or a file of no known kind, is refused (exit 2).
-  const Output missing = cli("merge " + (dir / "part_1.json").string());
-  EXPECT_EQ(missing.status, 2);
+  const auto missing = cli("merge " + (dir / "part_1.json").string());
+  EXPECT_EQ(missing.code, 2);
   EXPECT_NE(missing.text.find("shard 2/3 is missing"), std::string::npos) << missing.text;
   std::ofstream(dir / "other.json") << R"({"kind": "bogus"})";
-  const Output bogus = cli("merge " + (dir / "other.json").string());
-  EXPECT_EQ(bogus.status, 2);
+  const auto bogus = cli("merge " + (dir / "other.json").string());
+  EXPECT_EQ(bogus.code, 2);
   EXPECT_NE(bogus.text.find("other.json: kind"), std::string::npos) << bogus.text;
   fs::remove_all(dir);
 }
 
 TEST(MonteCarloCli, OutDirWritesOneEstimatesFilePerSeed) {
   const fs::path dir = temp_dir("outdir");
-  const Output o = cli("run " + kCv + " --seeds 2,4" + kShort + " --out-dir " + dir.string());
-  ASSERT_EQ(o.status, 0) << o.text;
+  const auto o = cli("run " + kCv1d + " --seeds 2,4" + kShort + " --out-dir " + dir.string());
+  ASSERT_EQ(o.code, 0) << o.text;
   EXPECT_TRUE(fs::is_regular_file(dir / "seed_2.csv"));
   EXPECT_TRUE(fs::is_regular_file(dir / "seed_4.csv"));
   EXPECT_FALSE(fs::exists(dir / "seed_3.csv"));
-  EXPECT_EQ(cli("run " + kCv + " --seeds 2,4 --out-dir " + (dir / "nope").string()).status, 2);
+  EXPECT_EQ(cli("run " + kCv1d + " --seeds 2,4 --out-dir " + (dir / "nope").string()).code, 2);
   fs::remove_all(dir);
 }
 

@@ -13,10 +13,10 @@ namespace {
 using Out = kfw::testing::CliOutput;
 using kfw::testing::cli;
 
-const std::string kPreset = std::string(KFW_SOURCE_DIR) + "/presets/radome.json";
+const std::string kRadome = std::string(KFW_SOURCE_DIR) + "/presets/radome.json";
 
 nlohmann::json run(const std::string& sets) {
-  auto o = cli("run " + kPreset + " " + sets);
+  auto o = cli("run " + kRadome + " " + sets);
   EXPECT_EQ(o.code, 0) << o.text;
   return nlohmann::json::parse(o.text);
 }
@@ -44,19 +44,19 @@ TEST(RadomeCli, ReproducesSeed001) {
 }
 
 TEST(RadomeCli, EqualGridEndsAreAWarningNamingTheKeys) {
-  const auto o = cli("run " + kPreset + " --set grid.min=0 --set grid.max=0");
+  const auto o = cli("run " + kRadome + " --set grid.min=0 --set grid.max=0");
   EXPECT_EQ(o.code, 0) << o.text;
   EXPECT_NE(o.text.find("warning: grid.min = grid.max"), std::string::npos) << o.text;
 }
 
 TEST(RadomeCli, BadGridIsAOneLineError) {
-  auto o = cli("run " + kPreset + " --set grid.min=0.1 --set grid.max=-0.1");
+  auto o = cli("run " + kRadome + " --set grid.min=0.1 --set grid.max=-0.1");
   EXPECT_NE(o.code, 0);
   EXPECT_NE(o.text.find("grid.min"), std::string::npos) << o.text;
-  o = cli("run " + kPreset + " --set grid.n_psi=0");
+  o = cli("run " + kRadome + " --set grid.n_psi=0");
   EXPECT_NE(o.code, 0);
   EXPECT_NE(o.text.find("grid.n_psi"), std::string::npos) << o.text;
-  o = cli("run " + kPreset + " --set markov.stay=0");
+  o = cli("run " + kRadome + " --set markov.stay=0");
   EXPECT_NE(o.code, 0);
   EXPECT_NE(o.text.find("markov.stay"), std::string::npos) << o.text;
 }

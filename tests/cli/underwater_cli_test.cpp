@@ -2,30 +2,15 @@
 #include <gtest/gtest.h>
 
 #include <unistd.h>
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "common/cli_runner.h"
+
 namespace {
 
-struct Output {
-  int status = -1;
-  std::string text;
-};
-
-Output cli(const std::string& args) {
-  Output o;
-  const std::string cmd = std::string(KFW_CLI) + " " + args + " 2>&1";
-  FILE* f = popen(cmd.c_str(), "r");
-  if (!f) return o;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), static_cast<int>(buf.size()), f))
-    o.text += buf.data();
-  o.status = pclose(f);
-  return o;
-}
+using kfw::testing::cli;
 
 std::string temp_csv(const std::string& stem) {
   return (std::filesystem::temp_directory_path() /
@@ -40,9 +25,9 @@ TEST(UnderwaterCli, SimulateThenStatsReproducesGaussianDesign) {
       " --set sim.clock=synchronous --set sim.sigma_corr=0 --set sim.outliers=0 --set "
       "sim.duration=600";
   auto s = cli("simulate underwater --out " + csv + sets);
-  ASSERT_EQ(s.status, 0) << s.text;
+  ASSERT_EQ(s.code, 0) << s.text;
   auto st = cli("stats underwater --data " + csv + sets);
-  ASSERT_EQ(st.status, 0) << st.text;
+  ASSERT_EQ(st.code, 0) << st.text;
   const auto j = nlohmann::json::parse(st.text);
   for (int i = 0; i < 4; ++i)
     EXPECT_NEAR(j["covariance"][i][i].get<double>(), 0.01, 0.0015);
@@ -54,7 +39,7 @@ TEST(UnderwaterCli, SimulateThenStatsReproducesGaussianDesign) {
 
 TEST(UnderwaterCli, RunPrintsTheTable13Metrics) {
   auto r = cli("run underwater --set scheme=AS");
-  ASSERT_EQ(r.status, 0) << r.text;
+  ASSERT_EQ(r.code, 0) << r.text;
   const auto j = nlohmann::json::parse(r.text.substr(r.text.find('{')));
   for (const char* k : {"pos_mean", "pos_std", "pos_max", "rmse", "outliers_injected",
                         "outliers_detected", "outliers_false_alarm", "nees_mean"}) {
@@ -70,12 +55,12 @@ TEST(UnderwaterCli, RunPrintsTheTable13Metrics) {
 TEST(UnderwaterCli, OutlierCountsAreNullWithoutInjectedColumns) {
   const std::string csv = temp_csv("uw_full");
   const std::string sets = " --set sim.clock=synchronous --set sim.duration=120";
-  ASSERT_EQ(cli("simulate underwater --out " + csv + sets).status, 0);
+  ASSERT_EQ(cli("simulate underwater --out " + csv + sets).code, 0);
   // outlier1..4 are the last four of the 26 columns.
   const std::string cut = temp_csv("uw_no_outliers");
   ASSERT_EQ(std::system(("cut -d, -f1-22 " + csv + " > " + cut).c_str()), 0);
   auto r = cli("run underwater --data " + cut + sets);
-  ASSERT_EQ(r.status, 0) << r.text;
+  ASSERT_EQ(r.code, 0) << r.text;
   const auto j = nlohmann::json::parse(r.text.substr(r.text.find('{')));
   for (const char* k : {"outliers_injected", "outliers_detected", "outliers_false_alarm"}) {
     EXPECT_FALSE(j.contains(k)) << k << " = " << j[k];
@@ -86,7 +71,7 @@ TEST(UnderwaterCli, OutlierCountsAreNullWithoutInjectedColumns) {
   EXPECT_GT(j["ranges_rejected"].get<double>(), 0.0);
   EXPECT_TRUE(j["nees_mean"].is_number());
   auto st = cli("stats underwater --data " + cut + sets);
-  ASSERT_EQ(st.status, 0) << st.text;
+  ASSERT_EQ(st.code, 0) << st.text;
   const auto js = nlohmann::json::parse(st.text);
   for (const char* k : {"outliers_injected", "outliers_detected", "outliers_false_alarm"}) {
     EXPECT_TRUE(js[k].is_null()) << k << " = " << js[k];
@@ -101,13 +86,13 @@ TEST(UnderwaterCli, OutlierCountsAreNullWithoutInjectedColumns) {
 
 TEST(UnderwaterCli, MissingBeaconColumnIsAClearError) {
   const std::string csv = temp_csv("uw_missing");
-  ASSERT_EQ(cli("simulate underwater --set sim.duration=5 --out " + csv).status, 0);
+  ASSERT_EQ(cli("simulate underwater --set sim.duration=5 --out " + csv).code, 0);
   // Drop the range3 column (the 13th) from header and rows.
   const std::string cut = temp_csv("uw_cut");
   const std::string drop = "cut -d, -f1-12,14- " + csv + " > " + cut;
   ASSERT_EQ(std::system(drop.c_str()), 0);
   auto r = cli("run underwater --data " + cut);
-  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.code, 0);
   EXPECT_NE(r.text.find("range3"), std::string::npos) << r.text;
   std::filesystem::remove(csv);
   std::filesystem::remove(cut);

@@ -27,7 +27,7 @@ Expected<Dataset> load(const std::string& text, const Mapping& m = {}) {
   return load_dataset_file(**s, write(name, text), m);
 }
 
-struct Case {
+struct PolicyCase {
   const char* name;
   std::string csv;
   int exit_code;         // 0: loads
@@ -35,7 +35,7 @@ struct Case {
 };
 
 TEST(DataPolicy, TableOfRules) {
-  const Case cases[] = {
+  const PolicyCase cases[] = {
       {"empty cell is missing", "t,gyro,angle\n0,1,\n0.02,,2\n0.04,1,2\n", 0, ""},
       {"NaN words are missing", "t,gyro,angle\n0,NaN,1\n0.02,nan,NA\n0.04,1,2\n", 0, ""},
       {"inf is invalid", "t,gyro,angle\n0,1,2\n0.02,inf,2\n", 2,

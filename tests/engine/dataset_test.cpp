@@ -15,7 +15,7 @@ Expected<Dataset> parse(const std::string& text) {
   return parse_csv(in, "f.csv");
 }
 
-void expect_error(const std::string& text, const std::string& fragment) {
+void expect_csv_error(const std::string& text, const std::string& fragment) {
   auto d = parse(text);
   ASSERT_FALSE(d.ok()) << "accepted: " << text;
   EXPECT_NE(d.error().find(fragment), std::string::npos) << d.error();
@@ -34,28 +34,28 @@ TEST(Csv, ReadsHeaderColumnsAndMissingSamples) {
 }
 
 TEST(Csv, ErrorsNameFileLineAndColumn) {
-  expect_error("", "f.csv: empty file");
-  expect_error("t,a\n0,1\n0.1,x1\n", "f.csv:3:5: column 'a': 'x1' is not a number");
-  expect_error("t,a\n0,1\n0.1,1,2\n", "f.csv:3: expected 2 fields as in the header, found 3");
-  expect_error("t,a\n0,1\n0,2\n", "f.csv:3:1: time is not increasing");
-  expect_error("t,a\n0,1\n-1,2\n", "f.csv:3:1: time is not increasing");
-  expect_error("time,a\n0,1\n", "no time column 't'");
-  expect_error("t,a\n0,1\n,2\n", "f.csv:3:1: column 't' is empty");
-  expect_error("t,a\n0,inf\n", "f.csv:2:3: column 'a': infinite value");
-  expect_error("t,a,a\n0,1,2\n", "duplicate column 'a'");
-  expect_error("t,,a\n0,1,2\n", "column 2 has an empty header name");
-  expect_error("0,1\n1,2\n", "must be a header row");
-  expect_error("t,a\n", "no data rows");
-  expect_error("t,a\n0,1e999\n", "f.csv:2:3: column 'a': '1e999' overflows a double");
-  expect_error("# only a comment\n", "f.csv: empty file");
-  expect_error("t,a\n0,1\n1e308,2\n-1e308,3\n", "f.csv:4:1: time is not increasing");
-  expect_error(std::string("t,a\n0,\0\n", 8), "f.csv:2: not a text file");
-  expect_error("t,a\n0," + std::string(2 * 1024 * 1024, '1') + "\n",
-               "f.csv:2: line longer than 1 MB");
+  expect_csv_error("", "f.csv: empty file");
+  expect_csv_error("t,a\n0,1\n0.1,x1\n", "f.csv:3:5: column 'a': 'x1' is not a number");
+  expect_csv_error("t,a\n0,1\n0.1,1,2\n", "f.csv:3: expected 2 fields as in the header, found 3");
+  expect_csv_error("t,a\n0,1\n0,2\n", "f.csv:3:1: time is not increasing");
+  expect_csv_error("t,a\n0,1\n-1,2\n", "f.csv:3:1: time is not increasing");
+  expect_csv_error("time,a\n0,1\n", "no time column 't'");
+  expect_csv_error("t,a\n0,1\n,2\n", "f.csv:3:1: column 't' is empty");
+  expect_csv_error("t,a\n0,inf\n", "f.csv:2:3: column 'a': infinite value");
+  expect_csv_error("t,a,a\n0,1,2\n", "duplicate column 'a'");
+  expect_csv_error("t,,a\n0,1,2\n", "column 2 has an empty header name");
+  expect_csv_error("0,1\n1,2\n", "must be a header row");
+  expect_csv_error("t,a\n", "no data rows");
+  expect_csv_error("t,a\n0,1e999\n", "f.csv:2:3: column 'a': '1e999' overflows a double");
+  expect_csv_error("# only a comment\n", "f.csv: empty file");
+  expect_csv_error("t,a\n0,1\n1e308,2\n-1e308,3\n", "f.csv:4:1: time is not increasing");
+  expect_csv_error(std::string("t,a\n0,\0\n", 8), "f.csv:2: not a text file");
+  expect_csv_error("t,a\n0," + std::string(2 * 1024 * 1024, '1') + "\n",
+                   "f.csv:2: line longer than 1 MB");
   std::string wide = "t";
   for (int c = 0; c < 10001; ++c)
     wide += ",c" + std::to_string(c);
-  expect_error(wide + "\n", "f.csv:1: 10002 columns: more than the limit of 10000");
+  expect_csv_error(wide + "\n", "f.csv:1: 10002 columns: more than the limit of 10000");
 }
 
 TEST(Csv, WriteReadRoundTripIsExact) {

@@ -9,19 +9,14 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "common/model_files.h"
 #include "model/model_scenario.h"
 #include "scenarios/ballbeam/alpha_beta.h"
 
 namespace kfw {
 namespace {
 
-std::unique_ptr<Scenario> load_model(const std::string& name) {
-  const std::string path = KFW_SOURCE_DIR "/presets/models/" + name;
-  std::ifstream in(path);
-  auto s = make_model_scenario(nlohmann::json::parse(in), path);
-  EXPECT_TRUE(s.ok()) << s.error();
-  return s.ok() ? std::move(*s) : nullptr;
-}
+using testing::load_model;
 
 TEST(GainCurve, ConstantVelocityCurveIsTheAlphaBetaCurve) {
   auto s = load_model("cv1d.json");

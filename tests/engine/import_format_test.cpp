@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/table_text.h"
 #include "core/import.h"
 #include "core/preset.h"
 #include "core/scenario.h"
@@ -18,11 +19,7 @@
 namespace kfw {
 namespace {
 
-Table table(const std::string& text, const TableOptions& opt = {}) {
-  auto t = parse_table(text, "f.csv", opt);
-  EXPECT_TRUE(t.ok()) << t.error();
-  return t.ok() ? *t : Table{};
-}
+using testing::table;
 
 std::string err(const std::string& text, const TableOptions& opt = {}) {
   auto t = parse_table(text, "f.csv", opt);

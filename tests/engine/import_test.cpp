@@ -6,16 +6,13 @@
 
 #include <cmath>
 
+#include "common/table_text.h"
 #include "core/scenario.h"
 
 namespace kfw {
 namespace {
 
-Table table(const std::string& text, const TableOptions& opt = {}) {
-  auto t = parse_table(text, "f.csv", opt);
-  EXPECT_TRUE(t.ok()) << t.error();
-  return t.ok() ? *t : Table{};
-}
+using testing::table;
 
 const std::vector<ColumnSpec> kHeli = {{"t", "s", "time", true},
                                        {"gyro", "deg/s", "rate gyro", true},

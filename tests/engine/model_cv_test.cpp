@@ -7,6 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "common/model_files.h"
 #include "core/kalman_filter.h"
 #include "core/scenario.h"
 #include "model/model_result.h"
@@ -16,15 +17,8 @@
 namespace kfw {
 namespace {
 
-const std::string kDir = KFW_SOURCE_DIR "/presets/models/";
-
-std::unique_ptr<Scenario> load_model(const std::string& name) {
-  std::ifstream in(kDir + name);
-  EXPECT_TRUE(in.good()) << name;
-  auto s = make_model_scenario(nlohmann::json::parse(in), kDir + name);
-  EXPECT_TRUE(s.ok()) << s.error();
-  return s.ok() ? std::move(*s) : nullptr;
-}
+using testing::kModelDir;
+using testing::load_model;
 
 const model::ModelResult& as_model(const std::shared_ptr<const RunResult>& r) {
   return dynamic_cast<const model::ModelResult&>(*r);
@@ -137,7 +131,7 @@ TEST(ModelCv, UnevenSamplingUsesEachRowsDt) {
 
 // Two channels at their own rates (a speed sensor every 5th row) and a χ² gate on the position.
 TEST(ModelCv, ChannelsAtTheirOwnRatesAndAGate) {
-  std::ifstream in(kDir + "cv1d.json");
+  std::ifstream in(kModelDir + "cv1d.json");
   auto j = nlohmann::json::parse(in);
   j["model"]["measurements"]["speed"] = nlohmann::json::parse(
       R"({"roles": [{"name": "vz", "unit": "m/s"}], "H": [["0", "1"]], "R": ["0.01"],
@@ -222,7 +216,7 @@ TEST(ModelCv, KfEkfUkfAgreeOnALinearModel) {
 // A zero initial velocity variance: P has no Cholesky factor at the first update and prediction,
 // so the UKF draws its sigma points from the symmetric square root — and still equals the KF.
 TEST(ModelCv, UkfOfASingularCovarianceEqualsTheKf) {
-  std::ifstream in(kDir + "cv1d.json");
+  std::ifstream in(kModelDir + "cv1d.json");
   auto j = nlohmann::json::parse(in);
   j["model"]["P0"] = {"P0_x", "0"};
   auto s = make_model_scenario(j, "cv1d with P0_v = 0");
@@ -248,7 +242,7 @@ TEST(ModelCv, ContinuousFormIsVanLoan) {
   ParamValues v = s->params().defaults();
   auto g = s->gain(v);
   ASSERT_TRUE(g.ok()) << g.error();
-  std::ifstream in(kDir + "ca1d.json");
+  std::ifstream in(kModelDir + "ca1d.json");
   auto j = nlohmann::json::parse(in);
   j["model"]["process"] = {{"F", {{"1", "dt", "dt^2/2"}, {"0", "1", "dt"}, {"0", "0", "1"}}},
                            {"Q",

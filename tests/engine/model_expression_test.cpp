@@ -39,7 +39,7 @@ double eval(const std::string& text, double x, double y) {
   return out;
 }
 
-struct Case {
+struct ExprCase {
   const char* text;
   double x, y;
   double value;  // from <cmath>
@@ -49,10 +49,10 @@ double deriv_at(const Expr& d, double x, double y) {
   return d.dep == Dep::kConst ? d.value : eval(d.text, x, y);
 }
 
-class Language : public ::testing::TestWithParam<Case> {};
+class Language : public ::testing::TestWithParam<ExprCase> {};
 
 TEST_P(Language, ValueAndDerivativeAgreeInBothLibraries) {
-  const Case& c = GetParam();
+  const ExprCase& c = GetParam();
   const Symbols s = symbols();
   auto e = compile_expr(c.text, "e", s, kAllSymbols, "");
   ASSERT_TRUE(e.ok()) << e.error();
@@ -74,33 +74,33 @@ const double kX = 0.3, kY = -0.7;
 INSTANTIATE_TEST_SUITE_P(
     Functions, Language,
     ::testing::Values(
-        Case{"sin(x)", kX, kY, std::sin(kX)}, Case{"cos(x)", kX, kY, std::cos(kX)},
-        Case{"tan(x)", kX, kY, std::tan(kX)}, Case{"asin(x)", kX, kY, std::asin(kX)},
-        Case{"acos(x)", kX, kY, std::acos(kX)}, Case{"atan(x)", kX, kY, std::atan(kX)},
-        Case{"atan2(y, x)", kX, kY, std::atan2(kY, kX)},
-        Case{"atan2(y, x)", -kX, 0.1, std::atan2(0.1, -kX)}, Case{"sinh(x)", kX, kY, std::sinh(kX)},
-        Case{"cosh(x)", kX, kY, std::cosh(kX)}, Case{"tanh(x)", kX, kY, std::tanh(kX)},
-        Case{"exp(x)", kX, kY, std::exp(kX)}, Case{"log(x)", kX, kY, std::log(kX)},
-        Case{"sqrt(x)", kX, kY, std::sqrt(kX)}, Case{"abs(y)", kX, kY, std::fabs(kY)},
-        Case{"abs(x)", kX, kY, kX}, Case{"pow(x, y)", kX, kY, std::pow(kX, kY)},
-        Case{"min(x, y)", kX, kY, kY}, Case{"max(x, y)", kX, kY, kX}, Case{"min(x, y)", kY, kX, kY},
-        Case{"max(x^2, y)", kX, kY, kX* kX}, Case{"pi*x", kX, kY, std::numbers::pi* kX}),
-    [](const ::testing::TestParamInfo<Case>& c) { return "f" + std::to_string(c.index); });
+        ExprCase{"sin(x)", kX, kY, std::sin(kX)}, ExprCase{"cos(x)", kX, kY, std::cos(kX)},
+        ExprCase{"tan(x)", kX, kY, std::tan(kX)}, ExprCase{"asin(x)", kX, kY, std::asin(kX)},
+        ExprCase{"acos(x)", kX, kY, std::acos(kX)}, ExprCase{"atan(x)", kX, kY, std::atan(kX)},
+        ExprCase{"atan2(y, x)", kX, kY, std::atan2(kY, kX)},
+        ExprCase{"atan2(y, x)", -kX, 0.1, std::atan2(0.1, -kX)},
+        ExprCase{"sinh(x)", kX, kY, std::sinh(kX)}, ExprCase{"cosh(x)", kX, kY, std::cosh(kX)},
+        ExprCase{"tanh(x)", kX, kY, std::tanh(kX)}, ExprCase{"exp(x)", kX, kY, std::exp(kX)},
+        ExprCase{"log(x)", kX, kY, std::log(kX)}, ExprCase{"sqrt(x)", kX, kY, std::sqrt(kX)},
+        ExprCase{"abs(y)", kX, kY, std::fabs(kY)}, ExprCase{"abs(x)", kX, kY, kX},
+        ExprCase{"pow(x, y)", kX, kY, std::pow(kX, kY)}, ExprCase{"min(x, y)", kX, kY, kY},
+        ExprCase{"max(x, y)", kX, kY, kX}, ExprCase{"min(x, y)", kY, kX, kY},
+        ExprCase{"max(x^2, y)", kX, kY, kX* kX}, ExprCase{"pi*x", kX, kY, std::numbers::pi* kX}),
+    [](const ::testing::TestParamInfo<ExprCase>& c) { return "f" + std::to_string(c.index); });
 
-INSTANTIATE_TEST_SUITE_P(Operators, Language,
-                         ::testing::Values(Case{"-x^2", kX, kY, -kX* kX},
-                                           Case{"2^(-x) + 1", kX, kY, std::pow(2.0, -kX) + 1},
-                                           Case{"x^(-1) - y", kX, kY, 1.0 / kX - kY},
-                                           Case{"x/2/y", kX, kY, kX / 2 / kY},
-                                           Case{"x - y - 1", kX, kY, kX - kY - 1},
-                                           Case{"2*(-x^2) + y", kX, kY, -2 * kX* kX + kY},
-                                           Case{"1.5e-3*x + .5*y", kX, kY, 1.5e-3 * kX + 0.5 * kY},
-                                           Case{"(x + y)^3/3", kX, kY, std::pow(kX + kY, 3) / 3},
-                                           Case{"x*y*exp(-x*y)", kX, kY, kX* kY* std::exp(-kX* kY)},
-                                           Case{"sqrt(x^2 + y^2)", kX, kY, std::hypot(kX, kY)}),
-                         [](const ::testing::TestParamInfo<Case>& c) {
-                           return "op" + std::to_string(c.index);
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Operators, Language,
+    ::testing::Values(ExprCase{"-x^2", kX, kY, -kX* kX},
+                      ExprCase{"2^(-x) + 1", kX, kY, std::pow(2.0, -kX) + 1},
+                      ExprCase{"x^(-1) - y", kX, kY, 1.0 / kX - kY},
+                      ExprCase{"x/2/y", kX, kY, kX / 2 / kY},
+                      ExprCase{"x - y - 1", kX, kY, kX - kY - 1},
+                      ExprCase{"2*(-x^2) + y", kX, kY, -2 * kX* kX + kY},
+                      ExprCase{"1.5e-3*x + .5*y", kX, kY, 1.5e-3 * kX + 0.5 * kY},
+                      ExprCase{"(x + y)^3/3", kX, kY, std::pow(kX + kY, 3) / 3},
+                      ExprCase{"x*y*exp(-x*y)", kX, kY, kX* kY* std::exp(-kX* kY)},
+                      ExprCase{"sqrt(x^2 + y^2)", kX, kY, std::hypot(kX, kY)}),
+    [](const ::testing::TestParamInfo<ExprCase>& c) { return "op" + std::to_string(c.index); });
 
 TEST(Expression, DependencyClasses) {
   const Symbols s = symbols();

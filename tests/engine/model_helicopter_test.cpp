@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "common/model_files.h"
 #include "core/dataset.h"
 #include "core/scenario.h"
 #include "model/model_result.h"
@@ -20,13 +21,7 @@ namespace {
 const std::string kPreset = KFW_SOURCE_DIR "/presets/models/helicopter_indirect.json";
 const std::string kLog = KFW_SHARED_DIR "/data/broad/10_undisturbed_slow_translation_A.csv";
 
-std::unique_ptr<Scenario> load_model(const std::string& path) {
-  std::ifstream in(path);
-  EXPECT_TRUE(in.good()) << path;
-  auto s = make_model_scenario(nlohmann::json::parse(in), path);
-  EXPECT_TRUE(s.ok()) << s.error();
-  return s.ok() ? std::move(*s) : nullptr;
-}
+using testing::load_model_file;
 
 // |a − b| ≤ max(1e-12, 1e-9 · max(|a|, |b|)), NaN equal to NaN.
 ::testing::AssertionResult close(const std::vector<double>& a, const std::vector<double>& b,
@@ -83,7 +78,7 @@ TEST(ModelHelicopter, SameEstimatesAsTheBuiltInOnTheRealLog) {
   ASSERT_TRUE(data.ok()) << data.error();
   auto builtin = make_scenario("helicopter");
   ASSERT_TRUE(builtin.ok());
-  auto model = load_model(kPreset);
+  auto model = load_model_file(kPreset);
   ASSERT_TRUE(model);
   // presets/broad_imu.json's tuning; both tables take the same keys.
   for (double m : {1.0, 5.0}) {
@@ -104,7 +99,7 @@ TEST(ModelHelicopter, SameEstimatesAsTheBuiltInOnTheRealLog) {
 TEST(ModelHelicopter, SameEstimatesOnTheModelsOwnSimulationWithGaps) {
   auto builtin = make_scenario("helicopter");
   ASSERT_TRUE(builtin.ok());
-  auto model = load_model(kPreset);
+  auto model = load_model_file(kPreset);
   ASSERT_TRUE(model);
   ParamValues vm = model->params().defaults();
   vm["sim.duration"] = 30;
@@ -128,7 +123,7 @@ TEST(ModelHelicopter, SameEstimatesOnTheModelsOwnSimulationWithGaps) {
 TEST(ModelHelicopter, SteadyStateGainEqualsTheBuiltInDare) {
   auto builtin = make_scenario("helicopter");
   ASSERT_TRUE(builtin.ok());
-  auto model = load_model(kPreset);
+  auto model = load_model_file(kPreset);
   ASSERT_TRUE(model);
   for (double m : {1.0, 5.0, 25.0}) {
     ParamValues vb = (*builtin)->params().defaults(), vm = model->params().defaults();
@@ -145,7 +140,7 @@ TEST(ModelHelicopter, SteadyStateGainEqualsTheBuiltInDare) {
 }
 
 TEST(ModelHelicopter, FilterIsAChoiceParameterAndAllThreeAgree) {
-  auto model = load_model(kPreset);
+  auto model = load_model_file(kPreset);
   ASSERT_TRUE(model);
   const ParamSpec* f = model->params().find("filter");
   ASSERT_TRUE(f);

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "common/model_files.h"
 #include "core/scenario.h"
 #include "core/statistics.h"
 #include "model/model_result.h"
@@ -16,31 +17,24 @@
 namespace kfw {
 namespace {
 
-const std::string kDir = KFW_SOURCE_DIR "/presets/models/";
+using testing::kModelDir;
+using testing::load_model;
 
-std::unique_ptr<Scenario> load_model(const std::string& name) {
-  std::ifstream in(kDir + name);
-  EXPECT_TRUE(in.good()) << name;
-  auto s = make_model_scenario(nlohmann::json::parse(in), kDir + name);
-  EXPECT_TRUE(s.ok()) << s.error();
-  return s.ok() ? std::move(*s) : nullptr;
-}
-
-struct Case {
+struct LibraryCase {
   const char* file;
   const char* measured;  // a measured column of the primary state (for the sensor's RMSE)
   const char* truth;     // the primary state's truth column
 };
 
-class ModelLibrary : public ::testing::TestWithParam<Case> {};
+class ModelLibrary : public ::testing::TestWithParam<LibraryCase> {};
 
-std::string case_name(const ::testing::TestParamInfo<Case>& c) {
+std::string case_name(const ::testing::TestParamInfo<LibraryCase>& c) {
   const std::string n = c.param.file;
   return n.substr(0, n.find('.'));
 }
 
 TEST_P(ModelLibrary, RunsOnItsOwnSimulationUnderEachFilter) {
-  const Case& c = GetParam();
+  const LibraryCase& c = GetParam();
   auto s = load_model(c.file);
   ASSERT_TRUE(s);
   EXPECT_EQ(s->name(), "model");
@@ -80,18 +74,19 @@ TEST_P(ModelLibrary, RunsOnItsOwnSimulationUnderEachFilter) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Presets, ModelLibrary,
-                         ::testing::Values(Case{"cv1d.json", "z", "x_true"},
-                                           Case{"cv2d.json", "fx", "px_true"},
-                                           Case{"ca1d.json", "z", "x_true"},
-                                           Case{"singer.json", "z", "x_true"},
-                                           Case{"pendulum.json", nullptr, "theta_true"},
-                                           Case{"range_bearing.json", nullptr, "px_true"},
-                                           Case{"helicopter_indirect.json", "angle", "truth"}),
+                         ::testing::Values(LibraryCase{"cv1d.json", "z", "x_true"},
+                                           LibraryCase{"cv2d.json", "fx", "px_true"},
+                                           LibraryCase{"ca1d.json", "z", "x_true"},
+                                           LibraryCase{"singer.json", "z", "x_true"},
+                                           LibraryCase{"pendulum.json", nullptr, "theta_true"},
+                                           LibraryCase{"range_bearing.json", nullptr, "px_true"},
+                                           LibraryCase{"helicopter_indirect.json", "angle",
+                                                       "truth"}),
                          case_name);
 
 TEST(ModelLibrary, EveryPresetHasADescriptionAndIsInTheList) {
   std::size_t files = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(kDir)) {
+  for (const auto& entry : std::filesystem::directory_iterator(kModelDir)) {
     if (entry.path().extension() != ".json") continue;
     ++files;
     std::ifstream in(entry.path());

@@ -9,7 +9,7 @@
 namespace kfw {
 namespace {
 
-void expect_error(const std::string& text, const std::string& fragment) {
+void expect_preset_error(const std::string& text, const std::string& fragment) {
   auto p = parse_preset(text, "p.json");
   ASSERT_FALSE(p.ok()) << text;
   EXPECT_NE(p.error().find(fragment), std::string::npos) << p.error();
@@ -33,29 +33,33 @@ TEST(Preset, EveryShippedPresetLoads) {
 }
 
 TEST(Preset, ErrorsNameLineKeyAndUnit) {
-  expect_error("{\n  \"format\": \"kfw-preset\",\n  \"version\": 1,,\n}", "p.json:3:");
-  expect_error(R"({"format": "other", "version": 1})", "format: 'other', expected 'kfw-preset'");
-  expect_error(R"({"format": "kfw-preset", "version": 9, "scenario": "helicopter"})",
-               "p.json: version: 9; this build reads versions 1 and 2");
-  expect_error(R"({"format": "kfw-preset", "version": 1, "scenario": "nope"})",
-               "unknown scenario 'nope'");
-  expect_error(std::string(kHead) + R"("parameters": {"Zz": 1}})",
-               "parameters.Zz: unknown parameter");
-  expect_error(std::string(kHead) + R"("parameters": {"R": {"value": -1}}})",
-               "'R' = -1 is out of range");
-  expect_error(std::string(kHead) + R"("parameters": {"R": {"value": 1, "unit": "rad²"}}})",
-               "parameters.R.unit: 'rad²' does not match the parameter's unit 'deg²'");
-  expect_error(std::string(kHead) + R"("parameters": {"R": {"value": 1, "min": 5, "max": 2}}})",
-               "must be increasing");
-  expect_error(std::string(kHead) + R"("parameters": {"R": {"value": "x"}}})", "must be a number");
-  expect_error(std::string(kHead) + R"("parameters": {"R": {"valeu": 1}}})",
-               "p.json: parameters.R.valeu: unknown key (did you mean 'value'?)");
-  expect_error(std::string(kHead) + R"("paramters": {}})",
-               "p.json: paramters: unknown key (did you mean 'parameters'?)");
-  expect_error(std::string(kHead) + R"("parameters": {"R": {"value": 1, "tunable": 1}}})",
-               "parameters.R.tunable: must be true or false");
-  expect_error(std::string(kHead) + R"("mapping": {"gyro": {"column": "g", "unit": "furlong"}}})",
-               "mapping.gyro.unit: unknown unit 'furlong'");
+  expect_preset_error("{\n  \"format\": \"kfw-preset\",\n  \"version\": 1,,\n}", "p.json:3:");
+  expect_preset_error(R"({"format": "other", "version": 1})",
+                      "format: 'other', expected 'kfw-preset'");
+  expect_preset_error(R"({"format": "kfw-preset", "version": 9, "scenario": "helicopter"})",
+                      "p.json: version: 9; this build reads versions 1 and 2");
+  expect_preset_error(R"({"format": "kfw-preset", "version": 1, "scenario": "nope"})",
+                      "unknown scenario 'nope'");
+  expect_preset_error(std::string(kHead) + R"("parameters": {"Zz": 1}})",
+                      "parameters.Zz: unknown parameter");
+  expect_preset_error(std::string(kHead) + R"("parameters": {"R": {"value": -1}}})",
+                      "'R' = -1 is out of range");
+  expect_preset_error(std::string(kHead) + R"("parameters": {"R": {"value": 1, "unit": "rad²"}}})",
+                      "parameters.R.unit: 'rad²' does not match the parameter's unit 'deg²'");
+  expect_preset_error(
+      std::string(kHead) + R"("parameters": {"R": {"value": 1, "min": 5, "max": 2}}})",
+      "must be increasing");
+  expect_preset_error(std::string(kHead) + R"("parameters": {"R": {"value": "x"}}})",
+                      "must be a number");
+  expect_preset_error(std::string(kHead) + R"("parameters": {"R": {"valeu": 1}}})",
+                      "p.json: parameters.R.valeu: unknown key (did you mean 'value'?)");
+  expect_preset_error(std::string(kHead) + R"("paramters": {}})",
+                      "p.json: paramters: unknown key (did you mean 'parameters'?)");
+  expect_preset_error(std::string(kHead) + R"("parameters": {"R": {"value": 1, "tunable": 1}}})",
+                      "parameters.R.tunable: must be true or false");
+  expect_preset_error(
+      std::string(kHead) + R"("mapping": {"gyro": {"column": "g", "unit": "furlong"}}})",
+      "mapping.gyro.unit: unknown unit 'furlong'");
 }
 
 TEST(Preset, RoundTripKeepsValuesAndRanges) {

@@ -12,6 +12,7 @@
 #include <QTemporaryDir>
 #include <cmath>
 
+#include "common/plot_probe.h"
 #include "main_window.h"
 #include "scenarios/ballbeam/ballbeam_result.h"
 #include "transport_bar.h"
@@ -19,19 +20,8 @@
 namespace kfw {
 namespace {
 
-QCustomPlot* plotNamed(const MainWindow& w, const QString& name) {
-  for (const auto& p : w.plots()) {
-    if (p.name == name) return p.plot;
-  }
-  return nullptr;
-}
-
-QCPGraph* graphNamed(QCustomPlot* p, const QString& name) {
-  for (int i = 0; i < p->graphCount(); ++i) {
-    if (p->graph(i)->name() == name) return p->graph(i);
-  }
-  return nullptr;
-}
+using testing::graphNamed;
+using testing::plotNamed;
 
 std::vector<double> values(QCPGraph* g) {
   std::vector<double> v;

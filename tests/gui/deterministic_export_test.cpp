@@ -12,16 +12,13 @@
 #include <string>
 
 #include "common/cli_runner.h"
+#include "common/gui_util.h"
 #include "main_window.h"
 
 namespace kfw {
 namespace {
 
-QByteArray readAll(const QString& path) {
-  QFile f(path);
-  if (!f.open(QIODevice::ReadOnly)) return {};
-  return f.readAll();
-}
+using testing::readAll;
 
 QStringList allPresets() {
   QStringList out;

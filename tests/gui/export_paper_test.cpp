@@ -13,6 +13,7 @@
 #include <string>
 
 #include "common/cli_runner.h"
+#include "common/gui_util.h"
 #include "consistency_panel.h"
 #include "main_window.h"
 #include "plot_export.h"
@@ -20,11 +21,7 @@
 namespace kfw {
 namespace {
 
-QByteArray readAll(const QString& path) {
-  QFile f(path);
-  if (!f.open(QIODevice::ReadOnly)) return {};
-  return f.readAll();
-}
+using testing::readAll;
 
 // The text size (pt) of every word pdftotext finds on the page, and the page size. A word's box
 // is as tall as its font's line (≈ 1.16 × its size for DejaVu Sans); a y-axis label is rotated,

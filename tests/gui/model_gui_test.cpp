@@ -13,6 +13,7 @@
 #include <QTemporaryDir>
 #include <cmath>
 
+#include "common/gui_util.h"
 #include "common/plot_probe.h"
 #include "consistency_panel.h"
 #include "core/gain_curve.h"
@@ -32,16 +33,7 @@ QString modelPreset(const char* name) {
   return QString(KFW_SOURCE_DIR) + "/presets/models/" + name + ".json";
 }
 
-template <typename D>
-bool waitDone(D* d, int ms = 60000) {
-  QDeadlineTimer t(ms);
-  while (d->running()) {
-    if (t.hasExpired()) return false;
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 10);
-  }
-  QCoreApplication::processEvents();
-  return true;
-}
+using testing::waitDone;
 
 // Relative 1e-9 with an absolute floor of 1e-12 (the comparison).
 void expectNear(double a, double b, const std::string& what) {

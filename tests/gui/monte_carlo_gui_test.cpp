@@ -9,21 +9,14 @@
 #include <QDeadlineTimer>
 #include <cstdlib>
 
+#include "common/gui_util.h"
 #include "core/preset.h"
 #include "monte_carlo_dialog.h"
 
 namespace kfw {
 namespace {
 
-bool waitDone(MonteCarloDialog* d, int ms = 60000) {
-  QDeadlineTimer t(ms);
-  while (d->running()) {
-    if (t.hasExpired()) return false;
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 10);
-  }
-  QCoreApplication::processEvents();
-  return true;
-}
+using testing::waitDone;
 
 TEST(MonteCarloDialog, PlotsTheErrorBandAndTheAveragesWithBounds) {
   auto p = load_preset(KFW_SOURCE_DIR "/presets/models/cv1d.json");

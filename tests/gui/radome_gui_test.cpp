@@ -21,19 +21,8 @@
 namespace kfw {
 namespace {
 
-QCustomPlot* plotNamed(const MainWindow& w, const QString& name) {
-  for (const auto& p : w.plots()) {
-    if (p.name == name) return p.plot;
-  }
-  return nullptr;
-}
-
-QCPGraph* graphNamed(QCustomPlot* p, const QString& name) {
-  for (int i = 0; i < p->graphCount(); ++i) {
-    if (p->graph(i)->name() == name) return p->graph(i);
-  }
-  return nullptr;
-}
+using testing::graphNamed;
+using testing::plotNamed;
 
 QCPColorMap* colorMap(QCustomPlot* p) {
   for (int i = 0; i < p->plottableCount(); ++i) {

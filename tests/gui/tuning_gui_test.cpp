@@ -9,6 +9,7 @@
 #include <QFile>
 #include <QTemporaryDir>
 
+#include "common/gui_util.h"
 #include "main_window.h"
 #include "sweep_dialog.h"
 #include "tune_dialog.h"
@@ -16,16 +17,7 @@
 namespace kfw {
 namespace {
 
-template <typename D>
-bool waitDone(D* d, int ms = 60000) {
-  QDeadlineTimer t(ms);
-  while (d->running()) {
-    if (t.hasExpired()) return false;
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 10);
-  }
-  QCoreApplication::processEvents();
-  return true;
-}
+using testing::waitDone;
 
 TEST(TuneDialog, ResultIsAnUndoableStepAndRevertRestoresTheStart) {
   MainWindow w;

@@ -7,15 +7,9 @@
 #include <cstdio>
 #include <string>
 
-namespace kfw::testing {
+#include "common/time_scale.h"
 
-// "Refused at once" time bounds are multiplied by this: under AddressSanitizer (make sanitize)
-// every kfw-cli process takes 1-3 s to start, so a bound over a dozen commands would measure that.
-#if defined(__SANITIZE_ADDRESS__)
-inline constexpr int kTimeScale = 10;
-#else
-inline constexpr int kTimeScale = 1;
-#endif
+namespace kfw::testing {
 
 struct CliOutput {
   int code = -1;

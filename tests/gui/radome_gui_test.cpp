@@ -14,6 +14,7 @@
 #include <cmath>
 
 #include "common/plot_probe.h"
+#include "common/time_scale.h"
 #include "main_window.h"
 #include "scenarios/radome/radome_imm.h"
 #include "transport_bar.h"
@@ -144,7 +145,7 @@ TEST_F(RadomeWindow, HeatMapTicksSitOnTheGridSlopes) {
   }
   // More than 9 values on an axis: the normal ticker there.
   w.setParam("grid.n_psi", 11);
-  ASSERT_TRUE(w.waitForRun());
+  ASSERT_TRUE(w.waitForRun(20000 * testing::kTimeScale));  // 77 modes: > 20 s under ASan
   EXPECT_TRUE(ticks_of(heat->xAxis).isEmpty());
   EXPECT_EQ(ticks_of(heat->yAxis).size(), 7);
 }

@@ -8,7 +8,7 @@
 #include <memory>
 
 #include "cli_commands.h"
-#include "core/grammar.h"
+#include "experiment/grammar.h"
 #include "core/scenario.h"
 #include "core/suggest.h"
 

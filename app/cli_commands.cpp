@@ -7,12 +7,13 @@
 #include <sstream>
 
 #include "core/dataset.h"
-#include "core/gain_curve.h"
+#include "data/csv.h"
+#include "experiment/gain_curve.h"
 #include "core/metrics.h"
-#include "core/monte_carlo.h"
-#include "core/output.h"
+#include "experiment/monte_carlo.h"
+#include "data/output.h"
 #include "core/suggest.h"
-#include "core/workspace.h"
+#include "document/workspace.h"
 
 namespace kfw {
 

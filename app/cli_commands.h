@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "core/expected.h"
-#include "core/output.h"
-#include "core/workspace.h"
+#include "data/output.h"
+#include "document/workspace.h"
 
 namespace kfw {
 

@@ -10,11 +10,11 @@
 #include <sstream>
 
 #include "cli_commands.h"
-#include "core/import.h"
-#include "core/json_io.h"
-#include "core/preset.h"
+#include "data/import.h"
+#include "data/json_io.h"
+#include "document/preset.h"
 #include "core/suggest.h"
-#include "core/workspace.h"
+#include "document/workspace.h"
 
 namespace kfw {
 

@@ -5,13 +5,14 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "data/csv.h"
 #include "cli_commands.h"
-#include "core/grammar.h"
-#include "core/json_io.h"
-#include "core/monte_carlo.h"
-#include "core/output.h"
+#include "experiment/grammar.h"
+#include "data/json_io.h"
+#include "experiment/monte_carlo.h"
+#include "data/output.h"
 #include "core/suggest.h"
-#include "core/workspace.h"
+#include "document/workspace.h"
 
 namespace kfw {
 

@@ -12,11 +12,12 @@
 
 #include "cli_commands.h"
 #include "core/dataset.h"
-#include "core/json_io.h"
+#include "data/csv.h"
+#include "data/json_io.h"
 #include "core/metrics.h"
-#include "core/monte_carlo.h"
+#include "experiment/monte_carlo.h"
 #include "core/suggest.h"
-#include "core/tuning.h"
+#include "experiment/tuning.h"
 
 namespace kfw {
 

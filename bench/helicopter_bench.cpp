@@ -1,7 +1,7 @@
 // Speed of the 2-state indirect KF: the raw step and a whole-dataset re-filter.
 #include <benchmark/benchmark.h>
 
-#include "core/kalman_filter.h"
+#include "filter/kalman_filter.h"
 #include "scenarios/helicopter/helicopter_sim.h"
 #include "scenarios/helicopter/indirect_kf.h"
 

@@ -8,7 +8,7 @@
 #include <random>
 
 #include "core/scenario.h"
-#include "core/workspace.h"
+#include "document/workspace.h"
 
 namespace {
 

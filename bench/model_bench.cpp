@@ -6,7 +6,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "core/dare.h"
+#include "data/csv.h"
+#include "filter/dare.h"
 #include "core/scenario.h"
 #include "model/model_scenario.h"
 #include "scenarios/helicopter/helicopter_sim.h"

@@ -10,7 +10,7 @@
 #include <QVBoxLayout>
 #include <cmath>
 
-#include "core/consistency.h"
+#include "filter/consistency.h"
 #include "core/statistics.h"
 #include "plot_kit.h"
 

@@ -6,7 +6,7 @@
 #include <QString>
 #include <vector>
 
-#include "core/gain_curve.h"
+#include "experiment/gain_curve.h"
 
 class QCustomPlot;
 class QCPGraph;

@@ -20,7 +20,7 @@
 #include <map>
 #include <optional>
 
-#include "core/import.h"
+#include "data/import.h"
 
 namespace kfw {
 

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "core/dataset.h"
-#include "core/mapping.h"
-#include "core/table.h"
+#include "data/mapping.h"
+#include "data/table.h"
 
 class QCheckBox;
 class QComboBox;

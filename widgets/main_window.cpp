@@ -29,7 +29,7 @@
 
 #include "consistency_panel.h"
 #include "core/statistics.h"
-#include "core/workspace.h"
+#include "document/workspace.h"
 #include "draw_batch.h"
 #include "metrics_panel.h"
 #include "monte_carlo_dialog.h"

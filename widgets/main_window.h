@@ -15,11 +15,11 @@
 #include <optional>
 #include <vector>
 
-#include "core/document.h"
+#include "document/document.h"
 #include "core/expected.h"
-#include "core/preset.h"
+#include "document/preset.h"
 #include "core/scenario.h"
-#include "core/session.h"
+#include "document/session.h"
 #include "plot_export.h"
 #include "scenario_view.h"
 

@@ -17,8 +17,9 @@
 #include <QVBoxLayout>
 #include <filesystem>
 
-#include "core/import.h"
-#include "core/workspace.h"
+#include "data/csv.h"
+#include "data/import.h"
+#include "document/workspace.h"
 #include "import_dialog.h"
 #include "main_window.h"
 #include "param_panel.h"

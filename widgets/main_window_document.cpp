@@ -12,7 +12,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/workspace.h"
+#include "document/workspace.h"
 #include "main_window.h"
 #include "metrics_panel.h"
 #include "param_panel.h"

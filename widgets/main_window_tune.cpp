@@ -5,7 +5,7 @@
 #include <QFileInfo>
 #include <QMessageBox>
 
-#include "core/tuning.h"
+#include "experiment/tuning.h"
 #include "main_window.h"
 #include "param_panel.h"
 #include "run_controller.h"

@@ -8,7 +8,7 @@
 #include <atomic>
 #include <memory>
 
-#include "core/monte_carlo.h"
+#include "experiment/monte_carlo.h"
 
 class QLabel;
 class QProgressBar;

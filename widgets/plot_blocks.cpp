@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/consistency.h"
+#include "filter/consistency.h"
 #include "core/dataset.h"
 #include "core/statistics.h"
 

@@ -15,7 +15,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/output.h"
+#include "data/output.h"
 #include "core/suggest.h"
 #include "plot_kit.h"
 #include "plot_look.h"

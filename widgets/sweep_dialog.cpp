@@ -1,3 +1,4 @@
+#include "data/csv.h"
 #include "sweep_dialog.h"
 
 #include <qcustomplot.h>
@@ -18,7 +19,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "core/output.h"
+#include "data/output.h"
 #include "plot_export.h"
 #include "plot_kit.h"
 

@@ -11,7 +11,7 @@
 #include <optional>
 
 #include "core/scenario.h"
-#include "core/tuning.h"
+#include "experiment/tuning.h"
 
 class QComboBox;
 class QDoubleSpinBox;

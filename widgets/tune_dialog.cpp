@@ -18,7 +18,7 @@
 #include <QtConcurrent>
 #include <cmath>
 
-#include "core/workspace.h"
+#include "document/workspace.h"
 
 namespace kfw {
 

@@ -10,9 +10,9 @@
 #include <atomic>
 #include <memory>
 
-#include "core/preset.h"
+#include "document/preset.h"
 #include "core/scenario.h"
-#include "core/tuning.h"
+#include "experiment/tuning.h"
 
 class QComboBox;
 class QProgressBar;

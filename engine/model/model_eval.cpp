@@ -5,7 +5,7 @@
 #include <limits>
 #include <sstream>
 
-#include "core/discretize.h"
+#include "filter/discretize.h"
 #include "core/statistics.h"
 
 namespace kfw::model {

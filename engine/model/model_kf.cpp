@@ -4,7 +4,7 @@
 #include <Eigen/Cholesky>
 #include <cmath>
 
-#include "core/covariance_check.h"
+#include "filter/covariance_check.h"
 #include "model/model_filter_detail.h"
 
 namespace kfw::model::detail {

@@ -7,8 +7,8 @@
 #include <set>
 #include <sstream>
 
-#include "core/consistency.h"
-#include "core/dare.h"
+#include "filter/consistency.h"
+#include "filter/dare.h"
 #include "core/statistics.h"
 #include "core/suggest.h"
 #include "model/model_eval.h"

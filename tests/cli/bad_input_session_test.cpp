@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/session.h"
+#include "document/session.h"
 
 namespace kfw {
 namespace {

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "core/dataset.h"
+#include "data/csv.h"
 
 namespace {
 

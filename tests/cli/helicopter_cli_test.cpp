@@ -10,6 +10,7 @@
 
 #include "common/cli_runner.h"
 #include "core/dataset.h"
+#include "data/csv.h"
 
 namespace {
 

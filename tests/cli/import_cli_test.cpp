@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "data/csv.h"
 #include "common/cli_runner.h"
 #include "common/import_files.h"
 

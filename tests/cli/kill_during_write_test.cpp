@@ -17,7 +17,7 @@
 #include <sstream>
 #include <thread>
 
-#include "core/output.h"
+#include "data/output.h"
 
 extern char** environ;
 

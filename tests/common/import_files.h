@@ -13,6 +13,7 @@
 #include <string>
 
 #include "core/dataset.h"
+#include "data/csv.h"
 
 namespace kfw::testing {
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "core/table.h"
+#include "data/table.h"
 
 namespace kfw::testing {
 

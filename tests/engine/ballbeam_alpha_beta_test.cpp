@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "common/matrix_matchers.h"
-#include "core/kalman_filter.h"
+#include "filter/kalman_filter.h"
 
 namespace kfw::ballbeam {
 namespace {

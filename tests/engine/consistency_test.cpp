@@ -1,4 +1,4 @@
-#include "core/consistency.h"
+#include "filter/consistency.h"
 
 #include <gtest/gtest.h>
 

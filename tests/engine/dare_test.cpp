@@ -1,4 +1,4 @@
-#include "core/dare.h"
+#include "filter/dare.h"
 
 #include <gtest/gtest.h>
 

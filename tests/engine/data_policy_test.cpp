@@ -7,8 +7,9 @@
 #include <fstream>
 
 #include "core/dataset.h"
+#include "data/csv.h"
 #include "core/scenario.h"
-#include "core/workspace.h"
+#include "document/workspace.h"
 
 namespace kfw {
 namespace {

@@ -1,4 +1,5 @@
 #include "core/dataset.h"
+#include "data/csv.h"
 
 #include <gtest/gtest.h>
 

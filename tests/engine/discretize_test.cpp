@@ -1,4 +1,4 @@
-#include "core/discretize.h"
+#include "filter/discretize.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The Qt-free document: undo/redo restores values exactly; data, mapping and snapshot deletion
 // are undoable; sessions serialise it with data by path.
-#include "core/document.h"
+#include "document/document.h"
 
 #include <gtest/gtest.h>
 

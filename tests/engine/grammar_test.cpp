@@ -1,5 +1,5 @@
 // The one value grammar: grids lo:hi:n[:log|:lin], integer sets 1..50 / 3,7,9, shards i/N.
-#include "core/grammar.h"
+#include "experiment/grammar.h"
 
 #include <gtest/gtest.h>
 

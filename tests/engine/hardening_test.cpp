@@ -8,9 +8,10 @@
 #include <fstream>
 #include <string>
 
-#include "core/covariance_check.h"
+#include "filter/covariance_check.h"
 #include "core/dataset.h"
-#include "core/table.h"
+#include "data/csv.h"
+#include "data/table.h"
 
 namespace kfw {
 namespace {

@@ -82,7 +82,7 @@ TEST(HelicopterModel, GainCurveIsMonotoneAndLogSpaced) {
 }  // namespace
 }  // namespace kfw::helicopter
 
-#include "core/kalman_filter.h"
+#include "filter/kalman_filter.h"
 #include "scenarios/helicopter/helicopter_sim.h"
 #include "scenarios/helicopter/indirect_kf.h"
 

@@ -5,7 +5,7 @@
 #include <fstream>
 
 #include "core/scenario.h"
-#include "core/workspace.h"
+#include "document/workspace.h"
 #include "scenarios/helicopter/helicopter_model.h"
 #include "scenarios/helicopter/helicopter_sim.h"
 #include "scenarios/helicopter/indirect_kf.h"

@@ -1,4 +1,4 @@
-#include "core/imm.h"
+#include "filter/imm.h"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <random>
 
 #include "common/matrix_matchers.h"
-#include "core/kalman_filter.h"
+#include "filter/kalman_filter.h"
 
 namespace kfw {
 namespace {

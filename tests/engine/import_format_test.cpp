@@ -9,12 +9,13 @@
 #include <fstream>
 #include <sstream>
 
+#include "data/csv.h"
 #include "common/table_text.h"
-#include "core/import.h"
-#include "core/preset.h"
+#include "data/import.h"
+#include "document/preset.h"
 #include "core/scenario.h"
-#include "core/session.h"
-#include "core/workspace.h"
+#include "document/session.h"
+#include "document/workspace.h"
 
 namespace kfw {
 namespace {

@@ -1,6 +1,6 @@
 // The import path (table.h, import.h): separators, comments, quotes, BOM, CRLF, decimal comma;
 // the guesser; unit conversion, scale, offset, flip; ISO-8601 time; the errors with FILE:LINE:COL.
-#include "core/import.h"
+#include "data/import.h"
 
 #include <gtest/gtest.h>
 

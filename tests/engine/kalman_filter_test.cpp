@@ -1,12 +1,12 @@
-// Identities of the functional KF (core/kalman_filter.h) that cannot be faked.
-#include "core/kalman_filter.h"
+// Identities of the functional KF (filter/kalman_filter.h) that cannot be faked.
+#include "filter/kalman_filter.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "common/matrix_matchers.h"
-#include "core/dare.h"
+#include "filter/dare.h"
 
 namespace kfw {
 namespace {

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "core/scenario.h"
-#include "core/workspace.h"
+#include "document/workspace.h"
 
 namespace kfw {
 namespace {

@@ -1,6 +1,6 @@
 // Constant-velocity model files: the DARE gain of presets/models/cv1d.json is the closed-form
 // α-β filter of seed 003; on a linear model KF, EKF and UKF agree, and the KF is the textbook
-// filter of core/kalman_filter.h.
+// filter of filter/kalman_filter.h.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/model_files.h"
-#include "core/kalman_filter.h"
+#include "filter/kalman_filter.h"
 #include "core/scenario.h"
 #include "model/model_result.h"
 #include "model/model_scenario.h"

@@ -10,6 +10,7 @@
 
 #include "common/model_files.h"
 #include "core/dataset.h"
+#include "data/csv.h"
 #include "core/scenario.h"
 #include "model/model_result.h"
 #include "model/model_scenario.h"

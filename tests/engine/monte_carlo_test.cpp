@@ -9,8 +9,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "core/monte_carlo.h"
-#include "core/preset.h"
+#include "experiment/monte_carlo.h"
+#include "document/preset.h"
 #include "core/statistics.h"
 #include "model/model_scenario.h"
 

@@ -1,6 +1,6 @@
 // One writer for every output file: paths checked before any work, nothing written on failure,
 // unique temporaries beside the target, symlinks written through.
-#include "core/output.h"
+#include "data/output.h"
 
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "core/dataset.h"
+#include "data/csv.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "core/preset.h"
+#include "document/preset.h"
 
 #include <gtest/gtest.h>
 

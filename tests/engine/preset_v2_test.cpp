@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "core/preset.h"
+#include "document/preset.h"
 #include "core/scenario.h"
 
 namespace kfw {

@@ -10,7 +10,7 @@
 #include <cmath>
 
 #include "common/matrix_matchers.h"
-#include "core/kalman_filter.h"
+#include "filter/kalman_filter.h"
 #include "scenarios/radome/radome_sim.h"
 
 namespace kfw::radome {

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "common/matrix_matchers.h"
-#include "core/discretize.h"
+#include "filter/discretize.h"
 
 namespace kfw::radome {
 namespace {

@@ -9,8 +9,8 @@
 
 #include <cmath>
 
-#include "core/monte_carlo.h"
-#include "core/preset.h"
+#include "experiment/monte_carlo.h"
+#include "document/preset.h"
 
 namespace kfw::radome {
 namespace {

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include "core/workspace.h"
+#include "document/workspace.h"
 
 namespace kfw {
 namespace {

@@ -1,4 +1,4 @@
-#include "core/session.h"
+#include "document/session.h"
 
 #include <gtest/gtest.h>
 

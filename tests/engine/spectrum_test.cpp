@@ -1,4 +1,4 @@
-#include "core/spectrum.h"
+#include "filter/spectrum.h"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
-#include "core/tuning.h"
+#include "experiment/tuning.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 
-#include "core/workspace.h"
+#include "document/workspace.h"
 
 namespace kfw {
 namespace {

@@ -1,6 +1,6 @@
 // The datasets in data/ are exactly what data/README.md says made them: each preset's simulation,
 // written with shortest round-trip numbers, so a re-simulation must equal the file bit for bit.
-#include "core/workspace.h"
+#include "document/workspace.h"
 
 #include <gtest/gtest.h>
 

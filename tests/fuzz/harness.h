@@ -16,13 +16,13 @@
 #include <string>
 #include <string_view>
 
-#include "core/covariance_check.h"
+#include "filter/covariance_check.h"
 #include "core/dataset.h"
-#include "core/grammar.h"
-#include "core/preset.h"
+#include "experiment/grammar.h"
+#include "document/preset.h"
 #include "core/scenario.h"
-#include "core/session.h"
-#include "core/workspace.h"
+#include "document/session.h"
+#include "document/workspace.h"
 #include "model/model_result.h"
 #include "model/model_scenario.h"
 #include "scenarios/helicopter/indirect_kf.h"
@@ -47,7 +47,7 @@ inline std::string check_error(const Error& e, const char* what) {
 }
 
 // The full covariance, where a result exposes one (the helicopter's 2×2, a model's n×n upper
-// triangle): symmetric positive semi-definite at every step (core/covariance_check.h).
+// triangle): symmetric positive semi-definite at every step (filter/covariance_check.h).
 inline std::string check_covariances(const RunResult& res) {
   if (const auto* h = dynamic_cast<const helicopter::HelicopterResult*>(&res)) {
     for (std::size_t k = 0; k < h->P11.size(); ++k) {

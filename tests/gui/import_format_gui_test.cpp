@@ -17,7 +17,7 @@
 #include <fstream>
 
 #include "common/import_files.h"
-#include "core/session.h"
+#include "document/session.h"
 #include "gui/import_window.h"
 #include "import_dialog.h"
 #include "main_window.h"

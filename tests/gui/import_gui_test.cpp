@@ -19,6 +19,7 @@
 
 #include "common/import_files.h"
 #include "core/dataset.h"
+#include "data/csv.h"
 #include "gui/import_window.h"
 #include "import_dialog.h"
 #include "main_window.h"

@@ -16,7 +16,7 @@
 #include "common/gui_util.h"
 #include "common/plot_probe.h"
 #include "consistency_panel.h"
-#include "core/gain_curve.h"
+#include "experiment/gain_curve.h"
 #include "main_window.h"
 #include "model/model_scenario.h"
 #include "sweep_dialog.h"

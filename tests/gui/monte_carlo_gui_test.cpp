@@ -10,7 +10,7 @@
 #include <cstdlib>
 
 #include "common/gui_util.h"
-#include "core/preset.h"
+#include "document/preset.h"
 #include "monte_carlo_dialog.h"
 
 namespace kfw {

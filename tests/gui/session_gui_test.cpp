@@ -12,6 +12,7 @@
 
 #include "common/plot_probe.h"
 #include "core/dataset.h"
+#include "data/csv.h"
 #include "main_window.h"
 #include "metrics_panel.h"
 

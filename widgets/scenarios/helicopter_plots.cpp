@@ -6,7 +6,7 @@
 #include <array>
 #include <cmath>
 
-#include "core/consistency.h"
+#include "filter/consistency.h"
 #include "core/statistics.h"
 #include "plot_blocks.h"
 #include "plot_kit.h"

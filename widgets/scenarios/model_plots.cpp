@@ -14,7 +14,7 @@
 #include <cmath>
 #include <optional>
 
-#include "core/gain_curve.h"
+#include "experiment/gain_curve.h"
 #include "gain_curve_plot.h"
 #include "model/model_result.h"
 #include "model/model_scenario.h"

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/dare.h"
+#include "filter/dare.h"
 
 namespace kfw::ballbeam {
 

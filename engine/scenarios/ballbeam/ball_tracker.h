@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "core/expected.h"
-#include "core/kalman_filter.h"
+#include "filter/kalman_filter.h"
 #include "scenarios/ballbeam/alpha_beta.h"
 
 namespace kfw::ballbeam {

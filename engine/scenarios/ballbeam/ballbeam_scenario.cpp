@@ -4,7 +4,7 @@
 #include <sstream>
 #include <string>
 
-#include "core/consistency.h"
+#include "filter/consistency.h"
 #include "core/scenario.h"
 #include "core/statistics.h"
 #include "scenarios/ballbeam/alpha_beta.h"

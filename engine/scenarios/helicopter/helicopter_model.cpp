@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "core/dare.h"
+#include "filter/dare.h"
 
 namespace kfw::helicopter {
 

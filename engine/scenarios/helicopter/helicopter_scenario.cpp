@@ -3,9 +3,9 @@
 #include <memory>
 
 #include <nlohmann/json.hpp>
-#include "core/consistency.h"
+#include "filter/consistency.h"
 #include "core/scenario.h"
-#include "core/spectrum.h"
+#include "filter/spectrum.h"
 #include "core/statistics.h"
 #include "scenarios/helicopter/helicopter_model.h"
 #include "scenarios/helicopter/helicopter_sim.h"

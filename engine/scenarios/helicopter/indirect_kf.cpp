@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "core/covariance_check.h"
+#include "filter/covariance_check.h"
 #include "core/types.h"
 #include "scenarios/helicopter/helicopter_model.h"
 

@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "core/consistency.h"
+#include "filter/consistency.h"
 #include "core/scenario.h"
 
 namespace kfw::helicopter {

@@ -9,10 +9,10 @@
 #include <sstream>
 #include <string>
 
-#include "core/covariance_check.h"
+#include "filter/covariance_check.h"
 #include "scenarios/radome/radome_renewal.h"
 
-#include "core/kalman_filter.h"
+#include "filter/kalman_filter.h"
 
 namespace kfw::radome {
 

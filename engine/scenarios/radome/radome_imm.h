@@ -15,7 +15,7 @@
 #include <optional>
 #include <vector>
 
-#include "core/imm.h"
+#include "filter/imm.h"
 #include "core/scenario.h"
 #include "scenarios/radome/radome_model.h"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/discretize.h"
+#include "filter/discretize.h"
 
 namespace kfw::radome {
 

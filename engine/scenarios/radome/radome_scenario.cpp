@@ -7,7 +7,7 @@
 #include <string>
 #include <utility>
 
-#include "core/consistency.h"
+#include "filter/consistency.h"
 #include "core/scenario.h"
 #include "core/statistics.h"
 #include "scenarios/radome/radome_imm.h"

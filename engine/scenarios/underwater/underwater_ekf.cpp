@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/kalman_filter.h"
+#include "filter/kalman_filter.h"
 
 namespace kfw::underwater {
 

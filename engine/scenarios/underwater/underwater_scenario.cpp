@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
-#include "core/consistency.h"
+#include "filter/consistency.h"
 #include "core/scenario.h"
 #include "core/statistics.h"
 #include "scenarios/underwater/underwater_ekf.h"

@@ -1,0 +1,174 @@
+#include "data/json_io.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "core/suggest.h"
+
+namespace kfw {
+
+using nlohmann::json;
+
+namespace {
+
+// A SAX pass that keeps the dotted path of the value being read, so that an error can name it.
+class PathTracker final : public nlohmann::json_sax<json> {
+ public:
+  std::string error;                     // "path: text" once something is wrong
+  std::size_t byte = std::string::npos;  // where, when the parser knows
+
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t v, const string_t&) override {
+    if (!std::isfinite(v)) return fail("number is not finite");
+    return value();
+  }
+  bool string(string_t&) override { return value(); }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override { return open(false); }
+  bool key(string_t& k) override {
+    stack_.back().key = k;
+    return true;
+  }
+  bool end_object() override { return close(); }
+  bool start_array(std::size_t) override { return open(true); }
+  bool end_array() override { return close(); }
+  bool parse_error(std::size_t position, const std::string&,
+                   const nlohmann::detail::exception& ex) override {
+    byte = position == 0 ? 0 : position - 1;
+    std::string what = ex.what();
+    if (auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
+    if (auto p = what.find("parse error at line"); p != std::string::npos) {
+      if (auto q = what.find(": ", p); q != std::string::npos) what = what.substr(q + 2);
+    }
+    if (ex.id == 406) what = "number overflows a double";
+    // nlohmann echoes the whole token read so far (a string of any length, control characters
+    // included): cut and made printable like every echoed token.
+    static constexpr std::string_view kLastRead = "; last read: '";
+    if (auto b = what.find(kLastRead); b != std::string::npos) {
+      b += kLastRead.size();
+      const auto e = what.rfind('\'');
+      if (e != std::string::npos && e >= b)
+        what = what.substr(0, b) + truncate_token(std::string_view(what).substr(b, e - b)) +
+               what.substr(e);
+    }
+    return fail(truncate_token(what, 400));
+  }
+
+ private:
+  struct Level {
+    bool array = false;
+    std::size_t index = 0;
+    std::string key;
+  };
+  std::vector<Level> stack_;
+
+  std::string path() const {
+    std::string p;
+    for (const auto& l : stack_) {
+      if (l.array) {
+        p = index_path(p, l.index);
+      } else if (!l.key.empty()) {
+        p = key_path(p, l.key);
+      }
+    }
+    return p;
+  }
+  bool value() {
+    if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
+    return true;
+  }
+  bool open(bool array) {
+    if (stack_.size() >= kMaxJsonDepth) {
+      return fail("nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    }
+    stack_.push_back({array, 0, {}});
+    return true;
+  }
+  bool close() {
+    stack_.pop_back();
+    return value();
+  }
+  bool fail(const std::string& what) {
+    const std::string p = truncate_token(path());  // 256 levels or a huge key: cut
+    error = (p.empty() ? "" : p + ": ") + what;
+    return false;
+  }
+};
+
+std::string line_col_of(const std::string& text, std::size_t byte) {
+  std::size_t line = 1, col = 1;
+  for (std::size_t i = 0; i < byte && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
+  }
+  return std::to_string(line) + ":" + std::to_string(col);
+}
+
+}  // namespace
+
+std::string key_path(std::string_view parent, std::string_view key) {
+  return parent.empty() ? std::string(key) : std::string(parent) + "." + std::string(key);
+}
+
+std::string index_path(std::string_view parent, std::size_t index) {
+  return std::string(parent) + "[" + std::to_string(index) + "]";
+}
+
+std::string json_type_name(const json& j) {
+  if (j.is_null()) return "null";
+  if (j.is_boolean()) return "a boolean";
+  if (j.is_number()) return "a number";
+  if (j.is_string()) return "a string";
+  if (j.is_array()) return "an array";
+  if (j.is_object()) return "an object";
+  return "a value";
+}
+
+Expected<json> parse_json_document(const std::string& text, const std::string& path) {
+  if (text.size() > kMaxJsonBytes) {
+    return Error{path + ": " + std::to_string(text.size()) + " bytes: larger than the " +
+                 std::to_string(kMaxJsonBytes / (1024 * 1024)) + " MB limit for a JSON file"};
+  }
+  // A SAX pass first: it stops at the first problem with the key path; the DOM parse after it
+  // cannot fail on anything the pass accepted.
+  PathTracker tracker;
+  if (!json::sax_parse(text, &tracker, json::input_format_t::json, true)) {
+    std::string where = path;
+    if (tracker.byte != std::string::npos) where += ":" + line_col_of(text, tracker.byte);
+    return Error{where + ": " + (tracker.error.empty() ? "invalid JSON" : tracker.error)};
+  }
+  try {
+    return json::parse(text);
+  } catch (const json::exception& e) {
+    return Error{path + ": invalid JSON: " + std::string(e.what())};
+  }
+}
+
+Expected<json> read_json_document(const std::string& path, const char* what) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    return Error{path + ": is a directory, not a " + std::string(what) + " file"};
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Error{path + ": cannot open " + std::string(what)};
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec && size > kMaxJsonBytes) {
+    return Error{path + ": " + std::to_string(size) + " bytes: larger than the " +
+                 std::to_string(kMaxJsonBytes / (1024 * 1024)) + " MB limit for a JSON file"};
+  }
+  std::ostringstream os;
+  os << in.rdbuf();
+  return parse_json_document(os.str(), path);
+}
+
+}  // namespace kfw

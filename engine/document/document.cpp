@@ -1,0 +1,180 @@
+#include "document/document.h"
+
+#include <cmath>
+#include <utility>
+
+#include "document/workspace.h"
+
+namespace kfw {
+
+Expected<Document> Document::open(const std::string& preset, const std::optional<std::string>& data,
+                                  const std::vector<std::string>& assignments) {
+  auto ws = open_workspace(preset, data, assignments);
+  if (!ws) return ws.err();
+  Document d = from_preset(ws->preset);
+  d.state_.values = ws->values;
+  if (ws->data_path) d.state_.data = DataRef{*ws->data_path, ws->mapping};
+  return d;
+}
+
+Document Document::from_preset(Preset preset) {
+  Document d;
+  d.preset_ = std::move(preset);
+  d.state_.values = d.preset_.values;
+  if (d.preset_.data_path) d.state_.data = DataRef{*d.preset_.data_path, d.preset_.mapping};
+  return d;
+}
+
+void Document::push(std::string label, std::string merge_key) {
+  undo_.push_back({std::move(label), state_, std::move(merge_key)});
+  redo_.clear();
+  dirty_ = true;
+}
+
+Status Document::set_value(const std::string& key, double value, UndoMerge merge) {
+  if (auto st = scenario().params().check(key, value); !st) return st;
+  auto it = state_.values.find(key);
+  if (it != state_.values.end() && it->second == value) return Ok{};
+  const bool join = merge == UndoMerge::kMergeSameKey && !undo_.empty() &&
+                    undo_.back().merge_key == key && redo_.empty();
+  if (!join) push("set " + key, merge == UndoMerge::kMergeSameKey ? key : std::string());
+  state_.values[key] = value;
+  dirty_ = true;
+  return Ok{};
+}
+
+Status Document::set_values(const ParamValues& values, const std::string& label) {
+  ParamValues next = state_.values;
+  for (const auto& [k, v] : values) {
+    if (auto st = scenario().params().check(k, v); !st) return st;
+    next[k] = v;
+  }
+  if (next == state_.values) return Ok{};
+  push(label);
+  state_.values = std::move(next);
+  return Ok{};
+}
+
+Status Document::apply_assignment(const std::string& assignment) {
+  ParamValues next = state_.values;
+  if (auto st = scenario().params().apply_assignment(assignment, next); !st) return st;
+  return set_values(next, "set " + assignment);
+}
+
+void Document::set_data(std::optional<DataRef> data) {
+  if (data == state_.data) return;
+  push(data ? "open " + data->path : "use simulated data");
+  state_.data = std::move(data);
+}
+
+Status Document::set_mapping(const Mapping& mapping) {
+  if (!state_.data) return Error{"mapping: no dataset is loaded (the data are simulated)"};
+  if (state_.data->mapping == mapping) return Ok{};
+  push("change mapping");
+  state_.data->mapping = mapping;
+  return Ok{};
+}
+
+void Document::set_tuning_set(std::vector<DataRef> logs) {
+  if (logs == state_.tuning_set) return;
+  push("change tuning set");
+  state_.tuning_set = std::move(logs);
+}
+
+void Document::add_snapshot(Snapshot s) {
+  push("pin " + s.name);
+  state_.snapshots.push_back(std::move(s));
+}
+
+Status Document::remove_snapshot(std::size_t index) {
+  if (index >= state_.snapshots.size()) {
+    return Error{"snapshot " + std::to_string(index + 1) + ": no such snapshot"};
+  }
+  push("delete snapshot " + state_.snapshots[index].name);
+  state_.snapshots.erase(state_.snapshots.begin() + static_cast<std::ptrdiff_t>(index));
+  return Ok{};
+}
+
+void Document::clear_snapshots() {
+  if (state_.snapshots.empty()) return;
+  push("clear snapshots");
+  state_.snapshots.clear();
+}
+
+void Document::reset_to_preset() {
+  if (state_.values == preset_.values) return;
+  push("reset to preset");
+  state_.values = preset_.values;
+}
+
+bool Document::undo() {
+  if (undo_.empty()) return false;
+  Step s = std::move(undo_.back());
+  undo_.pop_back();
+  redo_.push_back({s.label, state_, {}});
+  state_ = std::move(s.before);
+  dirty_ = true;
+  return true;
+}
+
+bool Document::redo() {
+  if (redo_.empty()) return false;
+  Step s = std::move(redo_.back());
+  redo_.pop_back();
+  undo_.push_back({s.label, state_, {}});
+  state_ = std::move(s.before);
+  dirty_ = true;
+  return true;
+}
+
+Mapping Document::mapping_with(const Mapping& overrides) const {
+  Mapping m = preset_.mapping;
+  m.override_with(overrides);
+  return m;
+}
+
+Session Document::to_session() const {
+  Session s;
+  s.preset_path = preset_.path;
+  s.scenario = preset_.scenario;
+  s.values = state_.values;
+  if (state_.data) {
+    s.data_path = state_.data->path;
+    s.mapping = state_.data->mapping;
+    if (auto h = file_hash(state_.data->path)) s.data_hash = *h;
+  }
+  s.tuning_set = state_.tuning_set;
+  s.snapshots = state_.snapshots;
+  s.window_state = view_state_;
+  return s;
+}
+
+Expected<Document> Document::from_session(const Session& s, const std::string& where) {
+  auto p = load_preset(resolve_preset_path(s.preset_path));
+  if (!p) return Error{where + ": preset: " + p.error()};
+  if (p->scenario != s.scenario) {
+    return Error{where + ": scenario: '" + s.scenario + "' but the preset runs '" + p->scenario +
+                 "'"};
+  }
+  Document d = from_preset(std::move(*p));
+  const ParamTable& table = d.scenario().params();
+  for (const auto& [k, v] : s.values) {
+    if (auto st = table.check(k, v); !st) return Error{where + ": values." + k + ": " + st.error()};
+    d.state_.values[k] = v;
+  }
+  for (const auto& snap : s.snapshots) {
+    for (const auto& [k, v] : snap.values) {
+      if (auto st = table.check(k, v); !st) {
+        return Error{where + ": snapshots." + snap.name + "." + k + ": " + st.error()};
+      }
+    }
+  }
+  d.state_.data.reset();
+  if (s.data_path) d.state_.data = DataRef{*s.data_path, s.mapping};
+  d.state_.tuning_set = s.tuning_set;
+  d.state_.snapshots = s.snapshots;
+  d.view_state_ = s.window_state;
+  return d;
+}
+
+}  // namespace kfw

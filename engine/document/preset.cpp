@@ -1,0 +1,392 @@
+#include "document/preset.h"
+
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <mutex>
+#include <sstream>
+
+#include "core/dataset.h"
+#include "data/csv.h"
+#include "data/json_io.h"
+#include "core/scenario.h"
+#include "core/suggest.h"
+#include "model/model_scenario.h"
+
+#ifndef KFW_SOURCE_DIR
+#define KFW_SOURCE_DIR "."
+#endif
+
+namespace kfw {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+const char* scale_name(Scale s) {
+  switch (s) {
+    case Scale::kLinear:
+      return "linear";
+    case Scale::kLog:
+      return "log";
+    case Scale::kInteger:
+      return "integer";
+    case Scale::kChoice:
+      return "choice";
+    case Scale::kToggle:
+      return "toggle";
+  }
+  return "linear";
+}
+
+// The schema (presets/README.md): top-level keys and the keys of a parameter entry.
+const std::vector<std::string> kTopKeys = {"format",      "version", "scenario",   "title",
+                                           "description", "data",    "parameters", "mapping",
+                                           "model",       "sim"};
+const std::vector<std::string> kParamKeys = {"value",       "min",   "max",         "unit",
+                                             "scale",       "label", "choices",     "tunable",
+                                             "scale_group", "group", "description", "decimals"};
+
+// Scenarios built from the preset itself: a user model ("scenario": "model").
+std::map<std::string, PresetScenarioFactory>& preset_factories() {
+  static std::map<std::string, PresetScenarioFactory> f = {{"model", &make_model_scenario}};
+  return f;
+}
+std::mutex& factories_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+std::string unknown_key(const std::string& key, const std::vector<std::string>& allowed) {
+  if (auto near = nearest(key, allowed)) return "unknown key (did you mean '" + *near + "'?)";
+  std::string msg = "unknown key (";
+  for (std::size_t i = 0; i < allowed.size(); ++i)
+    msg += (i ? ", " : "") + allowed[i];
+  return msg + ")";
+}
+
+bool allowed(const std::string& key, const std::vector<std::string>& keys) {
+  for (const auto& k : keys) {
+    if (k == key) return true;
+  }
+  return false;
+}
+
+// Reads one parameter entry into the preset. `where` is "FILE: parameters.KEY".
+Status read_parameter(Preset& p, const ParamTable& table, const std::string& key, const json& e,
+                      const std::string& file) {
+  const std::string where = file + ": " + key_path("parameters", key);
+  const ParamSpec* spec = table.find(key);
+  if (!spec) {
+    return Error{where + ": unknown parameter for scenario '" + p.scenario + "'"};
+  }
+  double value = 0.0;
+  ParamMeta& meta = p.meta[key];
+  if (e.is_number()) {
+    value = e.get<double>();
+  } else if (e.is_object()) {
+    for (auto it = e.begin(); it != e.end(); ++it) {
+      if (!allowed(it.key(), kParamKeys)) {
+        return Error{where + "." + truncate_token(it.key()) + ": " +
+                     unknown_key(it.key(), kParamKeys)};
+      }
+    }
+    auto v = e.find("value");
+    if (v == e.end()) return Error{where + ": missing 'value'"};
+    if (v->is_string() && spec->scale == Scale::kChoice) {
+      ParamValues tmp;
+      if (auto st = table.apply_assignment(key + "=" + v->get<std::string>(), tmp); !st) {
+        return Error{where + ".value: " + st.error()};
+      }
+      value = tmp[key];
+    } else if (!v->is_number()) {
+      return Error{where + ".value: must be a number, not " + json_type_name(*v)};
+    } else {
+      value = v->get<double>();
+    }
+    if (auto u = e.find("unit"); u != e.end()) {
+      if (!u->is_string() || u->get<std::string>() != spec->unit) {
+        return Error{where + ".unit: '" + (u->is_string() ? u->get<std::string>() : u->dump()) +
+                     "' does not match the parameter's unit '" + spec->unit + "'"};
+      }
+    }
+    for (const char* k : {"scale", "label", "scale_group", "group", "description"}) {
+      if (auto f = e.find(k); f != e.end() && !f->is_string()) {
+        return Error{where + "." + k + ": must be a string, not " + json_type_name(*f)};
+      }
+    }
+    if (auto f = e.find("tunable"); f != e.end()) {
+      if (!f->is_boolean()) return Error{where + ".tunable: must be true or false"};
+      meta.tunable = f->get<bool>();
+    }
+    if (auto f = e.find("scale_group"); f != e.end()) meta.scale_group = f->get<std::string>();
+    if (auto f = e.find("choices"); f != e.end() && !f->is_array()) {
+      return Error{where + ".choices: must be an array of labels"};
+    }
+    if (auto f = e.find("decimals"); f != e.end() && !f->is_number_integer()) {
+      return Error{where + ".decimals: must be a whole number"};
+    }
+    const bool has_min = e.contains("min"), has_max = e.contains("max");
+    if (has_min || has_max) {
+      double lo = spec->min, hi = spec->max;
+      if (has_min) {
+        if (!e["min"].is_number()) return Error{where + ".min: must be a number"};
+        lo = e["min"].get<double>();
+      }
+      if (has_max) {
+        if (!e["max"].is_number()) return Error{where + ".max: must be a number"};
+        hi = e["max"].get<double>();
+      }
+      if (!(lo < hi) || lo < spec->min || hi > spec->max) {
+        std::ostringstream os;
+        os << where << ": range [" << lo << ", " << hi << "] must be increasing and inside ["
+           << spec->min << ", " << spec->max << "]";
+        return Error{os.str()};
+      }
+      if (lo != spec->min || hi != spec->max) p.ranges[key] = {lo, hi};
+    }
+  } else {
+    return Error{where + ": expected a number or an object with 'value', not " + json_type_name(e)};
+  }
+  if (auto st = table.check(key, value); !st) return Error{where + ": " + st.error()};
+  if (auto r = p.ranges.find(key); r != p.ranges.end()) {
+    if (value < r->second.first || value > r->second.second) {
+      return Error{where + ": value outside the preset's own range"};
+    }
+  }
+  p.values[key] = value;
+  return Ok{};
+}
+
+}  // namespace
+
+void register_preset_scenario(const std::string& name, PresetScenarioFactory factory) {
+  std::lock_guard lock(factories_mutex());
+  preset_factories()[name] = factory;
+}
+
+namespace {
+
+Expected<Preset> preset_from_json(const json& j, const std::string& path) {
+  if (!j.is_object()) return Error{path + ": a preset must be a JSON object"};
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    if (!allowed(it.key(), kTopKeys)) {
+      return Error{path + ": " + truncate_token(it.key()) + ": " + unknown_key(it.key(), kTopKeys)};
+    }
+  }
+  auto str = [&](const char* key, std::string& out, bool required) -> Status {
+    auto it = j.find(key);
+    if (it == j.end() || it->is_null()) {
+      if (required) return Error{path + ": " + key + ": missing (required)"};
+      return Ok{};
+    }
+    if (!it->is_string()) {
+      return Error{path + ": " + key + ": must be a string, not " + json_type_name(*it)};
+    }
+    out = it->get<std::string>();
+    return Ok{};
+  };
+  std::string format;
+  if (auto st = str("format", format, true); !st) return st.err();
+  if (format != kPresetFormat) {
+    return Error{path + ": format: '" + format + "', expected '" + kPresetFormat + "'"};
+  }
+  Preset p;
+  p.path = path;
+  {
+    auto ver = j.find("version");
+    if (ver == j.end() || !ver->is_number_integer()) {
+      return Error{path + ": version: must be a whole number (1 or 2)"};
+    }
+    // Compared as the JSON's own integer type: 4294967297 is not 1.
+    const bool known = ver->is_number_unsigned()
+                           ? (ver->get<std::uint64_t>() == 1 || ver->get<std::uint64_t>() == 2)
+                           : (ver->get<std::int64_t>() == 1 || ver->get<std::int64_t>() == 2);
+    if (!known) {
+      return Error{path + ": version: " + ver->dump() + "; this build reads versions 1 and 2"};
+    }
+    p.version = static_cast<int>(ver->get<std::int64_t>());
+  }
+  if (auto st = str("scenario", p.scenario, true); !st) return st.err();
+  if (auto st = str("title", p.title, false); !st) return st.err();
+  if (auto st = str("description", p.description, false); !st) return st.err();
+  std::string data;
+  if (auto st = str("data", data, false); !st) return st.err();
+  if (!data.empty()) {
+    fs::path dp(data);
+    if (dp.is_relative() && !path.empty()) dp = fs::path(path).parent_path() / dp;
+    p.data_path = dp.lexically_normal().string();
+  }
+  PresetScenarioFactory factory = nullptr;
+  {
+    std::lock_guard lock(factories_mutex());
+    auto f = preset_factories().find(p.scenario);
+    if (f != preset_factories().end()) factory = f->second;
+  }
+  if (auto m = j.find("model"); m != j.end()) {
+    if (!factory) {
+      return Error{path +
+                   ": model: only a preset whose scenario is a model may carry a model "
+                   "block (scenario is '" +
+                   p.scenario + "')"};
+    }
+    if (!m->is_object()) return Error{path + ": model: must be an object"};
+    p.model = *m;
+  }
+  if (factory) {
+    auto s = factory(j, path);
+    if (!s) return s.err();
+    p.instance = std::shared_ptr<const Scenario>(std::move(*s));
+    if (auto params = j.find("parameters"); params != j.end()) p.parameters_block = *params;
+  } else {
+    auto s = make_scenario(p.scenario);
+    if (!s) return Error{path + ": scenario: " + s.error()};
+    p.instance = std::shared_ptr<const Scenario>(std::move(*s));
+  }
+  const ParamTable& table = p.instance->params();
+  p.values = table.defaults();
+  for (const auto& spec : table.specs())
+    p.meta[spec.key] = ParamMeta{spec.tunable, spec.scale_group};
+  if (auto params = j.find("parameters"); params != j.end()) {
+    if (!params->is_object()) return Error{path + ": parameters: must be an object"};
+    for (auto it = params->begin(); it != params->end(); ++it) {
+      if (auto st = read_parameter(p, table, it.key(), it.value(), path); !st) return st.err();
+    }
+  }
+  if (auto m = j.find("mapping"); m != j.end()) {
+    auto mapping = mapping_from_json(*m, "mapping");
+    if (!mapping) return Error{path + ": " + mapping.error()};
+    p.mapping = std::move(*mapping);
+  }
+  if (auto s = j.find("sim"); s != j.end()) {
+    if (!s->is_object()) return Error{path + ": sim: must be an object"};
+    for (auto it = s->begin(); it != s->end(); ++it) {
+      if (it.key() != "x0_from_prior") {
+        return Error{path + ": sim." + truncate_token(it.key()) + ": unknown key (x0_from_prior)"};
+      }
+      if (!it->is_boolean()) return Error{path + ": sim.x0_from_prior: must be true or false"};
+      p.sim_x0_from_prior = it->get<bool>();
+    }
+    if (p.sim_x0_from_prior) {
+      auto drawn = p.instance->with_x0_from_prior();
+      if (!drawn) {
+        return Error{path + ": sim.x0_from_prior: scenario '" + p.instance->name() +
+                     "' cannot draw its initial state from the filter's prior"};
+      }
+      p.instance = std::move(drawn);
+    }
+  }
+  return p;
+}
+
+}  // namespace
+
+Expected<Preset> parse_preset(const std::string& text, const std::string& path) {
+  auto doc = parse_json_document(text, path);
+  if (!doc) return doc.err();
+  return preset_from_json(*doc, path);
+}
+
+Expected<Preset> load_preset(const std::string& path) {
+  auto doc = read_json_document(path, "preset");
+  if (!doc) return doc.err();
+  return preset_from_json(*doc, path);
+}
+
+Expected<Preset> default_preset(const std::string& scenario) {
+  auto s = make_scenario(scenario);
+  if (!s) return s.err();
+  Preset p;
+  p.scenario = scenario;
+  p.title = (*s)->title();
+  p.values = (*s)->params().defaults();
+  for (const auto& spec : (*s)->params().specs())
+    p.meta[spec.key] = ParamMeta{spec.tunable, spec.scale_group};
+  p.instance = std::shared_ptr<const Scenario>(std::move(*s));
+  return p;
+}
+
+std::string preset_to_json(const Preset& preset) {
+  nlohmann::ordered_json j;
+  j["format"] = kPresetFormat;
+  j["version"] = kPresetVersion;
+  j["scenario"] = preset.scenario;
+  j["title"] = preset.title;
+  j["description"] = preset.description;
+  if (preset.data_path) {
+    fs::path dp(*preset.data_path);
+    if (!preset.path.empty() && dp.is_absolute()) {
+      const fs::path dir = fs::absolute(fs::path(preset.path)).parent_path();
+      fs::path rel = dp.lexically_relative(dir);
+      if (!rel.empty()) dp = rel;
+    } else if (!preset.path.empty()) {
+      // A preset named without a folder ("p.json") is in the current one (absolute("") throws).
+      fs::path dir = fs::path(preset.path).parent_path();
+      std::error_code ec;
+      if (dir.empty()) dir = fs::current_path(ec);
+      const fs::path abs_dir = fs::absolute(dir, ec);
+      fs::path rel = ec ? fs::path() : fs::absolute(dp, ec).lexically_relative(abs_dir);
+      if (!ec && !rel.empty()) dp = rel;
+    }
+    j["data"] = dp.string();
+  }
+  std::shared_ptr<const Scenario> scenario = preset.instance;
+  if (!scenario) {
+    auto s = make_scenario(preset.scenario);
+    if (s) scenario = std::shared_ptr<const Scenario>(std::move(*s));
+  }
+  const bool own_table = !preset.model.is_null();
+  nlohmann::ordered_json params = nlohmann::ordered_json::object();
+  if (scenario) {
+    for (const auto& spec : scenario->params().specs()) {
+      nlohmann::ordered_json e;
+      auto v = preset.values.find(spec.key);
+      e["value"] = v == preset.values.end() ? spec.def : v->second;
+      auto r = preset.ranges.find(spec.key);
+      e["min"] = r == preset.ranges.end() ? spec.min : r->second.first;
+      e["max"] = r == preset.ranges.end() ? spec.max : r->second.second;
+      e["unit"] = spec.unit;
+      e["scale"] = scale_name(spec.scale);
+      e["label"] = spec.label;
+      if (!spec.choices.empty()) e["choices"] = spec.choices;
+      auto m = preset.meta.find(spec.key);
+      const ParamMeta meta =
+          m == preset.meta.end() ? ParamMeta{spec.tunable, spec.scale_group} : m->second;
+      e["tunable"] = meta.tunable;
+      if (!meta.scale_group.empty()) e["scale_group"] = meta.scale_group;
+      if (own_table) {
+        if (!spec.group.empty()) e["group"] = spec.group;
+        if (!spec.description.empty()) e["description"] = spec.description;
+      }
+      params[spec.key] = e;
+    }
+  }
+  j["parameters"] = params;
+  if (!preset.mapping.blank()) j["mapping"] = mapping_to_json(preset.mapping);
+  if (!preset.model.is_null()) j["model"] = preset.model;
+  if (preset.sim_x0_from_prior) j["sim"] = {{"x0_from_prior", true}};
+  return j.dump(2) + "\n";
+}
+
+Status save_preset(const std::string& path, const Preset& preset) {
+  Preset p = preset;
+  p.path = path;
+  return write_text_file_atomic(path, preset_to_json(p));
+}
+
+std::string preset_dir() {
+  if (const char* env = std::getenv("KFW_PRESETS"); env && *env) return env;
+  return std::string(KFW_SOURCE_DIR) + "/presets";
+}
+
+std::string resolve_preset_path(const std::string& name_or_path) {
+  std::error_code ec;
+  if (fs::is_regular_file(name_or_path, ec)) return name_or_path;
+  fs::path candidate = fs::path(preset_dir()) / name_or_path;
+  if (candidate.extension() != ".json") candidate += ".json";
+  if (fs::is_regular_file(candidate, ec)) return candidate.string();
+  return name_or_path;
+}
+
+}  // namespace kfw

@@ -1,0 +1,196 @@
+#include "document/session.h"
+
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "data/csv.h"
+#include "data/json_io.h"
+#include "core/suggest.h"
+
+namespace kfw {
+
+using nlohmann::json;
+
+namespace {
+
+json values_json(const ParamValues& v) {
+  json j = json::object();
+  for (const auto& [k, x] : v)
+    j[k] = x;
+  return j;
+}
+
+Expected<ParamValues> values_from(const json& j, const std::string& where) {
+  if (!j.is_object()) return Error{where + ": must be an object of numbers"};
+  ParamValues v;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    if (!it->is_number())
+      return Error{where + "." + truncate_token(it.key()) + ": must be a number"};
+    v[it.key()] = it->get<double>();
+  }
+  return v;
+}
+
+}  // namespace
+
+std::string session_to_json(const Session& s) {
+  nlohmann::ordered_json j;
+  j["format"] = kSessionFormat;
+  j["version"] = kSessionVersion;
+  j["preset"] = s.preset_path;
+  j["scenario"] = s.scenario;
+  j["values"] = values_json(s.values);
+  if (s.data_path) {
+    j["data"] = {{"path", *s.data_path}, {"fnv1a64", s.data_hash}};
+  } else {
+    j["data"] = nullptr;
+  }
+  j["mapping"] = mapping_to_json(s.mapping);
+  j["tuning_set"] = nlohmann::ordered_json::array();
+  for (const auto& d : s.tuning_set)
+    j["tuning_set"].push_back({{"path", d.path}, {"mapping", mapping_to_json(d.mapping)}});
+  j["snapshots"] = nlohmann::ordered_json::array();
+  for (const auto& snap : s.snapshots) {
+    j["snapshots"].push_back({{"name", snap.name}, {"values", values_json(snap.values)}});
+  }
+  j["window"] = s.window_state;
+  return j.dump(2) + "\n";
+}
+
+namespace {
+
+Expected<Session> session_from_json(const json& j, const std::string& path) {
+  if (!j.is_object()) return Error{path + ": a session must be a JSON object"};
+  if (!j.contains("format") || j["format"] != kSessionFormat) {
+    return Error{path + ": format: must be '" + std::string(kSessionFormat) + "'"};
+  }
+  if (!j.contains("version") || !(j["version"] == 1 || j["version"] == 2)) {
+    return Error{path + ": version: must be 1 or 2"};
+  }
+  Session s;
+  for (const char* key : {"preset", "scenario"}) {
+    if (!j.contains(key) || !j[key].is_string())
+      return Error{path + ": key '" + key + "' must be a string"};
+  }
+  s.preset_path = j["preset"].get<std::string>();
+  s.scenario = j["scenario"].get<std::string>();
+  auto v = values_from(j.value("values", json::object()), path + ": values");
+  if (!v) return v.err();
+  s.values = *v;
+  if (j.contains("data") && !j["data"].is_null()) {
+    const json& d = j["data"];
+    if (!d.is_object() || !d.contains("path") || !d["path"].is_string()) {
+      return Error{path + ": key 'data' must hold a string 'path'"};
+    }
+    s.data_path = d["path"].get<std::string>();
+    if (d.contains("fnv1a64") && d["fnv1a64"].is_string())
+      s.data_hash = d["fnv1a64"].get<std::string>();
+  }
+  for (const char* key : {"columns", "mapping"}) {  // version 1 wrote "columns"
+    if (!j.contains(key)) continue;
+    auto m = mapping_from_json(j[key], key);
+    if (!m) return Error{path + ": " + m.error()};
+    s.mapping.override_with(*m);
+  }
+  if (j.contains("tuning_set")) {
+    if (!j["tuning_set"].is_array()) return Error{path + ": tuning_set: must be an array"};
+    for (std::size_t i = 0; i < j["tuning_set"].size(); ++i) {
+      const json& e = j["tuning_set"][i];
+      const std::string at = index_path("tuning_set", i);
+      if (!e.is_object() || !e.contains("path") || !e["path"].is_string()) {
+        return Error{path + ": " + at + ": needs a string 'path'"};
+      }
+      DataRef d{e["path"].get<std::string>(), {}};
+      if (e.contains("mapping")) {
+        auto m = mapping_from_json(e["mapping"], key_path(at, "mapping"));
+        if (!m) return Error{path + ": " + m.error()};
+        d.mapping = *m;
+      }
+      s.tuning_set.push_back(std::move(d));
+    }
+  }
+  if (j.contains("snapshots")) {
+    if (!j["snapshots"].is_array()) return Error{path + ": key 'snapshots' must be an array"};
+    for (const auto& e : j["snapshots"]) {
+      if (!e.is_object() || !e.contains("name") || !e["name"].is_string()) {
+        return Error{path + ": every snapshot needs a string 'name'"};
+      }
+      auto sv = values_from(e.value("values", json::object()),
+                            path + ": snapshots." + e["name"].get<std::string>());
+      if (!sv) return sv.err();
+      s.snapshots.push_back({e["name"].get<std::string>(), *sv});
+    }
+  }
+  if (j.contains("window") && j["window"].is_string())
+    s.window_state = j["window"].get<std::string>();
+  return s;
+}
+
+}  // namespace
+
+Expected<Session> parse_session(const std::string& text, const std::string& path) {
+  auto doc = parse_json_document(text, path);
+  if (!doc) return doc.err();
+  return session_from_json(*doc, path);
+}
+
+Expected<Session> load_session(const std::string& path) {
+  auto doc = read_json_document(path, "session");
+  if (!doc) return doc.err();
+  return session_from_json(*doc, path);
+}
+
+Status save_session(const std::string& path, const Session& s) {
+  return write_text_file_atomic(path, session_to_json(s));
+}
+
+Expected<std::string> file_hash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Error{path + ": cannot open file"};
+  std::uint64_t h = 1469598103934665603ull;
+  char buf[65536];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+    for (std::streamsize i = 0; i < in.gcount(); ++i) {
+      h ^= static_cast<unsigned char>(buf[i]);
+      h *= 1099511628211ull;
+    }
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return std::string(hex);
+}
+
+Expected<Dataset> apply_column_map(Dataset d, const ColumnMap& map) {
+  for (const auto& [role, column] : map) {
+    if (column.empty()) continue;
+    const int i = d.index(column);
+    if (i < 0)
+      return Error{d.source + ": mapped column '" + column + "' (for '" + role +
+                   "') is not in the file"};
+    if (role == column) continue;
+    if (const int clash = d.index(role); clash >= 0)
+      d.names[static_cast<std::size_t>(clash)] += ".unmapped";
+    d.names[static_cast<std::size_t>(i)] = role;
+  }
+  return d;
+}
+
+Mapping to_mapping(const ColumnMap& map) {
+  Mapping m;
+  for (const auto& [role, column] : map) {
+    if (!column.empty()) m[role].column = column;
+  }
+  return m;
+}
+
+std::string header_key(const Dataset& d) {
+  std::string k;
+  for (const auto& n : d.names)
+    k += (k.empty() ? "" : ",") + n;
+  return k;
+}
+
+}  // namespace kfw

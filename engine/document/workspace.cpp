@@ -1,0 +1,95 @@
+#include "document/workspace.h"
+
+#include <filesystem>
+
+#include "data/import.h"
+
+namespace kfw {
+
+Expected<Workspace> open_workspace(const std::string& preset,
+                                   const std::optional<std::string>& data,
+                                   const std::vector<std::string>& assignments) {
+  auto p = load_preset(resolve_preset_path(preset));
+  if (!p) return p.err();
+  Workspace ws;
+  ws.preset = std::move(*p);
+  ws.scenario = ws.preset.instance;
+  ws.values = ws.preset.values;
+  ws.mapping = ws.preset.mapping;
+  for (const auto& a : assignments) {
+    if (auto st = ws.scenario->params().apply_assignment(a, ws.values); !st) return st.err();
+  }
+  ws.data_from_preset = !data && ws.preset.data_path;
+  ws.data_path = data ? data : ws.preset.data_path;
+  return ws;
+}
+
+std::string mapping_options(const Mapping& m) {
+  std::string s;
+  if (auto t = m.find("t"); t != m.end()) {
+    s = "--time " + t->second.column + (t->second.unit.empty() ? "" : ":" + t->second.unit);
+  }
+  for (const auto& [role, r] : m) {
+    if (role == "t") continue;
+    s += (s.empty() ? "" : " ") + std::string("--map ") + role + "=" + r.column;
+    if (!r.unit.empty()) s += " --unit " + role + "=" + r.unit;
+    if (r.scale != 1.0) s += " --scale " + role + "=" + std::to_string(r.scale);
+    if (r.offset != 0.0) s += " --offset " + role + "=" + std::to_string(r.offset);
+    if (r.flip) s += " --flip " + role;
+  }
+  if (m.separator) s += " --sep " + separator_key(m.separator);
+  if (m.header != HeaderRow::detect) s += " --header " + header_row_name(m.header);
+  return s;
+}
+
+Expected<Dataset> import_dataset(const Scenario& scenario, const Table& table,
+                                 const Mapping& mapping) {
+  const auto columns = scenario.columns();
+  // A required role that reads from no column: name it, and say what the guesser would map.
+  for (const auto& c : roles_with_time(columns)) {
+    if (!c.required || role_column(table, mapping, c.name) >= 0) continue;
+    if (auto m = mapping.find(c.name); m != mapping.end() && !m->second.column.empty()) {
+      continue;  // mapped to a column the file lacks: import_table names it
+    }
+    std::string msg = table.source + ": missing required column '" + c.name + "'";
+    if (!c.meaning.empty()) msg += " (" + c.meaning + (c.unit.empty() ? "" : ", " + c.unit) + ")";
+    msg += table.has_header() ? "; columns present:"
+                              : "; no header (the first row is numbers), columns by position:";
+    for (const auto& n : table.names)
+      msg += " " + n;
+    Mapping guess = guess_mapping(table, columns);
+    guess.override_with(mapping);
+    if (guess.count(c.name)) msg += "; map them, e.g. " + mapping_options(guess);
+    return Error{msg};
+  }
+  auto d = import_table(table, mapping, columns);
+  if (!d) return d;
+  if (auto st = require_some_value(*d, columns); !st) return st.err();
+  return d;
+}
+
+Expected<Dataset> load_dataset_file(const Scenario& scenario, const std::string& path,
+                                    const Mapping& mapping) {
+  auto t = read_table(path, mapping.table_options());
+  if (!t) return t.err();
+  return import_dataset(scenario, *t, mapping);
+}
+
+Expected<Dataset> load_dataset(const Workspace& ws) {
+  if (!ws.data_path) return ws.scenario->simulate(ws.values);
+  auto d = load_dataset_file(*ws.scenario, *ws.data_path, ws.mapping);
+  if (!d && ws.data_from_preset) {
+    std::error_code ec;
+    if (!std::filesystem::exists(*ws.data_path, ec)) {
+      return Error{ws.preset.path + ": data: " + *ws.data_path + ": no such file"};
+    }
+    // Not a file that opens (a directory, no permission): the preset's key is what to fix.
+    if (!std::filesystem::is_regular_file(*ws.data_path, ec) ||
+        d.error().find(": cannot open") != std::string::npos) {
+      return Error{ws.preset.path + ": data: " + d.error()};
+    }
+  }
+  return d;
+}
+
+}  // namespace kfw

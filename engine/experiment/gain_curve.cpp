@@ -1,0 +1,94 @@
+#include "experiment/gain_curve.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace kfw {
+
+namespace {
+
+bool curve_parameter(const ParamSpec& p) {
+  const bool continuous = p.scale == Scale::kLinear || p.scale == Scale::kLog;
+  return continuous && p.min < p.max && p.key.rfind("sim.", 0) != 0 && p.key.rfind("ukf.", 0) != 0;
+}
+
+}  // namespace
+
+std::vector<std::string> gain_curve_parameters(const Scenario& s) {
+  std::vector<std::string> keys;
+  for (const auto& p : s.params().specs()) {
+    if (curve_parameter(p)) keys.push_back(p.key);
+  }
+  return keys;
+}
+
+std::string default_gain_curve_parameter(const Scenario& s, const ParamValues& values,
+                                         const Dataset* data) {
+  auto here = s.gain(values, data);
+  if (!here) return {};
+  std::vector<std::string> keys = gain_curve_parameters(s);
+  std::stable_partition(keys.begin(), keys.end(), [&](const std::string& k) {
+    return s.params().find(k)->scale == Scale::kLog;
+  });
+  for (const auto& k : keys) {
+    const ParamSpec* p = s.params().find(k);
+    ParamValues v = values;
+    const double now = values.count(k) ? values.at(k) : p->def;
+    // The far end of the range from the current value.
+    v[k] = (now - p->min) > (p->max - now) ? p->min : p->max;
+    auto there = s.gain(v, data);
+    if (!there) return k;  // the steady state itself depends on it
+    for (const auto& [key, g] : *here) {
+      if (key.rfind("K.", 0) != 0) continue;
+      const auto it = there->find(key);
+      if (it == there->end() || std::abs(it->second - g) > 1e-9 * std::max(1.0, std::abs(g)))
+        return k;
+    }
+  }
+  return {};
+}
+
+Expected<GainCurve> gain_curve(const Scenario& s, const ParamValues& values, const std::string& key,
+                               std::size_t points, const Dataset* data, const std::string& prefix) {
+  const ParamSpec* spec = s.params().find(key);
+  if (!spec || !curve_parameter(*spec)) {
+    return Error{"gain curve: '" + key + "' is not a continuous filter parameter"};
+  }
+  auto here = s.gain(values, data);
+  if (!here) return here.err();
+  GainCurve c;
+  c.key = key;
+  c.log = spec->scale == Scale::kLog;
+  c.steady = *here;
+  c.at_x = values.count(key) ? values.at(key) : spec->def;
+  for (const auto& [k, v] : *here) {
+    if (k.rfind(prefix, 0) == 0) {
+      c.entries.push_back(k);
+      c.at.push_back(v);
+    }
+  }
+  if (c.entries.empty()) return Error{"gain curve: the scenario reports no '" + prefix + "' gains"};
+  points = std::max<std::size_t>(points, 2);
+  c.x.resize(points);
+  for (std::size_t i = 0; i < points; ++i) {
+    const double u = static_cast<double>(i) / static_cast<double>(points - 1);
+    c.x[i] = c.log ? spec->min * std::pow(spec->max / spec->min, u)
+                   : spec->min + u * (spec->max - spec->min);
+  }
+  c.values.assign(c.entries.size(),
+                  std::vector<double>(points, std::numeric_limits<double>::quiet_NaN()));
+  ParamValues v = values;
+  for (std::size_t i = 0; i < points; ++i) {
+    v[key] = c.x[i];
+    auto g = s.gain(v, data);
+    if (!g) continue;  // no steady state here: a gap in the curve
+    for (std::size_t e = 0; e < c.entries.size(); ++e) {
+      if (auto it = g->find(c.entries[e]); it != g->end() && std::isfinite(it->second))
+        c.values[e][i] = it->second;
+    }
+  }
+  return c;
+}
+
+}  // namespace kfw

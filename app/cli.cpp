@@ -8,9 +8,9 @@
 #include <memory>
 
 #include "cli_commands.h"
-#include "experiment/grammar.h"
 #include "core/scenario.h"
 #include "core/suggest.h"
+#include "experiment/grammar.h"
 
 #ifndef KFW_VERSION
 #error "KFW_VERSION comes from CMake's project(VERSION)"

@@ -7,13 +7,13 @@
 #include <sstream>
 
 #include "core/dataset.h"
-#include "data/csv.h"
-#include "experiment/gain_curve.h"
 #include "core/metrics.h"
-#include "experiment/monte_carlo.h"
-#include "data/output.h"
 #include "core/suggest.h"
+#include "data/csv.h"
+#include "data/output.h"
 #include "document/workspace.h"
+#include "experiment/gain_curve.h"
+#include "experiment/monte_carlo.h"
 
 namespace kfw {
 

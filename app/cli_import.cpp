@@ -10,10 +10,10 @@
 #include <sstream>
 
 #include "cli_commands.h"
+#include "core/suggest.h"
 #include "data/import.h"
 #include "data/json_io.h"
 #include "document/preset.h"
-#include "core/suggest.h"
 #include "document/workspace.h"
 
 namespace kfw {

@@ -5,14 +5,14 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "data/csv.h"
 #include "cli_commands.h"
-#include "experiment/grammar.h"
-#include "data/json_io.h"
-#include "experiment/monte_carlo.h"
-#include "data/output.h"
 #include "core/suggest.h"
+#include "data/csv.h"
+#include "data/json_io.h"
+#include "data/output.h"
 #include "document/workspace.h"
+#include "experiment/grammar.h"
+#include "experiment/monte_carlo.h"
 
 namespace kfw {
 

@@ -12,11 +12,11 @@
 
 #include "cli_commands.h"
 #include "core/dataset.h"
+#include "core/metrics.h"
+#include "core/suggest.h"
 #include "data/csv.h"
 #include "data/json_io.h"
-#include "core/metrics.h"
 #include "experiment/monte_carlo.h"
-#include "core/suggest.h"
 #include "experiment/tuning.h"
 
 namespace kfw {

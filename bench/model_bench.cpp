@@ -6,9 +6,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "core/scenario.h"
 #include "data/csv.h"
 #include "filter/dare.h"
-#include "core/scenario.h"
 #include "model/model_scenario.h"
 #include "scenarios/helicopter/helicopter_sim.h"
 

@@ -10,8 +10,8 @@
 #include <QVBoxLayout>
 #include <cmath>
 
-#include "filter/consistency.h"
 #include "core/statistics.h"
+#include "filter/consistency.h"
 #include "plot_kit.h"
 
 namespace kfw {

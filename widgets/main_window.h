@@ -15,10 +15,10 @@
 #include <optional>
 #include <vector>
 
-#include "document/document.h"
 #include "core/expected.h"
-#include "document/preset.h"
 #include "core/scenario.h"
+#include "document/document.h"
+#include "document/preset.h"
 #include "document/session.h"
 #include "plot_export.h"
 #include "scenario_view.h"

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "filter/consistency.h"
 #include "core/dataset.h"
 #include "core/statistics.h"
+#include "filter/consistency.h"
 
 namespace kfw::plot {
 

@@ -15,8 +15,8 @@
 #include <cmath>
 #include <vector>
 
-#include "data/output.h"
 #include "core/suggest.h"
+#include "data/output.h"
 #include "plot_kit.h"
 #include "plot_look.h"
 

@@ -1,5 +1,5 @@
-#include "data/csv.h"
 #include "sweep_dialog.h"
+#include "data/csv.h"
 
 #include <qcustomplot.h>
 

@@ -10,8 +10,8 @@
 #include <atomic>
 #include <memory>
 
-#include "document/preset.h"
 #include "core/scenario.h"
+#include "document/preset.h"
 #include "experiment/tuning.h"
 
 class QComboBox;

@@ -14,8 +14,8 @@
 #include <unordered_set>
 
 #include "core/dataset.h"
-#include "data/csv.h"
 #include "core/suggest.h"
+#include "data/csv.h"
 
 namespace kfw {
 

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "core/expected.h"
+#include "core/scenario.h"
 #include "data/mapping.h"
 #include "document/preset.h"
-#include "core/scenario.h"
 #include "document/session.h"
 
 namespace kfw {

@@ -7,10 +7,10 @@
 #include <sstream>
 
 #include "core/dataset.h"
-#include "data/csv.h"
-#include "data/json_io.h"
 #include "core/scenario.h"
 #include "core/suggest.h"
+#include "data/csv.h"
+#include "data/json_io.h"
 #include "model/model_scenario.h"
 
 #ifndef KFW_SOURCE_DIR

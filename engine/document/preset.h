@@ -11,8 +11,8 @@
 #include <utility>
 
 #include "core/expected.h"
-#include "data/mapping.h"
 #include "core/param_spec.h"
+#include "data/mapping.h"
 
 namespace kfw {
 

@@ -6,9 +6,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "core/suggest.h"
 #include "data/csv.h"
 #include "data/json_io.h"
-#include "core/suggest.h"
 
 namespace kfw {
 

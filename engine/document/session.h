@@ -9,8 +9,8 @@
 
 #include "core/dataset.h"
 #include "core/expected.h"
-#include "data/mapping.h"
 #include "core/param_spec.h"
+#include "data/mapping.h"
 
 namespace kfw {
 

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "core/expected.h"
-#include "document/preset.h"
 #include "core/scenario.h"
 #include "data/table.h"
+#include "document/preset.h"
 
 namespace kfw {
 

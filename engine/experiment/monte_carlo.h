@@ -21,9 +21,9 @@
 #include <vector>
 
 #include "core/expected.h"
-#include "experiment/grammar.h"
 #include "core/metrics.h"
 #include "core/scenario.h"
+#include "experiment/grammar.h"
 #include "experiment/tuning.h"
 
 namespace kfw {

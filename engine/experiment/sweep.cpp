@@ -3,8 +3,8 @@
 #include <cmath>
 #include <limits>
 
-#include "experiment/parallel.h"
 #include "core/suggest.h"
+#include "experiment/parallel.h"
 
 namespace kfw {
 

@@ -10,8 +10,8 @@
 
 #include "core/dataset.h"
 #include "core/expected.h"
-#include "experiment/grammar.h"
 #include "core/scenario.h"
+#include "experiment/grammar.h"
 
 namespace kfw {
 

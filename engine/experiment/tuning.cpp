@@ -8,8 +8,8 @@
 #include <map>
 #include <mutex>
 
-#include "experiment/parallel.h"
 #include "core/suggest.h"
+#include "experiment/parallel.h"
 
 namespace kfw {
 

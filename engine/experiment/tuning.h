@@ -15,8 +15,8 @@
 
 #include "core/dataset.h"
 #include "core/expected.h"
-#include "document/preset.h"
 #include "core/scenario.h"
+#include "document/preset.h"
 #include "experiment/sweep.h"
 
 namespace kfw {

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "core/expected.h"
-#include "filter/kalman_filter.h"
 #include "core/types.h"
+#include "filter/kalman_filter.h"
 
 namespace kfw {
 

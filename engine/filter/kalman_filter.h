@@ -6,8 +6,8 @@
 #include <cmath>
 #include <limits>
 
-#include "filter/covariance_check.h"
 #include "core/types.h"
+#include "filter/covariance_check.h"
 
 namespace kfw {
 

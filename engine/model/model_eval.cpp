@@ -5,8 +5,8 @@
 #include <limits>
 #include <sstream>
 
-#include "filter/discretize.h"
 #include "core/statistics.h"
+#include "filter/discretize.h"
 
 namespace kfw::model {
 

@@ -7,10 +7,10 @@
 #include <set>
 #include <sstream>
 
-#include "filter/consistency.h"
-#include "filter/dare.h"
 #include "core/statistics.h"
 #include "core/suggest.h"
+#include "filter/consistency.h"
+#include "filter/dare.h"
 #include "model/model_eval.h"
 #include "model/model_filter.h"
 #include "model/model_filter_detail.h"

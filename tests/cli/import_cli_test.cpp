@@ -8,9 +8,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "data/csv.h"
 #include "common/cli_runner.h"
 #include "common/import_files.h"
+#include "data/csv.h"
 
 namespace {
 

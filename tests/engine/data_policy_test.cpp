@@ -7,8 +7,8 @@
 #include <fstream>
 
 #include "core/dataset.h"
-#include "data/csv.h"
 #include "core/scenario.h"
+#include "data/csv.h"
 #include "document/workspace.h"
 
 namespace kfw {

@@ -1,6 +1,6 @@
-// Gain curves of any scenario (experiment/gain_curve.h): on the 1-D constant-velocity model file every
-// point is the closed-form α-β filter of seed 003 at its tracking index, the operating point is
-// the DARE gain at the live values, and a model without a steady state says so.
+// Gain curves of any scenario (experiment/gain_curve.h): on the 1-D constant-velocity model file
+// every point is the closed-form α-β filter of seed 003 at its tracking index, the operating point
+// is the DARE gain at the live values, and a model without a steady state says so.
 #include "experiment/gain_curve.h"
 
 #include <gtest/gtest.h>

@@ -8,10 +8,10 @@
 #include <fstream>
 #include <string>
 
-#include "filter/covariance_check.h"
 #include "core/dataset.h"
 #include "data/csv.h"
 #include "data/table.h"
+#include "filter/covariance_check.h"
 
 namespace kfw {
 namespace {

@@ -9,11 +9,11 @@
 #include <fstream>
 #include <sstream>
 
-#include "data/csv.h"
 #include "common/table_text.h"
+#include "core/scenario.h"
+#include "data/csv.h"
 #include "data/import.h"
 #include "document/preset.h"
-#include "core/scenario.h"
 #include "document/session.h"
 #include "document/workspace.h"
 

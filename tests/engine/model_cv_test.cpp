@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "common/model_files.h"
-#include "filter/kalman_filter.h"
 #include "core/scenario.h"
+#include "filter/kalman_filter.h"
 #include "model/model_result.h"
 #include "model/model_scenario.h"
 #include "scenarios/ballbeam/alpha_beta.h"

@@ -10,8 +10,8 @@
 
 #include "common/model_files.h"
 #include "core/dataset.h"
-#include "data/csv.h"
 #include "core/scenario.h"
+#include "data/csv.h"
 #include "model/model_result.h"
 #include "model/model_scenario.h"
 #include "scenarios/helicopter/indirect_kf.h"

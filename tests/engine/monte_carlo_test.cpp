@@ -9,9 +9,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "experiment/monte_carlo.h"
-#include "document/preset.h"
 #include "core/statistics.h"
+#include "document/preset.h"
+#include "experiment/monte_carlo.h"
 #include "model/model_scenario.h"
 
 namespace kfw {

@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "document/preset.h"
 #include "core/scenario.h"
+#include "document/preset.h"
 
 namespace kfw {
 namespace {

@@ -9,8 +9,8 @@
 
 #include <cmath>
 
-#include "experiment/monte_carlo.h"
 #include "document/preset.h"
+#include "experiment/monte_carlo.h"
 
 namespace kfw::radome {
 namespace {

@@ -16,13 +16,13 @@
 #include <string>
 #include <string_view>
 
-#include "filter/covariance_check.h"
 #include "core/dataset.h"
-#include "experiment/grammar.h"
-#include "document/preset.h"
 #include "core/scenario.h"
+#include "document/preset.h"
 #include "document/session.h"
 #include "document/workspace.h"
+#include "experiment/grammar.h"
+#include "filter/covariance_check.h"
 #include "model/model_result.h"
 #include "model/model_scenario.h"
 #include "scenarios/helicopter/indirect_kf.h"

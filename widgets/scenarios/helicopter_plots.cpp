@@ -6,8 +6,8 @@
 #include <array>
 #include <cmath>
 
-#include "filter/consistency.h"
 #include "core/statistics.h"
+#include "filter/consistency.h"
 #include "plot_blocks.h"
 #include "plot_kit.h"
 #include "scenario_view.h"

@@ -4,9 +4,9 @@
 #include <sstream>
 #include <string>
 
-#include "filter/consistency.h"
 #include "core/scenario.h"
 #include "core/statistics.h"
+#include "filter/consistency.h"
 #include "scenarios/ballbeam/alpha_beta.h"
 #include "scenarios/ballbeam/ball_tracker.h"
 #include "scenarios/ballbeam/ballbeam_loop.h"

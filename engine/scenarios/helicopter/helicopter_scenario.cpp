@@ -3,10 +3,10 @@
 #include <memory>
 
 #include <nlohmann/json.hpp>
-#include "filter/consistency.h"
 #include "core/scenario.h"
-#include "filter/spectrum.h"
 #include "core/statistics.h"
+#include "filter/consistency.h"
+#include "filter/spectrum.h"
 #include "scenarios/helicopter/helicopter_model.h"
 #include "scenarios/helicopter/helicopter_sim.h"
 #include "scenarios/helicopter/indirect_kf.h"

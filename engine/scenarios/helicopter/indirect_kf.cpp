@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "filter/covariance_check.h"
 #include "core/types.h"
+#include "filter/covariance_check.h"
 #include "scenarios/helicopter/helicopter_model.h"
 
 namespace kfw::helicopter {

@@ -5,8 +5,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "filter/consistency.h"
 #include "core/scenario.h"
+#include "filter/consistency.h"
 
 namespace kfw::helicopter {
 

@@ -15,8 +15,8 @@
 #include <optional>
 #include <vector>
 
-#include "filter/imm.h"
 #include "core/scenario.h"
+#include "filter/imm.h"
 #include "scenarios/radome/radome_model.h"
 
 namespace kfw::radome {

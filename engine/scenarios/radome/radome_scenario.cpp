@@ -7,9 +7,9 @@
 #include <string>
 #include <utility>
 
-#include "filter/consistency.h"
 #include "core/scenario.h"
 #include "core/statistics.h"
+#include "filter/consistency.h"
 #include "scenarios/radome/radome_imm.h"
 #include "scenarios/radome/radome_model.h"
 #include "scenarios/radome/radome_sim.h"

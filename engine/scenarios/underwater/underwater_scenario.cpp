@@ -6,9 +6,9 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
-#include "filter/consistency.h"
 #include "core/scenario.h"
 #include "core/statistics.h"
+#include "filter/consistency.h"
 #include "scenarios/underwater/underwater_ekf.h"
 #include "scenarios/underwater/underwater_sim.h"
 #include "scenarios/underwater/underwater_stats.h"

@@ -1,5 +1,5 @@
-// Speed of loading a CSV (README "Importing logs"): the 55 k-row real log (target < 30 ms) and a
-// generated 1 M-row, 4-column file (target < 300 ms), each from disk to a scenario's dataset.
+// Speed of loading a CSV (docs/speed.md "Loading a CSV"): the 55 k-row real log (target < 30 ms)
+// and a generated 1 M-row, 4-column file (target < 300 ms), each from disk to a scenario's dataset.
 #include <benchmark/benchmark.h>
 
 #include <cstdio>

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs gtest binaries the way `make sanitize` does (README "Hardening"): each binary in JOBS shards
+# Runs gtest binaries the way `make sanitize` does (docs/hardening.md "Sanitizers"): each binary in JOBS shards
 # at once (GTEST_TOTAL_SHARDS), one process per shard instead of ctest's one process per test.
 # Under AddressSanitizer a process takes 2-3 s to start (its 200 MB binary registers every
 # instrumented global), which over ~450 tests was most of the run.

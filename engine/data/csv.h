@@ -15,7 +15,8 @@
 
 namespace kfw {
 
-// Limits (README "Limits"): refused at once with a message, in bounded time and memory.
+// Limits (README "Missing and invalid data"; docs/hardening.md "Limits"): refused at once with a
+// message, in bounded time and memory.
 inline constexpr std::size_t kMaxCsvLineBytes = 1024u * 1024u;
 inline constexpr std::size_t kMaxCsvColumns = 10000;
 

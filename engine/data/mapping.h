@@ -48,8 +48,8 @@ struct DataRef {
   bool operator==(const DataRef&) const = default;
 };
 
-// The units kfw converts between (README "Units"): s ms us ns; deg rad; deg/s rad/s; m/s^2 g;
-// m mm. Factor to multiply a value in `from` by to get `to`; an Error when they are not of one
+// The units kfw converts between (README "Importing logs"): s ms us ns; deg rad; deg/s rad/s; m/s^2
+// g; m mm. Factor to multiply a value in `from` by to get `to`; an Error when they are not of one
 // kind or unknown.
 Expected<double> unit_factor(const std::string& from, const std::string& to);
 // The time role's unit for an ISO-8601 date-time column: "iso" (a date-time without an offset

@@ -1,4 +1,4 @@
-// The hand-written reader behind every CSV kfw opens (README "Importing logs" says why no library):
+// The hand-written reader behind every CSV kfw opens (docs/architecture.md says why no library):
 // one pass over the file's bytes, fields split with memchr, numbers read with fast_float.
 #include "data/table.h"
 

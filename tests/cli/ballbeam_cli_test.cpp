@@ -21,7 +21,7 @@ TEST(BallbeamCli, GainPrintsClosedFormAndDare) {
   ASSERT_EQ(o.code, 0) << o.text;
   const auto j = nlohmann::json::parse(o.text);
   EXPECT_NEAR(j.at("lambda").get<double>(), 0.0354, 5e-5);
-  EXPECT_NEAR(j.at("alpha").get<double>(), 0.2335, 1e-4);  // SPEC §3; Table 1: 0.234
+  EXPECT_NEAR(j.at("alpha").get<double>(), 0.2335, 1e-4);  // seed 003 eq. 16; Table 1: 0.234
   EXPECT_NEAR(j.at("beta").get<double>(), 0.0310, 1e-4);   // Table 1: 0.031
   EXPECT_NEAR(j.at("alpha_dare").get<double>(), j.at("alpha").get<double>(), 1e-8);
   EXPECT_NEAR(j.at("beta_dare").get<double>(), j.at("beta").get<double>(), 1e-8);

@@ -1,5 +1,5 @@
 // Seed 003 steady-state gains: the corrected closed form (eq. 16) against the DARE of the same
-// constant-velocity model and the SPEC §3 values.
+// constant-velocity model and the values of seed 003 eq. 16.
 #include "scenarios/ballbeam/alpha_beta.h"
 
 #include <gtest/gtest.h>
@@ -12,7 +12,8 @@
 namespace kfw::ballbeam {
 namespace {
 
-// SPEC §3 as printed (corrected): α = −(λ² + 8λ − (λ+4)√(λ²+8λ))/8, β = (λ² + 4λ − λ√(λ²+8λ))/4.
+// Seed 003 eq. 16 (corrected, docs/reproductions.md): α = −(λ² + 8λ − (λ+4)√(λ²+8λ))/8, β = (λ² +
+// 4λ − λ√(λ²+8λ))/4.
 AlphaBeta printed(double l) {
   const double r = std::sqrt(l * l + 8 * l);
   return {-(l * l + 8 * l - (l + 4) * r) / 8, (l * l + 4 * l - l * r) / 4};
@@ -27,7 +28,7 @@ TEST(BallbeamAlphaBeta, CancellationFreeFormEqualsPrintedFormula) {
 }
 
 TEST(BallbeamAlphaBeta, SpecValues) {
-  // SPEC §3: λ = 0.0354 → α = 0.2335, β = 0.0310; λ = 0.1 → 0.36, 0.08; λ = 1 → 0.75, 0.50.
+  // Seed 003 eq. 16: λ = 0.0354 → α = 0.2335, β = 0.0310; λ = 0.1 → 0.36, 0.08; λ = 1 → 0.75, 0.50.
   EXPECT_NEAR(alpha_beta(0.0354).alpha, 0.2335, 5e-4);
   EXPECT_NEAR(alpha_beta(0.0354).beta, 0.0310, 5e-4);
   EXPECT_NEAR(alpha_beta(0.1).alpha, 0.36, 5e-3);
@@ -38,7 +39,7 @@ TEST(BallbeamAlphaBeta, SpecValues) {
 
 TEST(BallbeamAlphaBeta, TrackingIndexIsTsSquaredRootQOverR) {
   // The preset: Ts = 10 ms, Q = 0.5013 (m/s²)², R = (2 mm)² gives λ = 0.0354, α = 0.2335,
-  // β = 0.0310 (SPEC §3), which Table 1 prints as α = 0.234, β = 0.031.
+  // β = 0.0310 (seed 003 eq. 16), which Table 1 prints as α = 0.234, β = 0.031.
   const double l = tracking_index(0.01, 0.5013, 4e-6);
   EXPECT_NEAR(l, 1e-4 * std::sqrt(0.5013 / 4e-6), 1e-15);
   EXPECT_NEAR(l, 0.0354, 5e-5);

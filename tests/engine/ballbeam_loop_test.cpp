@@ -213,7 +213,7 @@ TEST(BallbeamScenario, GainReportsClosedFormAndDare) {
   for (const char* k : {"alpha", "beta", "lambda", "alpha_dare", "beta_dare"})
     ASSERT_TRUE(g->count(k)) << k;
   EXPECT_NEAR(g->at("lambda"), 0.0354, 5e-5);
-  EXPECT_NEAR(g->at("alpha"), 0.2335, 1e-4);  // SPEC §3; Table 1 prints 0.234, 0.031
+  EXPECT_NEAR(g->at("alpha"), 0.2335, 1e-4);  // seed 003 eq. 16; Table 1 prints 0.234, 0.031
   EXPECT_NEAR(g->at("beta"), 0.0310, 1e-4);
   EXPECT_NEAR(g->at("alpha_dare"), g->at("alpha"), 1e-8);
   EXPECT_NEAR(g->at("beta_dare"), g->at("beta"), 1e-8);

@@ -12,7 +12,7 @@ struct Row {
   double beta, k1, p11;
 };
 
-// SPEC §1 table (checked against the DARE to 4 digits).
+// Seed 000 eq. 11, the table of docs/reproductions.md (checked against the DARE to 4 digits).
 class ClosedForm : public ::testing::TestWithParam<Row> {};
 
 TEST_P(ClosedForm, MatchesSpecTable) {

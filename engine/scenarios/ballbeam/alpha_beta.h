@@ -1,5 +1,6 @@
 // Seed 003: the ball tracking filter's constant-velocity model (eq. 12) and its steady-state gains,
-// in closed form from the tracking index λ (eq. 16, corrected as in SPEC §3) and from the DARE.
+// in closed form from the tracking index λ (seed 003 eq. 16, corrected: docs/reproductions.md) and
+// from the DARE.
 #pragma once
 
 #include <vector>
@@ -22,7 +23,7 @@ struct TrackModel {
 // F, G = G^c, H and the discrete process covariance G Q G^T (seed 003, eq. 12–13, 15).
 TrackModel track_model(double Ts_s, double Q);
 
-// λ = Ts² √(Q/R) (seed 003, eq. 16; the paper prints √(R/Q), a typo — SPEC §3).
+// λ = Ts² √(Q/R) (seed 003, eq. 16; the paper prints √(R/Q), a typo).
 double tracking_index(double Ts_s, double Q, double R);
 
 struct AlphaBeta {
@@ -31,7 +32,8 @@ struct AlphaBeta {
 };
 
 // α = −(λ² + 8λ − (λ+4)√(λ²+8λ))/8, β = (λ² + 4λ − λ√(λ²+8λ))/4 (seed 003, eq. 16 as corrected
-// in SPEC §3). Evaluated in a cancellation-free form so that tiny λ keeps full precision.
+// in docs/reproductions.md). Evaluated in a cancellation-free form so that tiny λ keeps full
+// precision.
 AlphaBeta alpha_beta(double lambda);
 
 struct SteadyTrackGain {

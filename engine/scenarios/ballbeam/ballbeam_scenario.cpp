@@ -1,4 +1,5 @@
-// The `ballbeam` scenario (SPEC §3, seed 003): parameter table, schema, simulator and runner.
+// The `ballbeam` scenario (seed 003; docs/reproductions.md): parameter table, schema, simulator and
+// runner.
 #include <cmath>
 #include <memory>
 #include <sstream>

@@ -1,4 +1,5 @@
-// The `helicopter` scenario (SPEC §1, seed 000): parameter table, schema, simulator and runner.
+// The `helicopter` scenario (seed 000; docs/reproductions.md): parameter table, schema, simulator
+// and runner.
 #include <cmath>
 #include <memory>
 

@@ -329,7 +329,7 @@ void RadomeImm::finish(StepOutput& o) {
     sp += mu(j) * off_psi_[static_cast<std::size_t>(j % n_psi_)];
     st += mu(j) * off_theta_[static_cast<std::size_t>(j / n_psi_)];
   }
-  // R̂ = Σ μ^j R̄^j (SPEC §2); Σ μ = 1, so the centre factors out.
+  // R̂ = Σ μ^j R̄^j (seed 001, sec. 2.2.2); Σ μ = 1, so the centre factors out.
   est_psi_ = center_psi_ + sp;
   est_theta_ = center_theta_ + st;
   if (p_.structure == Structure::kFull) {

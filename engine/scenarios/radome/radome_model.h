@@ -39,7 +39,7 @@ double los_theta(const Vec<3>& rel);
 
 // Radome refraction of one angle (seed 001, eq. 2 without noise): z = λ + R (λ − λ_a).
 double refract(double los_rad, double slope, double attitude_rad);
-// The mode's inverse of eq. 2: λ = (z + R̄ λ_a) / (1 + R̄) (SPEC §2).
+// The mode's inverse of eq. 2: λ = (z + R̄ λ_a) / (1 + R̄) (seed 001).
 double undo_slope(double z_rad, double slope, double attitude_rad);
 
 // Cartesian pseudo-measurement Y = z_R [cos θ cos ψ, cos θ sin ψ, sin θ] (seed 001, eq. 3).

@@ -8,8 +8,8 @@
 // edge goes to that edge), so the renewal moves the grid and not the estimate; `rate` applies Kp
 // per second (ΔR̄ = Kp·Ts·(R̂ − R̄)) with μ by index; `mix` treats the shift as a mode transition
 // composed with the Markov chain, so μ, the mode states and covariances move to the new grid in
-// one IMM mixing (a mode keeps the state of the slope it now stands for). README "Scenario
-// radome" compares them.
+// one IMM mixing (a mode keeps the state of the slope it now stands for). docs/reproductions.md
+// (radome) compares them.
 #pragma once
 
 #include <vector>

@@ -1,4 +1,5 @@
-// The `radome` scenario (SPEC §2, seed 001): parameter table, schema, simulator and runner.
+// The `radome` scenario (seed 001; docs/reproductions.md): parameter table, schema, simulator and
+// runner.
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>

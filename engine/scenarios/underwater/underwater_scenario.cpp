@@ -1,6 +1,6 @@
-// The `underwater` scenario (SPEC §4, seed 004): sensor-measurement simulator with timing,
-// correlation and outliers, its verifying statistics (`stats` command), and EKF localization with
-// the AS / SC / SI update schemes.
+// The `underwater` scenario (seed 004; docs/reproductions.md): sensor-measurement simulator with
+// timing, correlation and outliers, its verifying statistics (`stats` command), and EKF
+// localization with the AS / SC / SI update schemes.
 #include <cmath>
 #include <memory>
 #include <nlohmann/json.hpp>

@@ -250,6 +250,16 @@ std::unique_ptr<Scenario> ScenarioRegistry::make(const std::string& name) const 
   return it == factories_.end() ? nullptr : it->second();
 }
 
+void ScenarioRegistry::add_from_preset(std::string name, PresetFactory factory) {
+  preset_factories_[std::move(name)] = std::move(factory);
+}
+
+const ScenarioRegistry::PresetFactory* ScenarioRegistry::from_preset(
+    const std::string& name) const {
+  auto it = preset_factories_.find(name);
+  return it == preset_factories_.end() ? nullptr : &it->second;
+}
+
 const ScenarioRegistry& scenarios() {
   static const ScenarioRegistry registry = [] {
     ScenarioRegistry r;

@@ -6,6 +6,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -142,16 +143,26 @@ std::string metrics_to_json(const Metrics& m, const UndefinedMetrics& undefined,
 class ScenarioRegistry {
  public:
   using Factory = std::function<std::unique_ptr<Scenario>()>;
+  // A scenario built from the preset file itself (a model file, "scenario": "model"): reads the
+  // whole preset; errors name the file (`path`) and the key.
+  using PresetFactory = std::function<Expected<std::unique_ptr<Scenario>>(
+      const nlohmann::json& preset, const std::string& path)>;
   void add(std::string name, Factory factory);
+  void add_from_preset(std::string name, PresetFactory factory);
+  // The compiled scenarios' names (not those built from a preset).
   std::vector<std::string> names() const;
   // A new scenario object, or nullptr for an unknown name.
   std::unique_ptr<Scenario> make(const std::string& name) const;
+  // The factory of a scenario built from its preset, or nullptr.
+  const PresetFactory* from_preset(const std::string& name) const;
 
  private:
   std::map<std::string, Factory> factories_;
+  std::map<std::string, PresetFactory> preset_factories_;
 };
 
-// Every scenario compiled in (engine/scenarios/*), registered once.
+// Every scenario compiled in (engine/scenarios/*) and the model engine (engine/model), each
+// registered once through the list engine/CMakeLists.txt generates.
 const ScenarioRegistry& scenarios();
 Expected<std::unique_ptr<Scenario>> make_scenario(const std::string& name);
 

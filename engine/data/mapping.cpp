@@ -157,49 +157,4 @@ nlohmann::ordered_json mapping_to_json(const Mapping& m) {
   return j;
 }
 
-Expected<Dataset> apply_mapping(Dataset d, const Mapping& m,
-                                const std::map<std::string, std::string>& role_units) {
-  // Resolve every mapped column first, then rename: a role may take the name of another column.
-  std::map<std::string, int> source;
-  for (const auto& [role, r] : m) {
-    const std::string col = r.column.empty() ? role : r.column;
-    const int i = d.index(col);
-    if (i < 0) {
-      std::string msg = d.source + ": mapped column '" + col + "' (for '" + role +
-                        "') is not in the file; columns:";
-      for (const auto& n : d.names)
-        msg += " " + n;
-      return Error{msg};
-    }
-    source[role] = i;
-  }
-  for (const auto& [role, i] : source) {
-    if (d.names[static_cast<std::size_t>(i)] == role) continue;
-    if (const int clash = d.index(role);
-        clash >= 0 && !m.count(d.names[static_cast<std::size_t>(clash)])) {
-      d.names[static_cast<std::size_t>(clash)] += ".unmapped";
-    }
-  }
-  std::vector<std::string> names = d.names;
-  for (const auto& [role, i] : source)
-    names[static_cast<std::size_t>(i)] = role;
-  d.names = names;
-  for (const auto& [role, r] : m) {
-    double factor = 1.0;
-    if (!r.unit.empty()) {
-      auto ru = role_units.find(role);
-      auto f = unit_factor(r.unit, ru == role_units.end() ? r.unit : ru->second);
-      if (!f) return Error{d.source + ": mapping." + role + ".unit: " + f.error()};
-      factor = *f;
-    }
-    if (factor == 1.0 && r.scale == 1.0 && r.offset == 0.0 && !r.flip) continue;
-    auto& col = d.columns[static_cast<std::size_t>(source.at(role))];
-    for (double& v : col) {
-      v = r.scale * (v * factor) + r.offset;
-      if (r.flip) v = -v;
-    }
-  }
-  return d;
-}
-
 }  // namespace kfw

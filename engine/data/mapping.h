@@ -66,10 +66,4 @@ const std::vector<std::string>& known_units();
 Expected<Mapping> mapping_from_json(const nlohmann::json& j, const std::string& where);
 nlohmann::ordered_json mapping_to_json(const Mapping& m);
 
-// Renames each mapped column to its role and converts its values; columns bound to no role are
-// kept under their own names. `role_units` gives each role's unit (for unit conversion). Errors
-// name the file and the mapped column it lacks.
-Expected<Dataset> apply_mapping(Dataset d, const Mapping& m,
-                                const std::map<std::string, std::string>& role_units = {});
-
 }  // namespace kfw

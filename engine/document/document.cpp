@@ -127,12 +127,6 @@ bool Document::redo() {
   return true;
 }
 
-Mapping Document::mapping_with(const Mapping& overrides) const {
-  Mapping m = preset_.mapping;
-  m.override_with(overrides);
-  return m;
-}
-
 Session Document::to_session() const {
   Session s;
   s.preset_path = preset_.path;

@@ -72,10 +72,6 @@ class Document {
   Session to_session() const;
   static Expected<Document> from_session(const Session& s, const std::string& where);
 
-  // The effective mapping of a dataset path given on the command line: the preset's, with the
-  // given entries overriding it role by role.
-  Mapping mapping_with(const Mapping& overrides) const;
-
  private:
   struct State {
     ParamValues values;

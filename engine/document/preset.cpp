@@ -3,7 +3,6 @@
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
-#include <mutex>
 #include <sstream>
 
 #include "core/dataset.h"
@@ -11,7 +10,6 @@
 #include "core/suggest.h"
 #include "data/csv.h"
 #include "data/json_io.h"
-#include "model/model_scenario.h"
 
 #ifndef KFW_SOURCE_DIR
 #define KFW_SOURCE_DIR "."
@@ -47,16 +45,6 @@ const std::vector<std::string> kTopKeys = {"format",      "version", "scenario",
 const std::vector<std::string> kParamKeys = {"value",       "min",   "max",         "unit",
                                              "scale",       "label", "choices",     "tunable",
                                              "scale_group", "group", "description", "decimals"};
-
-// Scenarios built from the preset itself: a user model ("scenario": "model").
-std::map<std::string, PresetScenarioFactory>& preset_factories() {
-  static std::map<std::string, PresetScenarioFactory> f = {{"model", &make_model_scenario}};
-  return f;
-}
-std::mutex& factories_mutex() {
-  static std::mutex m;
-  return m;
-}
 
 std::string unknown_key(const std::string& key, const std::vector<std::string>& allowed) {
   if (auto near = nearest(key, allowed)) return "unknown key (did you mean '" + *near + "'?)";
@@ -159,15 +147,6 @@ Status read_parameter(Preset& p, const ParamTable& table, const std::string& key
   return Ok{};
 }
 
-}  // namespace
-
-void register_preset_scenario(const std::string& name, PresetScenarioFactory factory) {
-  std::lock_guard lock(factories_mutex());
-  preset_factories()[name] = factory;
-}
-
-namespace {
-
 Expected<Preset> preset_from_json(const json& j, const std::string& path) {
   if (!j.is_object()) return Error{path + ": a preset must be a JSON object"};
   for (auto it = j.begin(); it != j.end(); ++it) {
@@ -218,12 +197,8 @@ Expected<Preset> preset_from_json(const json& j, const std::string& path) {
     if (dp.is_relative() && !path.empty()) dp = fs::path(path).parent_path() / dp;
     p.data_path = dp.lexically_normal().string();
   }
-  PresetScenarioFactory factory = nullptr;
-  {
-    std::lock_guard lock(factories_mutex());
-    auto f = preset_factories().find(p.scenario);
-    if (f != preset_factories().end()) factory = f->second;
-  }
+  // Scenarios built from the preset itself (a model file) registered as such (core/scenario.h).
+  const ScenarioRegistry::PresetFactory* factory = scenarios().from_preset(p.scenario);
   if (auto m = j.find("model"); m != j.end()) {
     if (!factory) {
       return Error{path +
@@ -235,7 +210,7 @@ Expected<Preset> preset_from_json(const json& j, const std::string& path) {
     p.model = *m;
   }
   if (factory) {
-    auto s = factory(j, path);
+    auto s = (*factory)(j, path);
     if (!s) return s.err();
     p.instance = std::shared_ptr<const Scenario>(std::move(*s));
     if (auto params = j.find("parameters"); params != j.end()) p.parameters_block = *params;

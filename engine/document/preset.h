@@ -57,11 +57,6 @@ Expected<Preset> default_preset(const std::string& scenario);
 std::string preset_to_json(const Preset& preset);
 Status save_preset(const std::string& path, const Preset& preset);
 
-// A hook for scenarios built from a preset (the user-model issue registers "model" here).
-using PresetScenarioFactory = Expected<std::unique_ptr<Scenario>> (*)(const nlohmann::json& preset,
-                                                                      const std::string& path);
-void register_preset_scenario(const std::string& name, PresetScenarioFactory factory);
-
 // The directory the project's presets live in (KFW_PRESETS env var, else the source tree).
 std::string preset_dir();
 // Resolves "helicopter" or "helicopter.json" to presets/helicopter.json when not a readable path.

@@ -556,12 +556,4 @@ void ExprGroup::eval() {
     *targets_[i] = r[i];
 }
 
-void ExprGroup::eval_into(double* out) {
-  if (targets_.empty()) return;
-  int n = 0;
-  const double* r = parser_->Eval(n);
-  for (std::size_t i = 0; i < targets_.size(); ++i)
-    out[i] = r[i];
-}
-
 }  // namespace kfw::model

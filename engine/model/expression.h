@@ -92,8 +92,6 @@ class ExprGroup {
   Status bind(const Symbols& symbols, double* vars);
   // Evaluates every expression and writes each result to its target.
   void eval();
-  // Evaluates into `out` (size() values) without touching the targets.
-  void eval_into(double* out);
 
  private:
   std::unique_ptr<mu::Parser> parser_;

@@ -388,4 +388,10 @@ Expected<std::unique_ptr<Scenario>> make_model_scenario(const json& preset,
       std::make_unique<ModelScenario>(std::move(shared), std::move(table), std::move(title)));
 }
 
+// Registered through the generated list (engine/CMakeLists.txt), like the compiled scenarios: a
+// preset whose "scenario" is "model" is built from its own "model" and "parameters" blocks.
+void register_scenario_model(ScenarioRegistry& registry) {
+  registry.add_from_preset("model", &make_model_scenario);
+}
+
 }  // namespace kfw

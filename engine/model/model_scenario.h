@@ -40,6 +40,9 @@ struct ModelLayout {
 // Errors (exit 2) read "PATH: KEY: what", with the position in an expression where there is one.
 Expected<std::unique_ptr<Scenario>> make_model_scenario(const nlohmann::json& preset,
                                                         const std::string& path);
+// Registers "model" as a scenario built from its preset (core/scenario.h); the generated scenario
+// list calls it.
+void register_scenario_model(ScenarioRegistry& registry);
 
 // The layout of the model a scenario was built from; empty when `s` is not a model scenario.
 std::optional<ModelLayout> model_layout_of(const Scenario& s);

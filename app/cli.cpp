@@ -38,17 +38,33 @@ std::map<std::string, std::vector<std::string>> scenario_commands() {
   return cmds;
 }
 
-// The declaration and what it parses into.
+// The declaration and what it parses into: one option struct per command (cli_options.h).
 struct Cli {
   CLI::App app{"kfw-cli: the Kalman filter tuning workbench, headless.", "kfw-cli"};
-  CliArgs args;
-  std::string topic;  // help TOPIC
-  std::vector<std::string> scenario_cmds;
+  SimulateArgs simulate;
+  RunArgs run;
+  MergeArgs merge;
+  GainArgs gain;
+  TuneArgs tune;
+  SweepArgs sweep;
+  ParamsArgs params;
+  PresetArgs preset;
+  MetricsArgs metrics;
+  InspectArgs inspect;
+  std::map<std::string, ScenarioCommandArgs> scenario;  // by command name
+  std::string topic;                                    // help TOPIC
 };
 
 // Options shared by several commands: one place for their names, types and help.
-void add_target(CLI::App* c, CliArgs& a, const std::string& help = kPresetHelp) {
-  c->add_option("PRESET", a.target, help)->type_name("")->required();
+void add_preset(CLI::App* c, std::string& preset, const std::string& help = kPresetHelp) {
+  c->add_option("PRESET", preset, help)->type_name("")->required();
+}
+
+void add_sets(CLI::App* c, std::vector<std::string>& sets) {
+  c->add_option("--set", sets, "set a parameter (repeatable); kfw-cli params PRESET lists the keys")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false)
+      ->take_all();
 }
 
 // How a CSV's columns become roles (README "Importing logs"); over the preset's mapping.
@@ -82,22 +98,19 @@ void add_import(CLI::App* c, ImportArgs& m) {
       ->type_name("FILE.json");
 }
 
-void add_data(CLI::App* c, CliArgs& a) {
+// The preset, --data with the import options, and --set, in this order.
+void add_target_and_data(CLI::App* c, TargetArgs& t, DataArgs& d,
+                         const std::string& help = kPresetHelp) {
+  add_preset(c, t.preset, help);
   c->add_option_function<std::string>(
-       "--data", [&a](const std::string& v) { a.data = v; },
+       "--data", [&d](const std::string& v) { d.file = v; },
        "the dataset (CSV); default: the preset's, else simulated")
       ->type_name("FILE.csv");
-  add_import(c, a.import);
+  add_import(c, d.import);
+  add_sets(c, t.sets);
 }
 
-void add_sets(CLI::App* c, CliArgs& a) {
-  c->add_option("--set", a.sets,
-                "set a parameter (repeatable); kfw-cli params PRESET lists the keys")
-      ->type_name("KEY=VALUE")
-      ->allow_extra_args(false)
-      ->take_all();
-}
-
+// An optional path (or other text) option.
 CLI::Option* add_path(CLI::App* c, const std::string& name, std::optional<std::string>& dst,
                       const std::string& type, const std::string& help) {
   return c
@@ -106,8 +119,64 @@ CLI::Option* add_path(CLI::App* c, const std::string& name, std::optional<std::s
       ->type_name(type);
 }
 
+// A required path option.
+void add_required_path(CLI::App* c, const std::string& name, std::string& dst,
+                       const std::string& type, const std::string& help) {
+  c->add_option_function<std::string>(
+       name, [&dst](const std::string& v) { dst = v; }, help)
+      ->type_name(type)
+      ->required();
+}
+
+void declare_simulate(CLI::App& app, SimulateArgs& a) {
+  CLI::App* c = app.add_subcommand("simulate", "simulate a dataset from the sim.* parameters");
+  add_preset(c, a.target.preset);
+  c->add_option_function<long long>(
+       "--seed", [&a](const long long& v) { a.seed = v; }, "the simulator's seed (sim.seed)")
+      ->type_name("N");
+  add_sets(c, a.target.sets);
+  add_required_path(c, "--out", a.out, "FILE.csv", "where to write the dataset");
+}
+
+void declare_run(CLI::App& app, RunArgs& a) {
+  CLI::App* c =
+      app.add_subcommand("run", "run the filter over a dataset and print its metrics (JSON)");
+  add_target_and_data(c, a.target, a.data);
+  add_path(c, "--out", a.output.out, "FILE.csv",
+           "write the per-step estimates (--seeds: the part, JSON)");
+  add_path(c, "--metrics", a.output.metrics, "FILE.json",
+           "write the metrics too (--seeds: with ANEES/ANIS at every step)");
+  add_path(c, "--seeds", a.seeds.seeds, "SET",
+           "Monte Carlo: simulate and filter each seed (1..50, 3,7,9); mean, sd, min, max");
+  add_path(c, "--shard", a.seeds.shard, "i/N", "with --seeds: run seeds i, i+N, ... into --out");
+  add_path(c, "--out-dir", a.seeds.out_dir, "DIR", "with --seeds: one estimates file per seed");
+  c->add_flag("--table", a.seeds.table, "with --seeds: a readable table instead of JSON");
+}
+
+void declare_merge(CLI::App& app, MergeArgs& a) {
+  CLI::App* c = app.add_subcommand(
+      "merge", "merge the parts of a sharded run (run --seeds --shard, sweep --shard)");
+  c->add_option("PART", a.parts, "the part files (JSON, one per shard)")
+      ->type_name("PART.json")
+      ->required();
+  add_path(c, "--metrics", a.output.metrics, "FILE.json", "write the merged result (JSON) too");
+  add_path(c, "--out", a.output.out, "FILE.json|FILE.csv", "sweep parts: write the merged sweep");
+  c->add_flag("--table", a.table, "a readable table instead of JSON");
+}
+
+void declare_gain(CLI::App& app, GainArgs& a) {
+  CLI::App* c = app.add_subcommand("gain", "print the steady-state gains (closed form and DARE)");
+  add_target_and_data(c, a.target, a.data);
+  add_path(c, "--curve", a.curve, "KEY",
+           "the gain curve: the steady-state gains over KEY's declared range (JSON)");
+  c->add_option("--points", a.points, "points of the gain curve")
+      ->type_name("N")
+      ->check(CLI::Range(2, 100000))
+      ->capture_default_str();
+}
+
 // tune: the selection, the objective and the optimiser's settings.
-void add_tune_options(CLI::App* c, CliArgs& a) {
+void add_tune_search(CLI::App* c, TuneArgs& a) {
   c->add_option("--params", a.params, "the parameters to search; default: the preset's tunable")
       ->type_name("KEY[,KEY...]")
       ->delimiter(',')
@@ -142,80 +211,27 @@ void add_tune_options(CLI::App* c, CliArgs& a) {
       ->capture_default_str();
 }
 
-const CLI::App* find_command(const CLI::App& app, const std::string& name) {
-  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
-    if (sub->get_name() == name) return sub;
-  }
-  return nullptr;
-}
-
-void declare(Cli& cli) {
-  CLI::App& app = cli.app;
-  CliArgs& a = cli.args;
-  app.get_formatter()->column_width(30);
-  app.set_help_flag("-h,--help", "print this help and exit");
-  app.allow_extras();  // unknown names are answered with "did you mean" (see check_extras)
-
-  CLI::App* c = app.add_subcommand("simulate", "simulate a dataset from the sim.* parameters");
-  add_target(c, a);
-  c->add_option_function<long long>(
-       "--seed", [&a](const long long& v) { a.seed = v; }, "the simulator's seed (sim.seed)")
-      ->type_name("N");
-  add_sets(c, a);
-  add_path(c, "--out", a.out, "FILE.csv", "where to write the dataset")->required();
-
-  c = app.add_subcommand("run", "run the filter over a dataset and print its metrics (JSON)");
-  add_target(c, a);
-  add_data(c, a);
-  add_sets(c, a);
-  add_path(c, "--out", a.out, "FILE.csv", "write the per-step estimates (--seeds: the part, JSON)");
-  add_path(c, "--metrics", a.metrics, "FILE.json",
-           "write the metrics too (--seeds: with ANEES/ANIS at every step)");
-  add_path(c, "--seeds", a.seeds, "SET",
-           "Monte Carlo: simulate and filter each seed (1..50, 3,7,9); mean, sd, min, max");
-  add_path(c, "--shard", a.shard, "i/N", "with --seeds: run seeds i, i+N, ... into --out");
-  add_path(c, "--out-dir", a.out_dir, "DIR", "with --seeds: one estimates file per seed");
-  c->add_flag("--table", a.table, "with --seeds: a readable table instead of JSON");
-
-  c = app.add_subcommand("merge",
-                         "merge the parts of a sharded run (run --seeds --shard, sweep --shard)");
-  c->add_option("PART", a.parts, "the part files (JSON, one per shard)")
-      ->type_name("PART.json")
-      ->required();
-  add_path(c, "--metrics", a.metrics, "FILE.json", "write the merged result (JSON) too");
-  add_path(c, "--out", a.out, "FILE.json|FILE.csv", "sweep parts: write the merged sweep");
-  c->add_flag("--table", a.table, "a readable table instead of JSON");
-
-  c = app.add_subcommand("gain", "print the steady-state gains (closed form and DARE)");
-  add_target(c, a);
-  add_data(c, a);
-  add_sets(c, a);
-  add_path(c, "--curve", a.curve, "KEY",
-           "the gain curve: the steady-state gains over KEY's declared range (JSON)");
-  c->add_option("--points", a.curve_points, "points of the gain curve")
-      ->type_name("N")
-      ->check(CLI::Range(2, 100000))
-      ->capture_default_str();
-
-  c = app.add_subcommand("tune", "search the parameters that best meet an objective");
-  add_target(c, a);
-  c->add_option("--data", a.data_all,
+void declare_tune(CLI::App& app, TuneArgs& a) {
+  CLI::App* c = app.add_subcommand("tune", "search the parameters that best meet an objective");
+  add_preset(c, a.target.preset);
+  c->add_option("--data", a.data,
                 "a dataset (CSV); repeat it or give a glob for a tuning set; default: the "
                 "preset's, else simulated")
       ->type_name("FILE.csv")
       ->allow_extra_args(false)
       ->take_all();
   add_import(c, a.import);  // the same mapping for every log of the tuning set
-  add_sets(c, a);
-  add_tune_options(c, a);
+  add_sets(c, a.target.sets);
+  add_tune_search(c, a);
   add_path(c, "--seeds", a.seeds, "SET",
            "tune over the datasets of these simulator seeds (a tuning set, like --data)");
   add_path(c, "--out", a.out, "FILE.json", "write the tuned preset");
+}
 
-  c = app.add_subcommand("sweep", "run every point of a grid and report the best by a metric");
-  add_target(c, a);
-  add_data(c, a);
-  add_sets(c, a);
+void declare_sweep(CLI::App& app, SweepArgs& a) {
+  CLI::App* c =
+      app.add_subcommand("sweep", "run every point of a grid and report the best by a metric");
+  add_target_and_data(c, a.target, a.data);
   c->add_option("--param", a.axes,
                 "a grid axis (repeatable; grid points in row-major order, the first axis "
                 "slowest)")
@@ -240,49 +256,85 @@ void declare(Cli& cli) {
       "without either, log-scale parameters are spaced in log10.");
   add_path(c, "--shard", a.shard, "i/N",
            "run only shard i of N (grid points k with k mod N = i-1)");
+}
 
-  c = app.add_subcommand("params", "print the parameter table: key, value, range, unit, label");
-  add_target(c, a);
-  add_sets(c, a);
+void declare_params(CLI::App& app, ParamsArgs& a) {
+  CLI::App* c =
+      app.add_subcommand("params", "print the parameter table: key, value, range, unit, label");
+  add_preset(c, a.target.preset);
+  add_sets(c, a.target.sets);
+}
 
-  c = app.add_subcommand("preset", "write a full preset (every parameter) with --set applied");
-  add_target(c, a);
-  add_sets(c, a);
-  add_path(c, "--out", a.out, "FILE.json", "where to write the preset")->required();
+void declare_preset(CLI::App& app, PresetArgs& a) {
+  CLI::App* c =
+      app.add_subcommand("preset", "write a full preset (every parameter) with --set applied");
+  add_preset(c, a.target.preset);
+  add_sets(c, a.target.sets);
+  add_required_path(c, "--out", a.out, "FILE.json", "where to write the preset");
+}
 
-  c = app.add_subcommand("metrics",
-                         "list the metrics a scenario reports: key, label, unit, group, direction");
-  add_target(c, a);
+void declare_metrics(CLI::App& app, MetricsArgs& a) {
+  CLI::App* c = app.add_subcommand(
+      "metrics", "list the metrics a scenario reports: key, label, unit, group, direction");
+  add_preset(c, a.preset);
   c->add_flag("--markdown", a.markdown, "print a Markdown table (the README's tables)");
+}
 
-  app.add_subcommand("list", "list the scenarios and presets");
-
-  c = app.add_subcommand("inspect",
-                         "read a CSV: separator, columns, rows, time span and rate, and the "
-                         "mapping kfw would guess for a preset");
-  c->add_option("FILE", a.target, "the CSV file")->type_name("")->required();
+void declare_inspect(CLI::App& app, InspectArgs& a) {
+  CLI::App* c = app.add_subcommand("inspect",
+                                   "read a CSV: separator, columns, rows, time span and rate, and "
+                                   "the mapping kfw would guess for a preset");
+  c->add_option("FILE", a.file, "the CSV file")->type_name("")->required();
   c->add_option_function<std::string>(
-       "PRESET", [&a](const std::string& v) { a.inspect_preset = v; },
+       "PRESET", [&a](const std::string& v) { a.preset = v; },
        "guess the roles of this preset or scenario")
       ->type_name("");
   add_import(c, a.import);
   c->add_flag("--json", a.json, "print JSON");
+}
 
+const CLI::App* find_command(const CLI::App& app, const std::string& name) {
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    if (sub->get_name() == name) return sub;
+  }
+  return nullptr;
+}
+
+// The commands scenarios offer, each with its own option struct in `cli.scenario`.
+void declare_scenario_commands(CLI::App& app, Cli& cli) {
   for (const auto& [name, offering] : scenario_commands()) {
     if (find_command(app, name)) continue;  // a built-in command wins
     std::string who;
     for (const auto& s : offering)
       who += (who.empty() ? "" : ", ") + s;
-    c = app.add_subcommand(name, "a scenario's own analysis, offered by: " + who);
-    add_target(c, a,
-               std::string(kPresetHelp) + "; or FILE.csv, short for " + offering.front() +
-                   " --data FILE.csv when one scenario offers " + name);
-    add_data(c, a);
-    add_sets(c, a);
-    cli.scenario_cmds.push_back(name);
+    CLI::App* c = app.add_subcommand(name, "a scenario's own analysis, offered by: " + who);
+    ScenarioCommandArgs& a = cli.scenario[name];
+    add_target_and_data(c, a.target, a.data,
+                        std::string(kPresetHelp) + "; or FILE.csv, short for " + offering.front() +
+                            " --data FILE.csv when one scenario offers " + name);
   }
+}
 
-  c = app.add_subcommand("help", "print the help of a command, or of a topic: grammar");
+void declare(Cli& cli) {
+  CLI::App& app = cli.app;
+  app.get_formatter()->column_width(30);
+  app.set_help_flag("-h,--help", "print this help and exit");
+  app.allow_extras();  // unknown names are answered with "did you mean" (see check_extras)
+
+  declare_simulate(app, cli.simulate);
+  declare_run(app, cli.run);
+  declare_merge(app, cli.merge);
+  declare_gain(app, cli.gain);
+  declare_tune(app, cli.tune);
+  declare_sweep(app, cli.sweep);
+  declare_params(app, cli.params);
+  declare_preset(app, cli.preset);
+  declare_metrics(app, cli.metrics);
+  app.add_subcommand("list", "list the scenarios and presets");
+  declare_inspect(app, cli.inspect);
+  declare_scenario_commands(app, cli);
+
+  CLI::App* c = app.add_subcommand("help", "print the help of a command, or of a topic: grammar");
   c->add_option("TOPIC", cli.topic, "a command or 'grammar'");
 
   app.set_version_flag("--version", std::string("kfw-cli ") + KFW_VERSION,
@@ -351,7 +403,6 @@ int dispatch(const Cli& cli, std::ostream& out, std::ostream& err) {
     return kExitInvalid;
   }
   const std::string cmd = subs.front()->get_name();
-  const CliArgs& a = cli.args;
   if (cmd == "help") {
     if (cli.topic.empty()) {
       out << top_help(cli.app);
@@ -370,18 +421,18 @@ int dispatch(const Cli& cli, std::ostream& out, std::ostream& err) {
     out << sub->help("kfw-cli");
     return kExitOk;
   }
-  if (cmd == "simulate") return cmd_simulate(a, out, err);
-  if (cmd == "run") return cmd_run(a, out, err);
-  if (cmd == "gain") return cmd_gain(a, out, err);
-  if (cmd == "tune") return cmd_tune(a, out, err);
-  if (cmd == "sweep") return cmd_sweep(a, out, err);
-  if (cmd == "params") return cmd_params(a, out, err);
-  if (cmd == "metrics") return cmd_metrics(a, out, err);
-  if (cmd == "preset") return cmd_preset(a, out, err);
+  if (cmd == "simulate") return cmd_simulate(cli.simulate, out, err);
+  if (cmd == "run") return cmd_run(cli.run, out, err);
+  if (cmd == "gain") return cmd_gain(cli.gain, out, err);
+  if (cmd == "tune") return cmd_tune(cli.tune, out, err);
+  if (cmd == "sweep") return cmd_sweep(cli.sweep, out, err);
+  if (cmd == "params") return cmd_params(cli.params, out, err);
+  if (cmd == "metrics") return cmd_metrics(cli.metrics, out, err);
+  if (cmd == "preset") return cmd_preset(cli.preset, out, err);
   if (cmd == "list") return cmd_list(out);
-  if (cmd == "merge") return cmd_merge(a, out, err);
-  if (cmd == "inspect") return cmd_inspect(a, out, err);
-  return cmd_scenario(cmd, a, out, err);
+  if (cmd == "merge") return cmd_merge(cli.merge, out, err);
+  if (cmd == "inspect") return cmd_inspect(cli.inspect, out, err);
+  return cmd_scenario(cmd, cli.scenario.at(cmd), out, err);
 }
 
 }  // namespace

@@ -31,11 +31,6 @@ std::vector<std::string> target_names() {
   return names;
 }
 
-// The workspace with the import options applied (--map, --unit, ...).
-Expected<Workspace> open_any(const CliArgs& a) {
-  return open_workspace_for_cli(a);
-}
-
 void print_warnings(const RunResult& r, std::ostream& err) {
   for (const auto& w : r.warnings)
     err << "kfw-cli: warning: " << one_line(w) << "\n";
@@ -79,10 +74,10 @@ Expected<Workspace> open_any(const std::string& name, const std::optional<std::s
   return open_workspace(name, data, sets);
 }
 
-Expected<Workspace> open_workspace_for_cli(const CliArgs& a) {
-  auto ws = open_any(a.target, a.data, a.sets);
+Expected<Workspace> open_workspace_for_cli(const TargetArgs& target, const DataArgs& data) {
+  auto ws = open_any(target.preset, data.file, target.sets);
   if (!ws) return ws;
-  if (auto st = apply_import_args(a.import, *ws); !st) return st.err();
+  if (auto st = apply_import_args(data.import, *ws); !st) return st.err();
   return ws;
 }
 
@@ -91,37 +86,39 @@ int fail(std::ostream& err, const Error& e) {
   return e.exit_code;
 }
 
-int cmd_simulate(const CliArgs& a, std::ostream& out, std::ostream& err) {
-  std::vector<std::string> sets = a.sets;
+int cmd_simulate(const SimulateArgs& a, std::ostream& out, std::ostream& err) {
+  std::vector<std::string> sets = a.target.sets;
   if (a.seed) sets.push_back("sim.seed=" + std::to_string(*a.seed));
-  auto ws = open_any(a.target, std::nullopt, sets);
+  auto ws = open_any(a.target.preset, std::nullopt, sets);
   if (!ws) return fail(err, ws.err());
   OutputSet outs = outputs_for(*ws);
-  if (auto st = outs.add(*a.out, "--out"); !st) return fail(err, st.err());
+  if (auto st = outs.add(a.out, "--out"); !st) return fail(err, st.err());
   auto d = ws->scenario->simulate(ws->values);
   if (!d) return fail(err, d.err());
   std::ostringstream csv;
   write_csv(csv, *d);
-  if (auto st = outs.stage(*a.out, csv.str()); !st) return fail(err, st.err());
+  if (auto st = outs.stage(a.out, csv.str()); !st) return fail(err, st.err());
   if (auto st = outs.commit(); !st) return fail(err, st.err());
-  out << "wrote " << *a.out << " (" << d->rows() << " rows, " << d->names.size() << " columns)\n";
+  out << "wrote " << a.out << " (" << d->rows() << " rows, " << d->names.size() << " columns)\n";
   return kExitOk;
 }
 
-int cmd_run(const CliArgs& a, std::ostream& out, std::ostream& err) {
-  if (a.seeds) return cmd_run_seeds(a, out, err);
-  if (a.shard || a.out_dir || a.table) {
-    const char* opt = a.shard ? "--shard" : a.out_dir ? "--out-dir" : "--table";
+int cmd_run(const RunArgs& a, std::ostream& out, std::ostream& err) {
+  const RunSeedsArgs& mc = a.seeds;
+  if (mc.seeds) return cmd_run_seeds(a, out, err);
+  if (mc.shard || mc.out_dir || mc.table) {
+    const char* opt = mc.shard ? "--shard" : mc.out_dir ? "--out-dir" : "--table";
     return fail(err, Error{std::string(opt) + ": needs --seeds"});
   }
-  auto ws = open_any(a);
+  auto ws = open_workspace_for_cli(a.target, a.data);
   if (!ws) return fail(err, ws.err());
   OutputSet outs = outputs_for(*ws);
-  if (a.out) {
-    if (auto st = outs.add(*a.out, "--out"); !st) return fail(err, st.err());
+  const OutputArgs& o = a.output;
+  if (o.out) {
+    if (auto st = outs.add(*o.out, "--out"); !st) return fail(err, st.err());
   }
-  if (a.metrics) {
-    if (auto st = outs.add(*a.metrics, "--metrics"); !st) return fail(err, st.err());
+  if (o.metrics) {
+    if (auto st = outs.add(*o.metrics, "--metrics"); !st) return fail(err, st.err());
   }
   auto d = load_dataset(*ws);
   if (!d) return fail(err, d.err());
@@ -130,13 +127,13 @@ int cmd_run(const CliArgs& a, std::ostream& out, std::ostream& err) {
   const RunResult& res = **r;
   print_warnings(res, err);
   const std::string text = metrics_to_json(res.metrics, res.undefined) + "\n";
-  if (a.out) {
+  if (o.out) {
     std::ostringstream csv;
     write_csv(csv, res.table());
-    if (auto st = outs.stage(*a.out, csv.str()); !st) return fail(err, st.err());
+    if (auto st = outs.stage(*o.out, csv.str()); !st) return fail(err, st.err());
   }
-  if (a.metrics) {
-    if (auto st = outs.stage(*a.metrics, text); !st) return fail(err, st.err());
+  if (o.metrics) {
+    if (auto st = outs.stage(*o.metrics, text); !st) return fail(err, st.err());
   }
   if (auto st = outs.commit(); !st) return fail(err, st.err());
   out << text;
@@ -176,8 +173,8 @@ int print_gain_curve(const Scenario& s, const ParamValues& values, const std::st
 
 }  // namespace
 
-int cmd_gain(const CliArgs& a, std::ostream& out, std::ostream& err) {
-  auto ws = open_any(a);
+int cmd_gain(const GainArgs& a, std::ostream& out, std::ostream& err) {
+  auto ws = open_workspace_for_cli(a.target, a.data);
   if (!ws) return fail(err, ws.err());
   std::optional<Dataset> data;
   if (ws->data_path) {
@@ -186,29 +183,29 @@ int cmd_gain(const CliArgs& a, std::ostream& out, std::ostream& err) {
     data = std::move(*d);
   }
   if (a.curve)
-    return print_gain_curve(*ws->scenario, ws->values, *a.curve, a.curve_points,
-                            data ? &*data : nullptr, out, err);
+    return print_gain_curve(*ws->scenario, ws->values, *a.curve, a.points, data ? &*data : nullptr,
+                            out, err);
   auto g = ws->scenario->gain(ws->values, data ? &*data : nullptr);
   if (!g) return fail(err, g.err());
   out << metrics_to_json(*g, {}) << "\n";
   return kExitOk;
 }
 
-int cmd_preset(const CliArgs& a, std::ostream& out, std::ostream& err) {
-  auto ws = open_any(a.target, std::nullopt, a.sets);
+int cmd_preset(const PresetArgs& a, std::ostream& out, std::ostream& err) {
+  auto ws = open_any(a.target.preset, std::nullopt, a.target.sets);
   if (!ws) return fail(err, ws.err());
   OutputSet outs = outputs_for(*ws);
-  if (auto st = outs.add(*a.out, "--out"); !st) return fail(err, st.err());
+  if (auto st = outs.add(a.out, "--out"); !st) return fail(err, st.err());
   Preset p = ws->preset;
   p.values = ws->values;
-  if (auto st = outs.stage(*a.out, preset_to_json(p)); !st) return fail(err, st.err());
+  if (auto st = outs.stage(a.out, preset_to_json(p)); !st) return fail(err, st.err());
   if (auto st = outs.commit(); !st) return fail(err, st.err());
-  out << "wrote " << *a.out << "\n";
+  out << "wrote " << a.out << "\n";
   return kExitOk;
 }
 
-int cmd_params(const CliArgs& a, std::ostream& out, std::ostream& err) {
-  auto ws = open_any(a.target, std::nullopt, a.sets);
+int cmd_params(const ParamsArgs& a, std::ostream& out, std::ostream& err) {
+  auto ws = open_any(a.target.preset, std::nullopt, a.target.sets);
   if (!ws) return fail(err, ws.err());
   const ParamTable& t = ws->scenario->params();
   for (const auto& s : t.specs()) {
@@ -219,8 +216,8 @@ int cmd_params(const CliArgs& a, std::ostream& out, std::ostream& err) {
 }
 
 // The metric declarations (engine/core/metrics.h and the scenario's own), as the README shows them.
-int cmd_metrics(const CliArgs& a, std::ostream& out, std::ostream& err) {
-  auto ws = open_any(a.target, std::nullopt, {});
+int cmd_metrics(const MetricsArgs& a, std::ostream& out, std::ostream& err) {
+  auto ws = open_any(a.preset, std::nullopt, {});
   if (!ws) return fail(err, ws.err());
   std::vector<MetricSpec> specs = shared_metric_specs();
   for (const auto& s : ws->scenario->metric_specs())
@@ -254,8 +251,9 @@ int cmd_metrics(const CliArgs& a, std::ostream& out, std::ostream& err) {
 
 // `kfw-cli CMD FILE.csv` is short for `kfw-cli CMD SCENARIO --data FILE.csv` when exactly one
 // scenario offers CMD.
-int cmd_scenario(const std::string& cmd, CliArgs a, std::ostream& out, std::ostream& err) {
-  const std::string& first = a.target;
+int cmd_scenario(const std::string& cmd, ScenarioCommandArgs a, std::ostream& out,
+                 std::ostream& err) {
+  const std::string first = a.target.preset;
   const bool csv = first.size() > 4 && (first.compare(first.size() - 4, 4, ".csv") == 0 ||
                                         first.compare(first.size() - 4, 4, ".CSV") == 0);
   std::vector<std::string> offering;
@@ -263,15 +261,15 @@ int cmd_scenario(const std::string& cmd, CliArgs a, std::ostream& out, std::ostr
     const auto cmds = scenarios().make(name)->commands();
     if (std::find(cmds.begin(), cmds.end(), cmd) != cmds.end()) offering.push_back(name);
   }
-  if (csv && !a.data) {
+  if (csv && !a.data.file) {
     if (offering.size() != 1) {
       return fail(err, Error{cmd + " FILE.csv: more than one scenario offers '" + cmd +
                              "'; name one (kfw-cli " + cmd + " SCENARIO --data FILE.csv)"});
     }
-    a.data = first;
-    a.target = offering.front();
+    a.data.file = first;
+    a.target.preset = offering.front();
   }
-  auto ws = open_any(a);
+  auto ws = open_workspace_for_cli(a.target, a.data);
   if (!ws) return fail(err, ws.err());
   const auto cmds = ws->scenario->commands();
   if (std::find(cmds.begin(), cmds.end(), cmd) == cmds.end()) {

@@ -1,6 +1,5 @@
 // kfw-cli's import options (--map, --unit, --time, --scale, --offset, --flip, --sep, --header,
-// --mapping)
-// and the `inspect` command. Declared with the other options in cli.cpp.
+// --mapping) and the `inspect` command. Declared with the other options in cli.cpp.
 #include <fast_float/fast_float.h>
 
 #include <algorithm>
@@ -58,9 +57,6 @@ Status check_iso_zone(const std::string& option, const std::string& unit) {
   return Ok{};
 }
 
-}  // namespace
-
-namespace {
 // --sep and --header: the file's format, over the mapping's.
 Status apply_format_args(const ImportArgs& imp, Mapping& m) {
   if (imp.sep) {
@@ -75,79 +71,84 @@ Status apply_format_args(const ImportArgs& imp, Mapping& m) {
   }
   return Ok{};
 }
-}  // namespace
 
-Status apply_import_args(const ImportArgs& imp, Workspace& ws) {
-  if (imp.mapping_file) {
-    auto j = read_json_document(*imp.mapping_file, "mapping");
-    if (!j) return j.err();
-    // The preset's "mapping" block, alone or inside {"mapping": ...}.
-    const nlohmann::json& block = j->is_object() && j->contains("mapping") ? (*j)["mapping"] : *j;
-    auto m = mapping_from_json(block, *imp.mapping_file + ": mapping");
-    if (!m) return m.err();
-    ws.mapping.override_with(*m);
-    ws.mapping_path = imp.mapping_file;
+// --mapping FILE: the preset's "mapping" block, alone or inside {"mapping": ...}.
+Status apply_mapping_file(const std::string& path, Mapping& m) {
+  auto j = read_json_document(path, "mapping");
+  if (!j) return j.err();
+  const nlohmann::json& block = j->is_object() && j->contains("mapping") ? (*j)["mapping"] : *j;
+  auto file = mapping_from_json(block, path + ": mapping");
+  if (!file) return file.err();
+  m.override_with(*file);
+  return Ok{};
+}
+
+// --time COLUMN[:UNIT]: the time role "t", which every scenario has.
+Status apply_time_arg(const std::string& text, Mapping& m) {
+  std::string col = text, unit;
+  if (const auto colon = col.rfind(':');
+      colon != std::string::npos && is_time_unit(col.substr(colon + 1))) {
+    unit = col.substr(colon + 1);
+    col.erase(colon);
   }
-  if (auto st = apply_format_args(imp, ws.mapping); !st) return st;
-  std::vector<std::string> roles{"t"};
-  for (const auto& c : ws.scenario->columns()) {
-    if (c.name != "t") roles.push_back(c.name);
+  if (col.empty()) return Error{"--time: expected COLUMN[:UNIT], got " + quote_token(text)};
+  if (auto st = check_iso_zone("--time", unit); !st) return st;
+  RoleMapping& r = m["t"];
+  r.column = col;
+  if (!unit.empty()) r.unit = unit == "s" ? "" : unit;
+  return Ok{};
+}
+
+// --unit ROLE=UNIT: a unit kfw converts from ('iso' for the time only).
+Status check_unit_arg(const std::string& text, const KeyValue& kv) {
+  if (is_iso_unit(kv.value) && kv.key != "t") {
+    return Error{"--unit " + text + ": 'iso' is for the time 't' only"};
   }
+  if (auto st = check_iso_zone("--unit " + text, kv.value); !st) return st;
+  if (!is_iso_unit(kv.value)) {
+    if (auto f = unit_factor(kv.value, kv.value == "s" ? "ms" : "s");
+        !f && f.error().rfind("unknown unit", 0) == 0) {
+      return Error{"--unit " + text + ": " + f.error()};
+    }
+  }
+  return Ok{};
+}
+
+// --map, --unit, --scale, --offset and --flip: each changes one field of one of `roles`.
+Status apply_role_args(const ImportArgs& imp, const std::vector<std::string>& roles, Mapping& m) {
   auto role = [&](const std::string& opt, const std::string& name) -> Expected<RoleMapping*> {
     if (std::find(roles.begin(), roles.end(), name) == roles.end()) {
       return Error{opt + ": " + unknown_message("role", name, roles)};
     }
-    return &ws.mapping[name];
+    return &m[name];
   };
-  if (imp.time) {
-    std::string col = *imp.time, unit;
-    if (const auto colon = col.rfind(':');
-        colon != std::string::npos && is_time_unit(col.substr(colon + 1))) {
-      unit = col.substr(colon + 1);
-      col.erase(colon);
-    }
-    if (col.empty()) return Error{"--time: expected COLUMN[:UNIT], got " + quote_token(*imp.time)};
-    if (auto st = check_iso_zone("--time", unit); !st) return st;
-    RoleMapping& r = ws.mapping["t"];
-    r.column = col;
-    if (!unit.empty()) r.unit = unit == "s" ? "" : unit;
-  }
-  for (const auto& m : imp.map) {
-    auto kv = split_kv("--map", m, "ROLE=COLUMN");
+  for (const auto& text : imp.map) {
+    auto kv = split_kv("--map", text, "ROLE=COLUMN");
     if (!kv) return kv.err();
     auto r = role("--map", kv->key);
     if (!r) return r.err();
     (*r)->column = kv->value;
   }
-  for (const auto& u : imp.unit) {
-    auto kv = split_kv("--unit", u, "ROLE=UNIT");
+  for (const auto& text : imp.unit) {
+    auto kv = split_kv("--unit", text, "ROLE=UNIT");
     if (!kv) return kv.err();
     auto r = role("--unit", kv->key);
     if (!r) return r.err();
-    if (is_iso_unit(kv->value) && kv->key != "t") {
-      return Error{"--unit " + u + ": 'iso' is for the time 't' only"};
-    }
-    if (auto st = check_iso_zone("--unit " + u, kv->value); !st) return st;
-    if (!is_iso_unit(kv->value)) {
-      if (auto f = unit_factor(kv->value, kv->value == "s" ? "ms" : "s");
-          !f && f.error().rfind("unknown unit", 0) == 0) {
-        return Error{"--unit " + u + ": " + f.error()};
-      }
-    }
+    if (auto st = check_unit_arg(text, *kv); !st) return st;
     (*r)->unit = kv->value;
   }
-  for (const auto& s : imp.scale) {
-    auto kv = split_kv("--scale", s, "ROLE=X");
+  for (const auto& text : imp.scale) {
+    auto kv = split_kv("--scale", text, "ROLE=X");
     if (!kv) return kv.err();
     auto r = role("--scale", kv->key);
     if (!r) return r.err();
     auto v = number("--scale", *kv);
     if (!v) return v.err();
-    if (*v == 0.0) return Error{"--scale " + s + ": must not be 0"};
+    if (*v == 0.0) return Error{"--scale " + text + ": must not be 0"};
     (*r)->scale = *v;
   }
-  for (const auto& s : imp.offset) {
-    auto kv = split_kv("--offset", s, "ROLE=X");
+  for (const auto& text : imp.offset) {
+    auto kv = split_kv("--offset", text, "ROLE=X");
     if (!kv) return kv.err();
     auto r = role("--offset", kv->key);
     if (!r) return r.err();
@@ -155,12 +156,34 @@ Status apply_import_args(const ImportArgs& imp, Workspace& ws) {
     if (!v) return v.err();
     (*r)->offset = *v;
   }
-  for (const auto& f : imp.flip) {
-    auto r = role("--flip", f);
+  for (const auto& name : imp.flip) {
+    auto r = role("--flip", name);
     if (!r) return r.err();
     (*r)->flip = true;
   }
   // A role touched only by --unit/--scale/... reads the column of its own name.
+  return Ok{};
+}
+
+}  // namespace
+
+Status apply_import_args(const ImportArgs& imp, const std::vector<ColumnSpec>& roles, Mapping& m) {
+  if (imp.mapping_file) {
+    if (auto st = apply_mapping_file(*imp.mapping_file, m); !st) return st;
+  }
+  if (auto st = apply_format_args(imp, m); !st) return st;
+  if (imp.time) {
+    if (auto st = apply_time_arg(*imp.time, m); !st) return st;
+  }
+  std::vector<std::string> names;
+  for (const auto& c : roles_with_time(roles))
+    names.push_back(c.name);
+  return apply_role_args(imp, names, m);
+}
+
+Status apply_import_args(const ImportArgs& imp, Workspace& ws) {
+  if (auto st = apply_import_args(imp, ws.scenario->columns(), ws.mapping); !st) return st;
+  if (imp.mapping_file) ws.mapping_path = imp.mapping_file;
   return Ok{};
 }
 
@@ -208,111 +231,79 @@ std::string num(double v) {
   return os.str();
 }
 
-}  // namespace
-
-int cmd_inspect(const CliArgs& a, std::ostream& out, std::ostream& err) {
-  // The roles: the preset's (or scenario's), else time alone; the format: the preset's mapping's
-  // (with the options over it), else the options'.
-  std::vector<ColumnSpec> roles;
-  Mapping given;
-  std::string scenario;
-  if (a.inspect_preset) {
-    CliArgs b = a;
-    b.target = *a.inspect_preset;
-    b.data = a.target;
-    auto ws = open_workspace_for_cli(b);
-    if (!ws) return fail(err, ws.err());
-    roles = ws->scenario->columns();
-    given = ws->mapping;
-    scenario = ws->scenario->name();
-  } else if (auto st = apply_format_args(a.import, given); !st) {
-    return fail(err, st.err());
-  }
-  auto t = read_table(a.target, given.table_options());
-  if (!t) return fail(err, t.err());
-  if (!a.inspect_preset && a.import.any()) {
-    ImportArgs imp = a.import;
-    if (!imp.map.empty() || !imp.unit.empty() || !imp.scale.empty() || !imp.offset.empty() ||
-        !imp.flip.empty() || imp.mapping_file) {
-      return fail(err, Error{"inspect: role options (--map, --unit, ...) need a PRESET: "
-                             "kfw-cli inspect FILE PRESET"});
-    }
-    if (imp.time) {
-      Workspace ws;
-      auto s = make_scenario("helicopter");  // any scenario: only "t" is touched
-      if (!s) return fail(err, s.err());
-      ws.scenario = std::shared_ptr<const Scenario>(std::move(*s));
-      if (auto st = apply_import_args(imp, ws); !st) return fail(err, st.err());
-      given = ws.mapping;
-    }
-  }
-  Mapping guess = guess_mapping(*t, roles);
-  Mapping mapping = guess;
-  mapping.override_with(given);
+// What inspect found: the table, the mapping (the guess with the given one over it), the
+// required roles without a column and the time column's summary; `scenario` is empty without a
+// PRESET.
+struct Inspection {
+  Table table;
+  Mapping mapping;
   std::vector<std::string> missing;
-  for (const auto& c : roles_with_time(roles)) {
-    if (c.required && role_column(*t, mapping, c.name) < 0) missing.push_back(c.name);
+  TimeSummary time;
+  std::string scenario;
+};
+
+void print_inspection_json(const std::string& file, const Inspection& in, std::ostream& out) {
+  const Table& t = in.table;
+  const TimeSummary& ts = in.time;
+  Json j;
+  j["file"] = file;
+  j["separator"] = t.separator_name();
+  j["decimal_comma"] = t.decimal_comma;
+  j["header_line"] = t.header_line;  // 0: no header (columns col1, col2, ...)
+  j["header"] = t.has_header() ? "first" : "none";
+  j["rows"] = t.rows();
+  Json cols = Json::array();
+  for (std::size_t c = 0; c < t.columns(); ++c) {
+    Json col;
+    col["name"] = t.names[c];
+    col["not_numbers"] = t.invalid[c];
+    col["unit_from_name"] = unit_from_name(t.names[c]);
+    cols.push_back(col);
   }
-  const TimeSummary ts = summarize_time(*t, mapping);
-  const double rate = ts.median_dt > 0 ? 1.0 / ts.median_dt : 0.0;
-  if (a.json) {
-    Json j;
-    j["file"] = a.target;
-    j["separator"] = t->separator_name();
-    j["decimal_comma"] = t->decimal_comma;
-    j["header_line"] = t->header_line;  // 0: no header (columns col1, col2, ...)
-    j["header"] = t->has_header() ? "first" : "none";
-    j["rows"] = t->rows();
-    Json cols = Json::array();
-    for (std::size_t c = 0; c < t->columns(); ++c) {
-      Json col;
-      col["name"] = t->names[c];
-      col["not_numbers"] = t->invalid[c];
-      col["unit_from_name"] = unit_from_name(t->names[c]);
-      cols.push_back(col);
-    }
-    j["columns"] = cols;
-    Json time;
-    time["column"] = ts.column;
-    time["unit"] = ts.unit;
-    if (ts.error.empty()) {
-      time["start_s"] = ts.start;
-      time["end_s"] = ts.end;
-      time["span_s"] = ts.end - ts.start;
-      if (std::isfinite(ts.median_dt)) {
-        time["median_step_s"] = ts.median_dt;
-        time["min_step_s"] = ts.min_dt;
-        time["max_step_s"] = ts.max_dt;
-        time["rate_hz"] = rate;
-      } else {
-        time["rate_undefined"] = "fewer than two time samples";
-      }
-      if (!ts.origin.empty()) time["origin"] = ts.origin;
+  j["columns"] = cols;
+  Json time;
+  time["column"] = ts.column;
+  time["unit"] = ts.unit;
+  if (ts.error.empty()) {
+    time["start_s"] = ts.start;
+    time["end_s"] = ts.end;
+    time["span_s"] = ts.end - ts.start;
+    if (std::isfinite(ts.median_dt)) {
+      time["median_step_s"] = ts.median_dt;
+      time["min_step_s"] = ts.min_dt;
+      time["max_step_s"] = ts.max_dt;
+      time["rate_hz"] = ts.median_dt > 0 ? 1.0 / ts.median_dt : 0.0;
     } else {
-      time["error"] = ts.error;
+      time["rate_undefined"] = "fewer than two time samples";
     }
-    j["time"] = time;
-    if (!scenario.empty()) j["scenario"] = scenario;
-    j["mapping"] = mapping_to_json(mapping);
-    j["missing"] = missing;
-    out << j.dump(2) << "\n";
-    return kExitOk;
+    if (!ts.origin.empty()) time["origin"] = ts.origin;
+  } else {
+    time["error"] = ts.error;
   }
-  out << "file: " << a.target << "\n";
-  out << "separator: " << t->separator_name() << (t->decimal_comma ? " (decimal comma)" : "")
-      << "\n";
-  out << "rows: " << t->rows();
-  if (t->has_header())
-    out << " (header on line " << t->header_line << ")\n";
+  j["time"] = time;
+  if (!in.scenario.empty()) j["scenario"] = in.scenario;
+  j["mapping"] = mapping_to_json(in.mapping);
+  j["missing"] = in.missing;
+  out << j.dump(2) << "\n";
+}
+
+void print_inspection_text(const std::string& file, const Inspection& in, std::ostream& out) {
+  const Table& t = in.table;
+  const TimeSummary& ts = in.time;
+  out << "file: " << file << "\n";
+  out << "separator: " << t.separator_name() << (t.decimal_comma ? " (decimal comma)" : "") << "\n";
+  out << "rows: " << t.rows();
+  if (t.has_header())
+    out << " (header on line " << t.header_line << ")\n";
   else
-    out << " (no header: columns named by position, col1 .. col" << t->columns() << ")\n";
-  out << "columns: " << t->columns() << "\n";
-  for (std::size_t c = 0; c < t->columns(); ++c) {
-    out << "  " << std::setw(3) << c + 1 << "  " << t->names[c];
-    if (const auto u = unit_from_name(t->names[c]); !u.empty()) out << "  [" << u << "]";
-    if (t->invalid[c] > 0) {
-      out << "  (" << t->invalid[c] << " cells not numbers, first at line "
-          << t->first_invalid[c].line << ")";
+    out << " (no header: columns named by position, col1 .. col" << t.columns() << ")\n";
+  out << "columns: " << t.columns() << "\n";
+  for (std::size_t c = 0; c < t.columns(); ++c) {
+    out << "  " << std::setw(3) << c + 1 << "  " << t.names[c];
+    if (const auto u = unit_from_name(t.names[c]); !u.empty()) out << "  [" << u << "]";
+    if (t.invalid[c] > 0) {
+      out << "  (" << t.invalid[c] << " cells not numbers, first at line "
+          << t.first_invalid[c].line << ")";
     }
     out << "\n";
   }
@@ -320,6 +311,7 @@ int cmd_inspect(const CliArgs& a, std::ostream& out, std::ostream& err) {
     out << "time: column '" << ts.column << "' (" << ts.unit << "), " << num(ts.start) << " .. "
         << num(ts.end) << " s, span " << num(ts.end - ts.start) << " s\n";
     if (std::isfinite(ts.median_dt)) {
+      const double rate = ts.median_dt > 0 ? 1.0 / ts.median_dt : 0.0;
       out << "rate: " << num(rate) << " Hz (median step " << num(ts.median_dt) << " s, min "
           << num(ts.min_dt) << ", max " << num(ts.max_dt) << ")\n";
     } else {
@@ -329,19 +321,59 @@ int cmd_inspect(const CliArgs& a, std::ostream& out, std::ostream& err) {
   } else {
     out << "time: " << ts.error << "\n";
   }
-  if (scenario.empty()) {
+  if (in.scenario.empty()) {
     out << "mapping: give a PRESET to guess its roles (kfw-cli inspect FILE PRESET)\n";
+    return;
+  }
+  out << "mapping for " << in.scenario << ": " << mapping_options(in.mapping) << "\n";
+  out << "mapping block: " << mapping_to_json(in.mapping).dump() << "\n";
+  if (in.missing.empty()) {
+    out << "complete: every required role has a column\n";
   } else {
-    out << "mapping for " << scenario << ": " << mapping_options(mapping) << "\n";
-    out << "mapping block: " << mapping_to_json(mapping).dump() << "\n";
-    if (missing.empty()) {
-      out << "complete: every required role has a column\n";
-    } else {
-      out << "missing required roles:";
-      for (const auto& m : missing)
-        out << " " << m;
-      out << "\n";
-    }
+    out << "missing required roles:";
+    for (const auto& m : in.missing)
+      out << " " << m;
+    out << "\n";
+  }
+}
+
+}  // namespace
+
+int cmd_inspect(const InspectArgs& a, std::ostream& out, std::ostream& err) {
+  // The roles: the preset's (or scenario's), else time alone; the format: the preset's mapping's
+  // (with the options over it), else the options'.
+  std::vector<ColumnSpec> roles;
+  Mapping given;
+  Inspection in;
+  if (a.preset) {
+    auto ws = open_workspace_for_cli(TargetArgs{*a.preset, {}}, DataArgs{a.file, a.import});
+    if (!ws) return fail(err, ws.err());
+    roles = ws->scenario->columns();
+    given = ws->mapping;
+    in.scenario = ws->scenario->name();
+  } else if (auto st = apply_format_args(a.import, given); !st) {
+    return fail(err, st.err());
+  }
+  auto t = read_table(a.file, given.table_options());
+  if (!t) return fail(err, t.err());
+  if (!a.preset && a.import.any_role()) {
+    return fail(err, Error{"inspect: role options (--map, --unit, ...) need a PRESET: "
+                           "kfw-cli inspect FILE PRESET"});
+  }
+  if (!a.preset && a.import.time) {
+    if (auto st = apply_time_arg(*a.import.time, given); !st) return fail(err, st.err());
+  }
+  in.table = std::move(*t);
+  in.mapping = guess_mapping(in.table, roles);
+  in.mapping.override_with(given);
+  for (const auto& c : roles_with_time(roles)) {
+    if (c.required && role_column(in.table, in.mapping, c.name) < 0) in.missing.push_back(c.name);
+  }
+  in.time = summarize_time(in.table, in.mapping);
+  if (a.json) {
+    print_inspection_json(a.file, in, out);
+  } else {
+    print_inspection_text(a.file, in, out);
   }
   return kExitOk;
 }

@@ -20,15 +20,15 @@ namespace {
 
 // The summary on stdout (table or JSON without per-step arrays) and, with --metrics, the full
 // JSON (per-step ANEES_k / ANIS_k and bounds) staged for writing.
-Status report(const MonteCarloSummary& s, const CliArgs& a, OutputSet& outs, std::ostream& out,
-              std::ostream& err) {
+Status report(const MonteCarloSummary& s, const std::optional<std::string>& metrics, bool table,
+              OutputSet& outs, std::ostream& out, std::ostream& err) {
   for (const auto& r : s.stopped)
     err << "kfw-cli: warning: seed " << r.seed << " stopped: " << one_line(r.error) << "\n";
-  if (a.metrics) {
-    if (auto st = outs.stage(*a.metrics, summary_to_json(s, true).dump(2) + "\n"); !st) return st;
+  if (metrics) {
+    if (auto st = outs.stage(*metrics, summary_to_json(s, true).dump(2) + "\n"); !st) return st;
   }
   if (auto st = outs.commit(); !st) return st;
-  if (a.table) {
+  if (table) {
     out << summary_table(s);
   } else {
     out << summary_to_json(s, false).dump(2) << "\n";
@@ -43,8 +43,8 @@ Status require_completed(const MonteCarloSummary& s) {
                  s.stopped.front().error + ")");
 }
 
-Status merge_montecarlo(const std::vector<nlohmann::json>& docs, const CliArgs& a, OutputSet& outs,
-                        std::ostream& out, std::ostream& err) {
+Status merge_montecarlo(const std::vector<nlohmann::json>& docs, const MergeArgs& a,
+                        OutputSet& outs, std::ostream& out, std::ostream& err) {
   std::vector<MonteCarloPart> parts;
   for (std::size_t i = 0; i < docs.size(); ++i) {
     auto p = part_from_json(docs[i], a.parts[i]);
@@ -55,25 +55,27 @@ Status merge_montecarlo(const std::vector<nlohmann::json>& docs, const CliArgs& 
   if (!merged) return merged.err();
   const MonteCarloSummary s = summarize_monte_carlo(*merged);
   if (auto st = require_completed(s); !st) return st;
-  return report(s, a, outs, out, err);
+  return report(s, a.output.metrics, a.table, outs, out, err);
 }
 
 // What `merge` does with the parts of one kind.
-using MergeHandler = Status (*)(const std::vector<nlohmann::json>&, const CliArgs&, OutputSet&,
+using MergeHandler = Status (*)(const std::vector<nlohmann::json>&, const MergeArgs&, OutputSet&,
                                 std::ostream&, std::ostream&);
 const std::map<std::string, MergeHandler>& merge_handlers() {
   static const std::map<std::string, MergeHandler> handlers = {
-      {kMonteCarloKind, &merge_montecarlo}, {"sweep", &merge_sweep_parts},  // app/cli_tune.cpp
+      {kMonteCarloKind, &merge_montecarlo}, {"sweep", &merge_sweep_parts},  // app/cli_sweep.cpp
   };
   return handlers;
 }
 
 }  // namespace
 
-Expected<std::vector<long long>> seeds_for(const CliArgs& a, const Workspace& ws) {
-  auto seeds = parse_int_set(*a.seeds, "--seeds");
+Expected<std::vector<long long>> seeds_for(const std::string& set,
+                                           const std::optional<std::string>& data,
+                                           const Workspace& ws) {
+  auto seeds = parse_int_set(set, "--seeds");
   if (!seeds) return seeds.err();
-  if (a.data) return Error{"--seeds simulates each seed; it cannot be used with --data"};
+  if (data) return Error{"--seeds simulates each seed; it cannot be used with --data"};
   if (ws.data_path) {
     return Error{ws.preset.path + ": data: the preset's data come from " + *ws.data_path +
                  "; --seeds simulates (use a preset without \"data\")"};
@@ -81,47 +83,49 @@ Expected<std::vector<long long>> seeds_for(const CliArgs& a, const Workspace& ws
   return seeds;
 }
 
-int cmd_run_seeds(const CliArgs& a, std::ostream& out, std::ostream& err) {
-  auto ws = open_any(a.target, a.data, a.sets);
+int cmd_run_seeds(const RunArgs& a, std::ostream& out, std::ostream& err) {
+  const RunSeedsArgs& mc = a.seeds;
+  const OutputArgs& o = a.output;
+  auto ws = open_any(a.target.preset, a.data.file, a.target.sets);
   if (!ws) return fail(err, ws.err());
-  auto seeds = seeds_for(a, *ws);
+  auto seeds = seeds_for(*mc.seeds, a.data.file, *ws);
   if (!seeds) return fail(err, seeds.err());
   Shard shard;
-  if (a.shard) {
-    auto s = parse_shard(*a.shard, "--shard");
+  if (mc.shard) {
+    auto s = parse_shard(*mc.shard, "--shard");
     if (!s) return fail(err, s.err());
     shard = *s;
-    if (!a.out)
+    if (!o.out)
       return fail(err, Error{"--shard: needs --out PART.json (kfw-cli merge joins them)"});
   }
   OutputSet outs;
   outs.add_input(ws->preset.path);
-  if (a.out) {
-    if (auto st = outs.add(*a.out, "--out"); !st) return fail(err, st.err());
+  if (o.out) {
+    if (auto st = outs.add(*o.out, "--out"); !st) return fail(err, st.err());
   }
-  if (a.metrics) {
-    if (auto st = outs.add(*a.metrics, "--metrics"); !st) return fail(err, st.err());
+  if (o.metrics) {
+    if (auto st = outs.add(*o.metrics, "--metrics"); !st) return fail(err, st.err());
   }
   std::vector<std::pair<long long, std::string>> per_seed;  // seed, estimates path
-  if (a.out_dir) {
+  if (mc.out_dir) {
     std::error_code ec;
-    if (!std::filesystem::is_directory(*a.out_dir, ec)) {
-      return fail(err, Error{"--out-dir: " + *a.out_dir + ": not a directory"});
+    if (!std::filesystem::is_directory(*mc.out_dir, ec)) {
+      return fail(err, Error{"--out-dir: " + *mc.out_dir + ": not a directory"});
     }
     for (std::size_t i = 0; i < seeds->size(); ++i) {
       if (!in_shard(i, shard)) continue;
       const long long seed = (*seeds)[i];
       const std::string path =
-          (std::filesystem::path(*a.out_dir) / ("seed_" + std::to_string(seed) + ".csv")).string();
+          (std::filesystem::path(*mc.out_dir) / ("seed_" + std::to_string(seed) + ".csv")).string();
       if (auto st = outs.add(path, "--out-dir"); !st) return fail(err, st.err());
       per_seed.emplace_back(seed, path);
     }
   }
   MonteCarloOptions opt;
-  opt.keep_results = a.out_dir.has_value();
+  opt.keep_results = mc.out_dir.has_value();
   auto part = run_monte_carlo(*ws->scenario, ws->values, *seeds, shard, opt);
   if (!part) return fail(err, part.err());
-  part->source = a.target;
+  part->source = a.target.preset;
   for (const auto& [seed, path] : per_seed) {
     for (const auto& r : part->runs) {
       if (r.seed != seed || !r.result) continue;
@@ -130,31 +134,31 @@ int cmd_run_seeds(const CliArgs& a, std::ostream& out, std::ostream& err) {
       if (auto st = outs.stage(path, csv.str()); !st) return fail(err, st.err());
     }
   }
-  if (a.out) {
-    if (auto st = outs.stage(*a.out, part_to_json(*part).dump(1) + "\n"); !st) {
+  if (o.out) {
+    if (auto st = outs.stage(*o.out, part_to_json(*part).dump(1) + "\n"); !st) {
       return fail(err, st.err());
     }
   }
   const MonteCarloSummary s = summarize_monte_carlo(*part);
-  if (a.shard) {
+  if (mc.shard) {
     // A part is written even when its seeds all stopped: the merge decides.
     if (auto st = outs.commit(); !st) return fail(err, st.err());
-    out << "wrote " << *a.out << " (shard " << shard.index << "/" << shard.count << ": "
+    out << "wrote " << *o.out << " (shard " << shard.index << "/" << shard.count << ": "
         << part->runs.size() << " of " << part->seeds.size() << " seeds, " << s.stopped.size()
         << " stopped)\n";
     return kExitOk;
   }
   if (auto st = require_completed(s); !st) return fail(err, st.err());
-  if (auto st = report(s, a, outs, out, err); !st) return fail(err, st.err());
+  if (auto st = report(s, o.metrics, mc.table, outs, out, err); !st) return fail(err, st.err());
   return kExitOk;
 }
 
-int cmd_merge(const CliArgs& a, std::ostream& out, std::ostream& err) {
+int cmd_merge(const MergeArgs& a, std::ostream& out, std::ostream& err) {
   OutputSet outs;
   for (const auto& p : a.parts)
     outs.add_input(p);
-  if (a.metrics) {
-    if (auto st = outs.add(*a.metrics, "--metrics"); !st) return fail(err, st.err());
+  if (a.output.metrics) {
+    if (auto st = outs.add(*a.output.metrics, "--metrics"); !st) return fail(err, st.err());
   }
   std::vector<nlohmann::json> docs;
   std::string kind;

@@ -1,71 +1,88 @@
+// MainWindow: the layout, the menus and the wiring of the controllers. What happens per
+// document (controls, plots, a run drawn) is in main_window_scenario.cpp.
 #include "main_window.h"
 
 #include <qcustomplot.h>
 
-#include <QApplication>
-#include <QCoreApplication>
-#include <QCryptographicHash>
-#include <QDeadlineTimer>
+#include <QCloseEvent>
+#include <QComboBox>
 #include <QDir>
-#include <QEventLoop>
 #include <QFileDialog>
 #include <QFileInfo>
-#include <QGridLayout>
-#include <QHeaderView>
-#include <QInputDialog>
+#include <QGuiApplication>
+#include <QJsonObject>
 #include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QPushButton>
+#include <QScreen>
 #include <QScrollArea>
 #include <QSettings>
 #include <QSplitter>
 #include <QStatusBar>
 #include <QTabWidget>
-#include <QTableWidget>
 #include <QTimer>
 #include <QVBoxLayout>
-#include <cmath>
 
 #include "consistency_panel.h"
-#include "core/statistics.h"
-#include "document/workspace.h"
-#include "draw_batch.h"
+#include "data_tab.h"
+#include "help_menu.h"
 #include "metrics_panel.h"
-#include "monte_carlo_dialog.h"
 #include "param_panel.h"
-#include "plot_export.h"
 #include "plot_zoom.h"
-#include "run_controller.h"
-#include "sweep_dialog.h"
 #include "transport_bar.h"
-#include "tune_dialog.h"
 
 namespace kfw {
 
 namespace {
-const ParamValues kEmpty;
-const Preset kNoPreset;
 QString q(const std::string& s) {
   return QString::fromStdString(s);
+}
+
+void report(QWidget* parent, const char* title, const Status& st) {
+  if (!st) QMessageBox::warning(parent, title, q(st.error()));
+}
+
+QPushButton* button(const QString& text, const char* name, const QString& tip = {}) {
+  auto* b = new QPushButton(text);
+  b->setObjectName(name);
+  if (!tip.isEmpty()) b->setToolTip(tip);
+  return b;
+}
+
+// Offscreen runs (tests, exports, screenshots) neither read nor write the remembered size.
+bool remembersSize() {
+  return QGuiApplication::platformName() != "offscreen";
 }
 }  // namespace
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   setWindowTitle("kfw — Kalman filter tuning workbench");
-  runner_ = new RunController(this);
-  addViewStatePart(
-      "zoom", [this] { return zoom_ ? zoom_->save() : QJsonValue(); },
-      [this](const QJsonValue& v) {
-        if (zoom_) zoom_->restore(v);
-      });
-  connect(runner_, &RunController::finished, this, &MainWindow::applyResult);
-  connect(runner_, &RunController::failed, this, [this](const QString& m) {
-    applied_latest_ = !runner_->busy();
-    showError(m, true);
-    if (applied_latest_) emit resultApplied();
-  });
+  runs_ = new RunController(this);
+  doc_ = new DocumentController(runs_, this);
+  data_ = new DataController(doc_, runs_, this);  // its adopt step reads the data first
+  auto* split = new QSplitter(Qt::Horizontal);
+  split->setObjectName("mainSplit");
+  split->addWidget(buildLeft());
+  split->addWidget(buildCenter());
+  split->setStretchFactor(1, 1);
+  split->setSizes({380, 1220});
+  setCentralWidget(split);
+  status_ = new QLabel;
+  status_->setObjectName("status");
+  statusBar()->addWidget(status_, 1);
+  replay_ = new ReplayController(transport_, consistency_, this);
+  export_ = new ExportController(runs_, consistency_, this);
+  present_ = new PresentationController(this, status_);
+  buildMenus();
+  wireControllers();
+  refreshPresetList();
+  fitToScreen();
+}
 
+MainWindow::~MainWindow() = default;
+
+QWidget* MainWindow::buildLeft() {
   auto* left_host = new QWidget;
   left_ = new QVBoxLayout(left_host);
   left_->setContentsMargins(4, 4, 4, 4);
@@ -80,67 +97,35 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   description_->setTextFormat(Qt::PlainText);
   description_->setStyleSheet("QLabel { color: #444; }");
   left_->addWidget(description_);
-  connect(presets_, &QComboBox::activated, this, [this](int i) {
-    const QString path = presets_->itemData(i).toString();
-    // The preset already open: back to its values (pinned snapshots stay, one undo step).
-    if (doc_ && !preset().path.empty() &&
-        QFileInfo(path).absoluteFilePath() == QFileInfo(q(preset().path)).absoluteFilePath()) {
-      resetToPreset();
-      return;
-    }
-    if (!confirmDiscard("Switch preset")) {
-      refreshPresetList();
-      return;
-    }
-    if (auto st = loadPreset(path); !st) {
-      QMessageBox::warning(this, "Preset", q(st.error()));
-      refreshPresetList();
-    }
-  });
+  connect(presets_, &QComboBox::activated, this, &MainWindow::presetChosen);
   data_label_ = new QLabel;
   data_label_->setObjectName("dataLabel");
   data_label_->setWordWrap(true);
   left_->addWidget(data_label_);
   auto* data_row = new QHBoxLayout;
-  auto* open_csv = new QPushButton("Open CSV…");
-  open_csv->setObjectName("openCsv");
-  sim_button_ = new QPushButton("Use simulated data");
-  sim_button_->setObjectName("useSimulated");
+  auto* open_csv = button("Open CSV…", "openCsv");
+  sim_button_ = button("Use simulated data", "useSimulated");
   data_row->addWidget(open_csv);
   data_row->addWidget(sim_button_);
   left_->addLayout(data_row);
   connect(open_csv, &QPushButton::clicked, this, [this] {
     const QString f =
         QFileDialog::getOpenFileName(this, "Open dataset", QString(), "CSV (*.csv);;All files (*)");
-    if (f.isEmpty()) return;
-    if (auto st = openDataset(f); !st) QMessageBox::warning(this, "Open CSV", q(st.error()));
+    if (!f.isEmpty()) report(this, "Open CSV", openDataset(f));
   });
-  connect(sim_button_, &QPushButton::clicked, this, &MainWindow::useSimulatedData);
+  connect(sim_button_, &QPushButton::clicked, data_, &DataController::useSimulatedData);
   auto* tool_row = new QHBoxLayout;
-  auto* tune = new QPushButton("Tune…");
-  tune->setObjectName("tuneButton");
-  tune->setToolTip("Search Q, R, … for the best RMSE / likelihood / NIS consistency");
-  auto* sweep = new QPushButton("Sweep…");
-  sweep->setObjectName("sweepButton");
-  sweep->setToolTip("Plot any metric over one or two parameters");
-  auto* pin = new QPushButton("Pin");
-  pin->setObjectName("pinButton");
-  pin->setToolTip("Keep the current tuning, under a name, as a ghost and a metrics column");
-  auto* reset = new QPushButton("Reset");
-  reset->setObjectName("resetButton");
-  reset->setToolTip("Back to the preset's values (one undo step; pinned snapshots stay)");
-  tool_row->addWidget(tune);
-  tool_row->addWidget(sweep);
-  tool_row->addWidget(pin);
-  tool_row->addWidget(reset);
-  connect(reset, &QPushButton::clicked, this, &MainWindow::resetToPreset);
-  connect(pin, &QPushButton::clicked, this, [this] {
-    bool ok = false;
-    const QString name =
-        QInputDialog::getText(this, "Pin snapshot", "Name of this tuning:", QLineEdit::Normal,
-                              QString("snapshot %1").arg(snapshots_.size() + 1), &ok);
-    if (ok && !name.trimmed().isEmpty()) pinSnapshot(name.trimmed());
-  });
+  auto* tune = button("Tune…", "tuneButton",
+                      "Search Q, R, … for the best RMSE / likelihood / NIS consistency");
+  auto* sweep = button("Sweep…", "sweepButton", "Plot any metric over one or two parameters");
+  auto* pin = button("Pin", "pinButton",
+                     "Keep the current tuning, under a name, as a ghost and a metrics column");
+  auto* reset = button("Reset", "resetButton",
+                       "Back to the preset's values (one undo step; pinned snapshots stay)");
+  for (QPushButton* b : {tune, sweep, pin, reset})
+    tool_row->addWidget(b);
+  connect(reset, &QPushButton::clicked, doc_, &DocumentController::resetToPreset);
+  connect(pin, &QPushButton::clicked, this, [this] { doc_->askPin("Name of this tuning:", true); });
   left_->addLayout(tool_row);
   connect(tune, &QPushButton::clicked, this, [this] { openTuneDialog(); });
   connect(sweep, &QPushButton::clicked, this, [this] { openSweepDialog(); });
@@ -158,7 +143,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   left_split->addWidget(metrics_);
   left_split->setStretchFactor(0, 3);
   left_split->setStretchFactor(1, 2);
+  return left_split;
+}
 
+QWidget* MainWindow::buildCenter() {
   plot_area_ = new QScrollArea;
   plot_area_->setWidgetResizable(true);
   auto* center = new QWidget;
@@ -177,36 +165,14 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   consistency_ = new ConsistencyPanel;
   consistency_->setObjectName("consistency");
   tabs->addTab(consistency_, "Consistency");
-  buildDataTab(tabs);  // main_window_data.cpp
+  data_tab_ = new DataTab;
+  tabs->addTab(data_tab_, "Data");
   cl->addWidget(tabs, 1);
   transport_ = new TransportBar;
   transport_->setObjectName("transport");
   cl->addWidget(transport_);
-  connect(transport_, &TransportBar::cursorChanged, this, [this](std::size_t i) {
-    plot::DrawBatch batch;  // a replay frame: reductions on both cores
-    if (view_) view_->setCursor(i);
-  });
-
-  auto* split = new QSplitter(Qt::Horizontal);
-  split->setObjectName("mainSplit");
-  split->addWidget(left_split);
-  split->addWidget(center);
-  split->setStretchFactor(1, 1);
-  split->setSizes({380, 1220});
-  setCentralWidget(split);
-  status_ = new QLabel;
-  status_->setObjectName("status");
-  statusBar()->addWidget(status_, 1);
-  buildMenus();
-  buildDataMenu();  // main_window_data.cpp
-  buildViewMenu();  // main_window_present.cpp
-  buildHelpMenu();  // main_window_help.cpp (last: Help is the right-most menu)
-  setupReplay();    // main_window_replay.cpp
-  refreshPresetList();
-  fitToScreen();
+  return center;
 }
-
-MainWindow::~MainWindow() = default;
 
 void MainWindow::buildMenus() {
   QMenu* file = menuBar()->addMenu("&File");
@@ -214,43 +180,31 @@ void MainWindow::buildMenus() {
     const QString f =
         QFileDialog::getOpenFileName(this, "Open preset", q(preset_dir()), "Presets (*.json)");
     if (f.isEmpty() || !confirmDiscard("Open preset")) return;
-    if (auto st = loadPreset(f); !st) QMessageBox::warning(this, "Open preset", q(st.error()));
+    report(this, "Open preset", loadPreset(f));
   });
   file->addAction("&Open CSV…", QKeySequence::Open, this, [this] {
     const QString f =
         QFileDialog::getOpenFileName(this, "Open dataset", QString(), "CSV (*.csv);;All files (*)");
-    if (f.isEmpty()) return;
-    if (auto st = openDataset(f); !st) QMessageBox::warning(this, "Open CSV", q(st.error()));
+    if (!f.isEmpty()) report(this, "Open CSV", openDataset(f));
   });
-  file->addAction("Use &simulated data", this, &MainWindow::useSimulatedData);
+  file->addAction("Use &simulated data", data_, &DataController::useSimulatedData);
   file->addAction("&Save preset as…", QKeySequence::SaveAs, this, [this] {
     const QString f =
         QFileDialog::getSaveFileName(this, "Save preset", QString(), "Presets (*.json)");
-    if (f.isEmpty()) return;
-    if (auto st = savePreset(f); !st) QMessageBox::warning(this, "Save preset", q(st.error()));
+    if (!f.isEmpty()) report(this, "Save preset", savePreset(f));
   });
   file->addAction("Open s&ession…", this, [this] {
     const QString f =
         QFileDialog::getOpenFileName(this, "Open session", QString(), "Sessions (*.json)");
     if (f.isEmpty() || !confirmDiscard("Open session")) return;
-    if (auto st = loadSession(f); !st) QMessageBox::warning(this, "Open session", q(st.error()));
+    report(this, "Open session", loadSession(f));
   });
   file->addAction("Save session &as…", this, [this] {
     const QString f =
         QFileDialog::getSaveFileName(this, "Save session", "session.json", "Sessions (*.json)");
-    if (f.isEmpty()) return;
-    if (auto st = saveSession(f); !st) QMessageBox::warning(this, "Save session", q(st.error()));
+    if (!f.isEmpty()) report(this, "Save session", saveSession(f));
   });
-  file->addAction("&Export plots…", this, [this] {
-    const QString dir = QFileDialog::getExistingDirectory(this, "Export plots to");
-    if (dir.isEmpty()) return;
-    auto r = exportAll(dir, {"png", "pdf", "svg"});
-    if (!r) {
-      QMessageBox::warning(this, "Export", q(r.error()));
-    } else {
-      status_->setText(QString("exported %1 files to %2").arg(r->size()).arg(dir));
-    }
-  });
+  file->addAction("&Export plots…", export_, &ExportController::exportWithDialog);
   file->addSeparator();
   file->addAction("&Quit", QKeySequence::Quit, this, &QWidget::close);
   QMenu* edit = menuBar()->addMenu("&Edit");
@@ -260,33 +214,23 @@ void MainWindow::buildMenus() {
                                  [this] { redo(); });
   redo_action_->setObjectName("redoAction");
   edit->addSeparator();
-  edit->addAction("Reset to &preset values", this, &MainWindow::resetToPreset);
+  edit->addAction("Reset to &preset values", doc_, &DocumentController::resetToPreset);
   updateUndoActions();
+  buildToolsMenus();
+  present_->buildMenu(menuBar());
+  help::addMenu(this);  // last: Help is the right-most menu
+}
+
+void MainWindow::buildToolsMenus() {
   QMenu* tools = menuBar()->addMenu("&Tools");
   tools->addAction("Auto-&tune…", this, [this] { openTuneDialog(); });
   tools->addAction("&Sweep a metric…", this, [this] { openSweepDialog(); });
-  tools->addAction("&Monte Carlo over seeds…", this, [this] {
-    if (!scenario_) return;
-    if (file_data_) {  // seeds simulate; the Simulator group is off for data from a file
-      QMessageBox::information(this, "Monte Carlo",
-                               "Monte Carlo simulates each seed: use "
-                               "simulated data (File → Use simulated data).");
-      return;
-    }
-    auto* d = new MonteCarloDialog(scenario_, values(), this);
-    d->setAttribute(Qt::WA_DeleteOnClose);
-    d->show();
-  });
-  tools->addAction("&Pin snapshot…", this, [this] {
-    bool ok = false;
-    const QString name =
-        QInputDialog::getText(this, "Pin snapshot", "Name:", QLineEdit::Normal,
-                              QString("snapshot %1").arg(snapshots_.size() + 1), &ok);
-    if (ok && !name.isEmpty()) pinSnapshot(name);
-  });
-  tools->addAction("&Clear snapshots", this, &MainWindow::clearSnapshots);
-  // The replay keys (Space, ←, →, Home, End) work with any focus but text entry:
-  // main_window_replay.cpp; the menu names them.
+  tools->addAction("&Monte Carlo over seeds…", this,
+                   [this] { runs_->openMonteCarlo(values(), this); });
+  tools->addAction("&Pin snapshot…", this, [this] { doc_->askPin("Name:", false); });
+  tools->addAction("&Clear snapshots", doc_, &DocumentController::clearPins);
+  // The replay keys (Space, ←, →, Home, End) work with any focus but text entry
+  // (replay_controller.cpp); the menu names them.
   QMenu* replay = menuBar()->addMenu("&Replay");
   replay->addAction("&Play / pause\tSpace", this, [this] { transport_->togglePlay(); });
   replay->addAction("Step &back\t←", this, [this] { transport_->stepBy(-1); });
@@ -295,6 +239,121 @@ void MainWindow::buildMenus() {
   replay->addAction("To the &end\tEnd", this,
                     [this] { transport_->seek(static_cast<std::size_t>(-1)); });
   replay->addAction("Show &all", this, [this] { transport_->setShowAll(true); });
+  QMenu* data_menu = menuBar()->addMenu("&Data");
+  data_menu->addAction("&Mapping…", this, [this] { report(this, "Mapping", editMapping()); });
+  data_menu->addAction("&Forget remembered mapping", this,
+                       [this] { report(this, "Forget mapping", forgetMapping()); });
+  data_menu->addAction("&Save as kfw CSV…", this, [this] {
+    const QString f =
+        QFileDialog::getSaveFileName(this, "Save as kfw CSV", QString(), "CSV (*.csv)");
+    if (!f.isEmpty()) report(this, "Save as kfw CSV", saveConvertedCsv(f));
+  });
+}
+
+void MainWindow::wireControllers() {
+  // A new document's plots come from the view registry (after its data are read).
+  doc_->addAdoptStep([this](const Document& d) -> Expected<DocumentController::Commit> {
+    std::shared_ptr<ScenarioView> view = views().make(d.scenario().name());
+    if (!view) return Error{"no plots registered for scenario '" + d.scenario().name() + "'"};
+    return DocumentController::Commit([this, view] { view_ = view; });
+  });
+  connect(doc_, &DocumentController::documentReplaced, this, &MainWindow::documentReplaced);
+  connect(doc_, &DocumentController::changed, this, [this] {
+    if (panel_) panel_->setValues(values());
+  });
+  connect(doc_, &DocumentController::historyChanged, this, &MainWindow::updateUndoActions);
+  connect(doc_, &DocumentController::pinsChanged, this, &MainWindow::showPins);
+  connect(doc_, &DocumentController::problem, this, [this](const QString& m) { showError(m); });
+  connect(data_, &DataController::dataChanged, this, &MainWindow::updateDataLabel);
+  connect(data_, &DataController::fileOpened, this, &MainWindow::clearError);
+  connect(data_, &DataController::problem, this, [this](const QString& m) { showError(m); });
+  connect(data_, &DataController::status, status_, &QLabel::setText);
+  connect(export_, &ExportController::status, status_, &QLabel::setText);
+  connect(this, &MainWindow::errorShown, export_, &ExportController::noteProblem);
+  connect(runs_, &RunController::finished, this, &MainWindow::applyResult);
+  connect(runs_, &RunController::failed, this, [this](const QString& m) { showError(m, true); });
+  connect(runs_, &RunController::applied, this, &MainWindow::runApplied);
+  connect(runs_, &RunController::requested, this, [this] {
+    // An error shown before this request is cleared when the request succeeds.
+    if (error_->isVisible()) error_->setProperty("fromRun", true);
+  });
+  runs_->setDrawing([this] { return view_ && view_->busy(); });
+  connect(runs_, &RunController::problem, this, [this](const QString& m) { showError(m); });
+  connect(runs_, &RunController::valuesChosen, doc_, &DocumentController::setValues);
+  connect(runs_, &RunController::tuningSetChosen, doc_, &DocumentController::setTuningSet);
+  connect(runs_, &RunController::objectiveChosen, this,
+          [this](const QString& key) { primary_metric_ = key.toStdString(); });
+  present_->setPlotSources([this] { return plots_; },
+                           [this] {
+                             QList<QCustomPlot*> others;
+                             for (const PlotPanel& p : consistency_->plots())
+                               others << p.plot;
+                             others << data_tab_->plot();
+                             return others;
+                           });
+  // After each run: the data tab and label, the look of new curves, the readout at the cursor.
+  connect(this, &MainWindow::resultApplied, this, [this] {
+    data_tab_->setDataset(dataset());
+    updateDataLabel();
+  });
+  connect(this, &MainWindow::resultApplied, present_, &PresentationController::restyle);
+  connect(this, &MainWindow::resultApplied, replay_, &ReplayController::followCursor);
+  registerViewState();
+}
+
+void MainWindow::registerViewState() {
+  // The window, then each part, restored in this order.
+  addViewStatePart(
+      "geometry", [this] { return QJsonValue(QString::fromLatin1(saveGeometry().toBase64())); },
+      [this](const QJsonValue& v) {
+        restoreGeometry(QByteArray::fromBase64(v.toString().toLatin1()));
+      });
+  addViewStatePart(
+      "splitters",
+      [this] {
+        QJsonObject splits;
+        for (auto* sp : findChildren<QSplitter*>()) {
+          if (!sp->objectName().isEmpty())
+            splits[sp->objectName()] = QString::fromLatin1(sp->saveState().toBase64());
+        }
+        return QJsonValue(splits);
+      },
+      [this](const QJsonValue& v) {
+        const QJsonObject splits = v.toObject();
+        for (auto it = splits.begin(); it != splits.end(); ++it) {
+          if (auto* sp = findChild<QSplitter*>(it.key()))
+            sp->restoreState(QByteArray::fromBase64(it.value().toString().toLatin1()));
+        }
+      });
+  addViewStatePart(
+      "zoom", [this] { return zoom_ ? zoom_->save() : QJsonValue(); },
+      [this](const QJsonValue& v) {
+        if (zoom_) zoom_->restore(v);
+      });
+  addViewStatePart(
+      "presentation", [this] { return present_->saveState(); },
+      [this](const QJsonValue& v) { present_->restoreState(v); });
+  addViewStatePart(
+      "replay", [this] { return replay_->saveState(); },
+      [this](const QJsonValue& v) { replay_->restoreState(v); });
+}
+
+void MainWindow::presetChosen(int index) {
+  const QString path = presets_->itemData(index).toString();
+  // The preset already open: back to its values (pinned snapshots stay, one undo step).
+  if (document() && !preset().path.empty() &&
+      QFileInfo(path).absoluteFilePath() == QFileInfo(q(preset().path)).absoluteFilePath()) {
+    resetToPreset();
+    return;
+  }
+  if (!confirmDiscard("Switch preset")) {
+    refreshPresetList();
+    return;
+  }
+  if (auto st = loadPreset(path); !st) {
+    QMessageBox::warning(this, "Preset", q(st.error()));
+    refreshPresetList();
+  }
 }
 
 void MainWindow::refreshPresetList() {
@@ -321,225 +380,59 @@ void MainWindow::refreshPresetList() {
   }
 }
 
-Status MainWindow::loadPreset(const QString& preset, const std::optional<QString>& data_file,
-                              const QStringList& assignments) {
-  std::vector<std::string> sets;
-  for (const auto& a : assignments)
-    sets.push_back(a.toStdString());
-  std::optional<std::string> d;
-  if (data_file) d = data_file->toStdString();
-  auto doc = Document::open(preset.toStdString(), d, sets);
-  if (!doc) return doc.err();
-  return adoptDocument(std::move(*doc));
-}
-
-const Preset& MainWindow::preset() const {
-  return doc_ ? doc_->preset() : kNoPreset;
-}
-
-// Everything a new document needs before it is shown: its dataset read, its plots made. On
-// failure nothing changes.
-Status MainWindow::adoptDocument(Document doc) {
-  std::shared_ptr<const Dataset> file;
-  if (doc.data()) {
-    auto ds = load_dataset_file(doc.scenario(), doc.data()->path, doc.data()->mapping);
-    if (!ds) return ds.err();
-    file = std::make_shared<const Dataset>(std::move(*ds));
+void MainWindow::fitToScreen() {
+  if (remembersSize()) {
+    const QByteArray g = QSettings("kfw", "kfw").value("window/geometry").toByteArray();
+    if (!g.isEmpty() && restoreGeometry(g)) return;
   }
-  auto view = views().make(doc.scenario().name());
-  if (!view) return Error{"no plots registered for scenario '" + doc.scenario().name() + "'"};
-  doc_ = std::make_unique<Document>(std::move(doc));
-  scenario_ = doc_->scenario_ptr();
-  file_data_ = file;
-  loaded_data_ = doc_->data();
-  view_ = std::move(view);
-  result_.reset();
-  snapshots_.clear();
-  for (const auto& snap : doc_->snapshots())
-    snapshots_.push_back({snap, nullptr, nullptr});
-  runner_->setScenario(scenario_);
-  runner_->setFileDataset(file_data_);
-  rebuildScenarioUi();
-  refreshPresetList();
-  clearError();
-  const Preset& p = doc_->preset();
-  setWindowTitle("kfw — " + q(p.title.empty() ? scenario_->title() : p.title));
-  updateDescription();
-  updateUndoActions();
-  requestRun();
-  return Ok{};
+  // 90 % of the available screen, at most 1600×1000.
+  const QScreen* s = screen() ? screen() : QGuiApplication::primaryScreen();
+  const QRect avail = s ? s->availableGeometry() : QRect(0, 0, 1366, 768);
+  const QSize size(std::min(1600, avail.width() * 9 / 10), std::min(1000, avail.height() * 9 / 10));
+  resize(size);
+  move(avail.center() - QPoint(size.width() / 2, size.height() / 2));
 }
 
-plot::ZoomGroup* MainWindow::zoom() const {
-  return zoom_.data();
+void MainWindow::saveWindowSize() const {
+  if (remembersSize()) QSettings("kfw", "kfw").setValue("window/geometry", saveGeometry());
 }
 
-void MainWindow::rebuildScenarioUi() {
-  delete panel_;
-  delete controls_;
-  controls_ = nullptr;
-  panel_ = new ParamPanel(scenario_->params(), doc_->preset().ranges);
-  panel_->setObjectName("paramPanel");
-  panel_->setValues(doc_->values());
-  left_->insertWidget(left_->count() - 1, panel_);
-  connect(panel_, &ParamPanel::valueChanged, this, [this](const QString& key, double v) {
-    // Changes of one key in quick succession (a slider drag) are one undo step.
-    const std::string k = key.toStdString();
-    const bool drag = k == last_edit_key_ && last_edit_.isValid() && last_edit_.elapsed() < 800;
-    last_edit_key_ = k;
-    last_edit_.start();
-    if (auto st = doc_->set_value(k, v, drag ? UndoMerge::kMergeSameKey : UndoMerge::kNewStep);
-        !st) {
-      showError(q(st.error()));
-      panel_->setValues(doc_->values());
-      return;
-    }
-    updateUndoActions();
-    requestRun();
-  });
-  view_->setScenario(scenario_);
-  controls_ = view_->createControls(nullptr);
-  if (controls_) left_->insertWidget(left_->count() - 1, controls_);
-  connect(view_.get(), &ScenarioView::parameterEdited, this,
-          [this](const QString& key, double v) { setParam(key.toStdString(), v); });
-
-  // Plots: two columns in a scroll area; at 1366×768 the first two rows are in view.
-  delete plot_host_;
-  plot_host_ = new QWidget;
-  auto* grid = new QGridLayout(plot_host_);
-  grid->setContentsMargins(2, 2, 2, 2);
-  grid->setSpacing(4);
-  plots_ = view_->createPlots(plot_host_);
-  for (int i = 0; i < plots_.size(); ++i) {
-    plots_[i].plot->setObjectName("plot." + plots_[i].name);
-    // An explicit minimum: a long title's width must not widen the grid past the viewport
-    // (the plots then scroll sideways and the second column is off screen at 1366×768).
-    plots_[i].plot->setMinimumSize(200, 240);
-    grid->addWidget(plots_[i].plot, i / 2, i % 2);
-  }
-  plot_area_->setWidget(plot_host_);
-  zoom_ = new plot::ZoomGroup(
-      plots_,
-      [this] {
-        plot::DrawBatch batch;
-        if (view_ && result_) view_->setCursor(transport_->cursor());
-      },
-      plot_host_);
-  updateDataLabel();
-}
-
-void MainWindow::applyValues(const ParamValues& values) {
-  if (!panel_ || !doc_) return;
-  if (auto st = doc_->set_values(values, "apply values"); !st) {
-    showError(q(st.error()));
-    return;
-  }
-  panel_->setValues(doc_->values());
-  updateUndoActions();
-  requestRun();
-}
-
-const ParamValues& MainWindow::values() const {
-  return doc_ ? doc_->values() : kEmpty;
-}
-
-std::shared_ptr<const Dataset> MainWindow::dataset() const {
-  return runner_->dataset();
-}
-
-void MainWindow::requestRun() {
-  if (!scenario_ || !panel_) return;
-  if (applied_latest_) since_request_.start();
-  applied_latest_ = false;
-  // An error shown before this request is cleared when the request succeeds.
-  if (error_->isVisible()) error_->setProperty("fromRun", true);
-  runner_->request(doc_->values());
-}
-
-void MainWindow::applyResult(std::shared_ptr<const RunResult> r, const ParamValues& v, double ms) {
-  result_ = r;
-  QElapsedTimer apply;
-  apply.start();
-  const std::size_t cursor_before = transport_->cursor();
-  transport_->setTimes(r->t);
-  {
-    plot::DrawBatch batch;  // the view's reductions on both cores (draw_batch.h)
-    view_->setDataset(runner_->dataset());
-    view_->setResult(r, v);  // draws up to the view's cursor
-    if (transport_->cursor() != cursor_before) view_->setCursor(transport_->cursor());
-  }
-  consistency_->setResult(r);  // drawn when its tab is shown
-  if (qEnvironmentVariableIsSet("KFW_TIMING")) {
-    qInfo("run %.1f ms, plots %.1f ms, since request %.1f ms", ms, apply.nsecsElapsed() / 1e6,
-          since_request_.nsecsElapsed() / 1e6);
-    for (const auto& p : plots_)
-      qInfo("  %s replot %.1f ms", qPrintable(p.name), p.plot->replotTime());
-  }
-  if (!snapshots_.empty() && snapshots_.front().data != runner_->dataset()) {
-    refreshSnapshots();
+void MainWindow::closeEvent(QCloseEvent* event) {
+  if (confirmDiscard("Quit")) {
+    saveWindowSize();
+    event->accept();
   } else {
-    fillMetrics();
-  }
-  applied_latest_ = !runner_->busy();
-  if (applied_latest_) last_latency_ms_ = static_cast<double>(since_request_.nsecsElapsed()) / 1e6;
-  // The status bar: results and warnings (a screenshot stays the same run to run); the
-  // timings in its tooltip.
-  status_->setText(statusText());
-  status_->setToolTip(QString("%1 steps · run %2 ms · request→plots %3 ms")
-                          .arg(r->steps())
-                          .arg(ms, 0, 'f', 1)
-                          .arg(last_latency_ms_, 0, 'f', 1));
-  status_->setStyleSheet(r->warnings.empty() ? QString() : QString("QLabel { color: #8a4b00; }"));
-  if (applied_latest_) {
-    // A later success clears the error banner (a run error, or one shown before the request).
-    if (error_->isVisible() && error_->property("fromRun").toBool()) clearError();
-    emit resultApplied();
+    event->ignore();
   }
 }
 
-void MainWindow::showError(const QString& message, bool from_run) {
-  last_error_ = message;
-  error_->setText("⚠ " + message);
-  error_->setProperty("fromRun", from_run);
-  error_->show();
-  emit errorShown(message);
+void MainWindow::resizeEvent(QResizeEvent* event) {
+  QMainWindow::resizeEvent(event);
+  QTimer::singleShot(0, this, [this] { fitMetricsPanel(); });
 }
 
-void MainWindow::clearError() {
-  error_->hide();
-  error_->clear();
+TuneDialog* MainWindow::openTuneDialog() {
+  if (!document() || !waitForRun()) return nullptr;
+  const QString name =
+      document()->data() ? QFileInfo(q(document()->data()->path)).fileName() : QString("simulated");
+  return runs_->openTune(preset(), values(), name, document()->tuning_set(), this);
 }
 
-double MainWindow::lastRunMs() const {
-  return runner_ ? runner_->lastCpuMs() : 0.0;
+SweepDialog* MainWindow::openSweepDialog() {
+  if (!document() || !waitForRun()) return nullptr;
+  return runs_->openSweep(values(), this);
 }
 
-bool MainWindow::waitForRun(int timeout_ms) {
-  // A nested event loop that sleeps until the run lands (no busy polling: the worker keeps a core).
-  QDeadlineTimer deadline(timeout_ms);
-  while (!applied_latest_ || runner_->busy() || (view_ && view_->busy())) {
-    if (deadline.hasExpired()) return false;
-    QEventLoop loop;
-    connect(this, &MainWindow::resultApplied, &loop, &QEventLoop::quit);
-    connect(runner_, &RunController::failed, &loop, &QEventLoop::quit);
-    if (view_) connect(view_.get(), &ScenarioView::idle, &loop, &QEventLoop::quit);
-    QTimer::singleShot(std::max<qint64>(1, std::min<qint64>(deadline.remainingTime(), 50)), &loop,
-                       &QEventLoop::quit);
-    loop.exec();
-  }
-  return true;
+QString MainWindow::usageText() {
+  return help::usageText();
 }
 
-std::string MainWindow::primaryParameter() const {
-  if (!scenario_) return {};
-  const auto& specs = scenario_->params().specs();
-  for (const auto& s : specs) {
-    if (s.key == "Q") return s.key;
-  }
-  for (const auto& s : specs) {
-    if (!is_sim_key(s.key) && (s.scale == Scale::kLog || s.scale == Scale::kLinear)) return s.key;
-  }
-  return specs.empty() ? std::string() : specs.front().key;
+QString MainWindow::readmePath() {
+  return help::readmePath();
+}
+
+QString MainWindow::aboutText() {
+  return help::aboutText();
 }
 
 }  // namespace kfw

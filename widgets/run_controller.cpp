@@ -2,10 +2,18 @@
 
 #include <QCoreApplication>
 #include <QDeadlineTimer>
+#include <QEventLoop>
+#include <QMessageBox>
 #include <QMetaObject>
 #include <QPointer>
+#include <QTimer>
 #include <chrono>
 #include <ctime>
+
+#include "experiment/tuning.h"
+#include "monte_carlo_dialog.h"
+#include "sweep_dialog.h"
+#include "tune_dialog.h"
 
 namespace kfw {
 
@@ -46,6 +54,7 @@ void RunController::setScenario(std::shared_ptr<const Scenario> scenario) {
   sim_cache_.reset();
   sim_key_.clear();
   pending_.reset();
+  result_.reset();
   ++generation_;
 }
 
@@ -56,6 +65,10 @@ void RunController::setFileDataset(std::shared_ptr<const Dataset> data) {
 
 void RunController::request(const ParamValues& values) {
   if (!scenario_) return;
+  // The latency runs from the first request after the last settled one (a burst is one wait).
+  if (settled_) since_request_.start();
+  settled_ = false;
+  emit requested();
   if (busy_) {
     pending_ = values;
     return;
@@ -130,13 +143,14 @@ void RunController::onDone(const std::shared_ptr<Outcome>& out) {
       sim_key_ = out->sim_key;
     }
     if (out->result) {
-      if (out->dataset != last_dataset_) {
-        last_dataset_ = out->dataset;
-        emit datasetChanged(last_dataset_);
-      }
+      last_dataset_ = out->dataset;
+      result_ = out->result;
+      last_wall_ms_ = out->ms;
       emit finished(out->result, out->values, out->ms);
+      settle(true);
     } else {
       emit failed(QString::fromStdString(out->error));
+      settle(false);
     }
   }
   if (pending_) {
@@ -146,13 +160,76 @@ void RunController::onDone(const std::shared_ptr<Outcome>& out) {
   }
 }
 
-bool RunController::waitIdle(int timeout_ms) {
+void RunController::settle(bool ok) {
+  settled_ = !busy_;
+  if (ok && settled_) last_latency_ms_ = sinceRequestMs();
+  emit applied(ok);
+}
+
+bool RunController::waitSettled(int timeout_ms) {
+  // A nested event loop that sleeps until the run lands (no busy polling: the worker keeps a core).
   QDeadlineTimer deadline(timeout_ms);
-  while (busy_ || pending_) {
+  while (!settled_ || busy_ || (drawing_ && drawing_())) {
     if (deadline.hasExpired()) return false;
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 5);
+    QEventLoop loop;
+    connect(this, &RunController::applied, &loop, &QEventLoop::quit);
+    connect(this, &RunController::drawingFinished, &loop, &QEventLoop::quit);
+    QTimer::singleShot(std::max<qint64>(1, std::min<qint64>(deadline.remainingTime(), 50)), &loop,
+                       &QEventLoop::quit);
+    loop.exec();
   }
   return true;
+}
+
+TuneDialog* RunController::openTune(const Preset& preset, const ParamValues& values,
+                                    const QString& data_name,
+                                    const std::vector<DataRef>& tuning_set, QWidget* parent) {
+  if (!scenario_ || !last_dataset_) return nullptr;
+  auto* d = new TuneDialog(preset, last_dataset_, data_name, result_, values, parent);
+  d->setAttribute(Qt::WA_DeleteOnClose);
+  // The document's tuning set comes back with the dialog (files that no longer read are skipped
+  // with their message).
+  for (const auto& ref : tuning_set) {
+    if (auto st = d->addLog(QString::fromStdString(ref.path)); !st) {
+      emit problem(QString::fromStdString(st.error()));
+    }
+  }
+  connect(d, &TuneDialog::tuned, this, [this, d](const ParamValues& v) {
+    // The tuned objective's metric goes first in the metrics table (rmse+nis ranks rmse).
+    if (auto obj = make_objective(*scenario_, d->objective().toStdString(), result_.get())) {
+      emit objectiveChosen(QString::fromStdString(obj->spec.key));
+    }
+    emit valuesChosen(v, "tune");
+  });
+  connect(d, &TuneDialog::reverted, this,
+          [this](const ParamValues& v) { emit valuesChosen(v, "revert tuning"); });
+  connect(d, &TuneDialog::tuningSetChanged, this, &RunController::tuningSetChosen);
+  d->show();
+  return d;
+}
+
+SweepDialog* RunController::openSweep(const ParamValues& values, QWidget* parent) {
+  if (!scenario_ || !last_dataset_ || !result_) return nullptr;
+  auto* d = new SweepDialog(scenario_, last_dataset_, values, result_->metrics, parent);
+  d->setAttribute(Qt::WA_DeleteOnClose);
+  connect(d, &SweepDialog::pointChosen, this,
+          [this](const ParamValues& v) { emit valuesChosen(v, "sweep point"); });
+  d->show();
+  return d;
+}
+
+MonteCarloDialog* RunController::openMonteCarlo(const ParamValues& values, QWidget* parent) {
+  if (!scenario_) return nullptr;
+  if (file_) {  // seeds simulate; the Simulator group is off for data from a file
+    QMessageBox::information(parent, "Monte Carlo",
+                             "Monte Carlo simulates each seed: use "
+                             "simulated data (File → Use simulated data).");
+    return nullptr;
+  }
+  auto* d = new MonteCarloDialog(scenario_, values, parent);
+  d->setAttribute(Qt::WA_DeleteOnClose);
+  d->show();
+  return d;
 }
 
 }  // namespace kfw

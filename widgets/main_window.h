@@ -178,8 +178,6 @@ class MainWindow : public QMainWindow {
   std::string primaryParameter() const;
   // Request → plots replotted, for the last run, ms.
   double lastLatencyMs() const { return runs_->lastLatencyMs(); }
-  // The worker's CPU time in the last finished run (the latency benchmark adds it up).
-  double lastRunMs() const { return runs_->lastCpuMs(); }
   // The metrics table (metrics_panel.h).
   MetricsPanel* metricsPanel() const { return metrics_; }
   // The metric shown first in the table (the last tuning's objective); "" for the default.

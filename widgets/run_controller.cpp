@@ -26,7 +26,6 @@ struct RunController::Outcome {
   std::shared_ptr<const RunResult> result;
   std::string error;
   double ms = 0.0;
-  double cpu_ms = 0.0;  // CPU time of the worker thread
 };
 
 namespace {
@@ -91,8 +90,6 @@ void RunController::start(const ParamValues& values) {
     out->generation = gen;
     out->values = values;
     const auto t0 = std::chrono::steady_clock::now();
-    timespec cpu0{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &cpu0);
     std::shared_ptr<const Dataset> data = file;
     if (!data) {
       out->sim_key = sim_subset(values);
@@ -121,10 +118,6 @@ void RunController::start(const ParamValues& values) {
     }
     out->ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    timespec cpu1{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &cpu1);
-    out->cpu_ms = static_cast<double>(cpu1.tv_sec - cpu0.tv_sec) * 1e3 +
-                  static_cast<double>(cpu1.tv_nsec - cpu0.tv_nsec) / 1e6;
     QMetaObject::invokeMethod(
         QCoreApplication::instance(),
         [self, out]() {
@@ -136,7 +129,6 @@ void RunController::start(const ParamValues& values) {
 
 void RunController::onDone(const std::shared_ptr<Outcome>& out) {
   busy_ = false;
-  last_cpu_ms_ = out->cpu_ms;
   if (out->generation == generation_) {
     if (out->simulated) {
       sim_cache_ = out->dataset;

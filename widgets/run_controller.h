@@ -49,8 +49,6 @@ class RunController : public QObject {
   // Asks for a run with these values; coalesced, latest wins.
   void request(const ParamValues& values);
   bool busy() const { return busy_; }
-  // The worker thread's CPU time in the last finished run (simulate + filter + metrics).
-  double lastCpuMs() const { return last_cpu_ms_; }
   // The wall time of simulate + filter in the last finished run.
   double lastWallMs() const { return last_wall_ms_; }
 
@@ -108,7 +106,6 @@ class RunController : public QObject {
   std::shared_ptr<const RunResult> result_;
   std::optional<ParamValues> pending_;
   bool busy_ = false;
-  double last_cpu_ms_ = 0.0;
   double last_wall_ms_ = 0.0;
   std::uint64_t generation_ = 0;
   std::shared_ptr<std::atomic<bool>> cancel_;

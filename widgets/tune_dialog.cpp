@@ -257,11 +257,6 @@ void TuneDialog::setBounds(const QString& key, double lo, double hi) {
   }
 }
 
-void TuneDialog::setMethod(const QString& name) {
-  const int i = method_->findData(name);
-  if (i >= 0) method_->setCurrentIndex(i);
-}
-
 void TuneDialog::setBudget(int evaluations) {
   budget_->setValue(evaluations);
 }

@@ -45,7 +45,6 @@ class TuneDialog : public QDialog {
   void setSelected(const QStringList& keys);
   QStringList selected() const;
   void setBounds(const QString& key, double lo, double hi);
-  void setMethod(const QString& name);
   void setBudget(int evaluations);
   // Adds a CSV to the tuning set (read through the preset's mapping); the message names the
   // file and line on an error.

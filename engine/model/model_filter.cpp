@@ -106,8 +106,8 @@ const char* kind_name(FilterKind k) {
 
 template <int N>
 Status dispatch(detail::Context& ctx, const VecX& x0, const MatX& P0) {
-  typename detail::Types<N>::VecN x = x0;
-  typename detail::Types<N>::MatN P = P0;
+  Vec<N> x = x0;
+  Covariance<N> P = P0;
   if (ctx.options.kind == FilterKind::kUkf) return detail::run_ukf<N>(ctx, x, P);
   return detail::run_kf<N>(ctx, x, P);
 }
@@ -204,6 +204,7 @@ Expected<std::shared_ptr<ModelResult>> run_model_filter(const ModelSpec& spec, c
     r->chans.push_back(std::move(s));
   }
   ctx.u_held.assign(spec.inputs.size(), 0.0);
+  ctx.set_angles();
   ctx.z_buf.assign(static_cast<std::size_t>(kMaxChannelSize), 0.0);
 
   // x0: expressions, or the first finite sample of a column (as seed 000 starts from the first

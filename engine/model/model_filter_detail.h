@@ -1,15 +1,19 @@
 // Internal to the model filters (model_kf.cpp, model_ukf.cpp): fixed-size types per state count,
-// angle wrapping, the data columns of a run, and the per-step recording shared by every filter.
+// the data columns of a run, the step loop and the per-step recording shared by every filter. The
+// filter maths is the filter library's (filter/kalman_filter.h, filter/ekf.h, filter/ukf.h, and
+// the one measurement update of filter/measurement_update.h).
 #pragma once
 
 #include <Eigen/Cholesky>
 #include <cmath>
-#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/scenario.h"
+#include "filter/angle.h"
+#include "filter/filter_types.h"
+#include "filter/measurement_update.h"
 #include "model/model_eval.h"
 #include "model/model_filter.h"
 #include "model/model_result.h"
@@ -18,29 +22,9 @@ namespace kfw::model::detail {
 
 inline constexpr int kM = kMaxChannelSize;
 
-// Eigen wants row-major storage for a compile-time row vector.
-template <int R, int C>
-inline constexpr int kOpts = (R == 1 && C != 1) ? Eigen::RowMajor : Eigen::ColMajor;
-
 // State-size N fixed (fast, no heap) or Eigen::Dynamic; measurement sizes up to kM, no heap.
 template <int N>
-struct Types {
-  using VecN = Eigen::Matrix<double, N, 1>;
-  using MatN = Eigen::Matrix<double, N, N>;
-  using VecM = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kM, 1>;
-  using MatM = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kM, kM>;
-  using MatNM = Eigen::Matrix<double, N, Eigen::Dynamic, kOpts<N, Eigen::Dynamic>, N, kM>;
-  using MatMN = Eigen::Matrix<double, Eigen::Dynamic, N, kOpts<Eigen::Dynamic, N>, kM, N>;
-};
-
-// An angle to (−π, π] (rad) or (−180, 180] (deg); other values unchanged.
-inline double wrap(double v, Angle a) {
-  if (a == Angle::kNone) return v;
-  const double period = a == Angle::kRad ? 2.0 * std::numbers::pi : 360.0;
-  double r = std::remainder(v, period);
-  if (r <= -0.5 * period) r += period;
-  return r;
-}
+using Dims = FilterDims<N, Eigen::Dynamic, kM>;
 
 // The dataset's columns for a run, by role.
 struct Data {
@@ -59,9 +43,36 @@ struct Context {
   ModelResult& r;
   const RunControl& control;
   FilterOptions options;
-  std::vector<double> u_held;     // the inputs, last finite value held
-  std::vector<int> truth_states;  // states with a truth column
-  std::vector<double> z_buf;      // one channel's measurement
+  std::vector<double> u_held;                  // the inputs, last finite value held
+  std::vector<int> truth_states;               // states with a truth column
+  std::vector<double> z_buf;                   // one channel's measurement
+  std::vector<Angle> state_angle;              // per state
+  std::vector<std::vector<Angle>> role_angle;  // per channel, per component
+  bool any_angle = false;                      // some state is an angle
+
+  // The angles of the states and channel components, from the spec.
+  void set_angles() {
+    for (const auto& s : spec.states) {
+      state_angle.push_back(s.angle);
+      any_angle = any_angle || s.angle != Angle::kNone;
+    }
+    role_angle.resize(spec.channels.size());
+    for (std::size_t c = 0; c < spec.channels.size(); ++c) {
+      for (const auto& role : spec.channels[c].roles)
+        role_angle[c].push_back(role.angle);
+    }
+  }
+
+  // What the measurement update applies to channel c: its angles and its gate.
+  UpdateRules rules(std::size_t c) { return {role_angle[c], ev.channel(c).gate_nis}; }
+
+  // Angle states wrapped to one turn.
+  template <class V>
+  void wrap_states(V& x) const {
+    if (!any_angle) return;
+    for (Eigen::Index i = 0; i < x.size(); ++i)
+      x(i) = wrap(x(i), state_angle[static_cast<std::size_t>(i)]);
+  }
 
   std::string where(std::size_t k) const {
     std::ostringstream os;
@@ -106,7 +117,7 @@ struct Context {
     }
     if (truth_states.empty()) return;
     const auto d = static_cast<Eigen::Index>(truth_states.size());
-    typename Types<Eigen::Dynamic>::VecM err(d);
+    typename Dims<Eigen::Dynamic>::Meas err(d);
     for (Eigen::Index a = 0; a < d; ++a) {
       const int s = truth_states[static_cast<std::size_t>(a)];
       const double tv = (*data.truth[static_cast<std::size_t>(s)])[k];
@@ -118,33 +129,38 @@ struct Context {
       r.nees[k] = err(0) * err(0) / v;
       return;
     }
-    typename Types<Eigen::Dynamic>::MatM Ps(d, d);
+    typename Dims<Eigen::Dynamic>::MeasCov Ps(d, d);
     for (Eigen::Index a = 0; a < d; ++a) {
       for (Eigen::Index b = 0; b < d; ++b)
         Ps(a, b) =
             P(truth_states[static_cast<std::size_t>(a)], truth_states[static_cast<std::size_t>(b)]);
     }
-    Eigen::LLT<typename Types<Eigen::Dynamic>::MatM> llt(Ps);
+    Eigen::LLT<typename Dims<Eigen::Dynamic>::MeasCov> llt(Ps);
     if (llt.info() == Eigen::Success) r.nees[k] = err.dot(llt.solve(err));
   }
 
-  // Stores one channel's innovation, S diagonal, NIS, log det S and gain at step k.
-  template <class Y, class S, class K>
-  void record_update(std::size_t c, std::size_t k, const Y& y, const S& Sm, double nis,
-                     double log_det, const K& Km) {
+  // Counts channel c's update at step k by its outcome and stores its innovation and S diagonal
+  // (updated or gated), NIS, log det S and gain (updated).
+  template <int N, int M, int MaxM>
+  void record_update(std::size_t c, std::size_t k, const MeasurementUpdate<N, M, MaxM>& u) {
     ChannelSeries& ch = r.chans[c];
-    const auto m = static_cast<std::size_t>(y.size());
+    if (u.status == UpdateStatus::kSkipped) {
+      ++ch.skipped;
+      return;
+    }
+    ++(u.updated() ? ch.updates : ch.gated);
+    const auto m = static_cast<std::size_t>(u.y.size());
     for (std::size_t j = 0; j < m; ++j) {
       const auto jj = static_cast<Eigen::Index>(j);
-      ch.y[j][k] = y(jj);
-      ch.S[j][k] = Sm(jj, jj);
+      ch.y[j][k] = u.y(jj);
+      ch.S[j][k] = u.S(jj, jj);
     }
-    ch.nis[k] = nis;
-    ch.log_det_s[k] = log_det;
-    if (!std::isfinite(nis)) return;
-    for (Eigen::Index i = 0; i < Km.rows(); ++i) {
-      for (Eigen::Index j = 0; j < Km.cols(); ++j)
-        ch.K[static_cast<std::size_t>(i) * m + static_cast<std::size_t>(j)][k] = Km(i, j);
+    ch.nis[k] = u.updated() ? u.nis : kNoSample;
+    ch.log_det_s[k] = u.updated() ? u.log_det_S : kNoSample;
+    if (!std::isfinite(ch.nis[k])) return;
+    for (Eigen::Index i = 0; i < u.K.rows(); ++i) {
+      for (Eigen::Index j = 0; j < u.K.cols(); ++j)
+        ch.K[static_cast<std::size_t>(i) * m + static_cast<std::size_t>(j)][k] = u.K(i, j);
     }
   }
 
@@ -168,11 +184,61 @@ struct Context {
        << "); the run stops here";
     return fail(k, os.str());
   }
+  Status check_process_noise(std::size_t k) const {
+    return ev.process_noise_varies() ? check_noise(k, ev.Q, "model.process.Q") : Status(Ok{});
+  }
+  Status check_channel_noise(std::size_t c, std::size_t k) const {
+    const ModelEval::Channel& ch = ev.channel(c);
+    return ch.R_varies ? check_noise(k, ch.R, spec.channels[c].R.key) : Status(Ok{});
+  }
 };
 
+// The recursion over the rows that every model filter runs: the process set to the interval
+// before row k, then the filter's predict; each channel due at row k set, then the filter's
+// update; then x and P recorded. A Filter has x, P, Status predict(k) and Status update(c, k).
+template <class Filter>
+Status run_steps(Context& ctx, Filter& f) {
+  ModelEval& ev = ctx.ev;
+  const auto& t = *ctx.data.t;
+  for (std::size_t k = 0; k < ctx.data.rows; ++k) {
+    if (k > 0) {
+      if (auto st = ev.set_dt(t[k] - t[k - 1]); !st) return ctx.fail(k, st.error());
+      ev.set_time(t[k - 1]);
+      ev.set_inputs(ctx.u_held.data());
+      ev.process_step();
+      if (auto st = f.predict(k); !st) return st;
+    }
+    ctx.hold_inputs(k);
+    bool row_set = false;
+    for (std::size_t c = 0; c < ctx.spec.channels.size(); ++c) {
+      if (!ctx.channel_ready(c, k)) continue;
+      if (!row_set) {
+        ev.set_time(t[k]);
+        ev.set_inputs(ctx.u_held.data());
+        row_set = true;
+      }
+      ev.channel_step(c);
+      if (auto st = f.update(c, k); !st) return st;
+    }
+    ctx.record_state(k, f.x, f.P);
+    if ((k & 0xFFF) == 0xFFF && ctx.control.cancelled()) return Error{"cancelled"};
+  }
+  return Ok{};
+}
+
 template <int N>
-Status run_kf(Context& ctx, typename Types<N>::VecN x, typename Types<N>::MatN P);
+Status run_kf(Context& ctx, Vec<N> x, Covariance<N> P);
 template <int N>
-Status run_ukf(Context& ctx, typename Types<N>::VecN x, typename Types<N>::MatN P);
+Status run_ukf(Context& ctx, Vec<N> x, Covariance<N> P);
+
+// Instantiates a filter's run for every state count dispatched on (model_filter.cpp).
+#define KFW_MODEL_FILTER_SIZES(RUN)                        \
+  template Status RUN<1>(Context&, Vec<1>, Covariance<1>); \
+  template Status RUN<2>(Context&, Vec<2>, Covariance<2>); \
+  template Status RUN<3>(Context&, Vec<3>, Covariance<3>); \
+  template Status RUN<4>(Context&, Vec<4>, Covariance<4>); \
+  template Status RUN<5>(Context&, Vec<5>, Covariance<5>); \
+  template Status RUN<6>(Context&, Vec<6>, Covariance<6>); \
+  template Status RUN<Eigen::Dynamic>(Context&, Vec<Eigen::Dynamic>, Covariance<Eigen::Dynamic>);
 
 }  // namespace kfw::model::detail

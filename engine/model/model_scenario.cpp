@@ -9,11 +9,11 @@
 
 #include "core/statistics.h"
 #include "core/suggest.h"
+#include "filter/angle.h"
 #include "filter/consistency.h"
 #include "filter/dare.h"
 #include "model/model_eval.h"
 #include "model/model_filter.h"
-#include "model/model_filter_detail.h"
 #include "model/model_sim.h"
 #include "model/model_spec.h"
 
@@ -153,11 +153,11 @@ class ModelScenario final : public Scenario {
     Metrics& m = res.metrics;
     // An angle state's RMSE from the wrapped error (the shared rmse.<state> would not wrap).
     for (std::size_t i = 0; i < res.n(); ++i) {
-      const model::Angle a = spec_->states[i].angle;
-      if (a == model::Angle::kNone || res.truth[i].empty()) continue;
+      const Angle a = spec_->states[i].angle;
+      if (a == Angle::kNone || res.truth[i].empty()) continue;
       std::vector<double> e(res.steps(), kNoSample), zero(res.steps(), 0.0);
       for (std::size_t k = 0; k < res.steps(); ++k)
-        e[k] = model::detail::wrap(res.x[i][k] - res.truth[i][k], a);
+        e[k] = wrap(res.x[i][k] - res.truth[i][k], a);
       m["rmse." + spec_->states[i].name] = rmse_finite(e, zero);
     }
     for (const auto& c : res.chans) {
@@ -244,7 +244,7 @@ std::optional<ModelLayout> model_layout_of(const Scenario& s) {
   for (const auto& c : m->spec()->channels) {
     ModelLayout::Channel ch{c.name, c.label.empty() ? c.name : c.label, {}};
     for (const auto& r : c.roles)
-      ch.roles.push_back({r.name, r.unit, r.angle != model::Angle::kNone});
+      ch.roles.push_back({r.name, r.unit, r.angle != Angle::kNone});
     l.channels.push_back(std::move(ch));
   }
   l.time_invariant = m->spec()->time_invariant();

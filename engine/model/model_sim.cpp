@@ -7,8 +7,8 @@
 #include <random>
 #include <sstream>
 
+#include "filter/angle.h"
 #include "model/model_eval.h"
-#include "model/model_filter_detail.h"
 
 namespace kfw::model {
 
@@ -126,7 +126,7 @@ Expected<Dataset> simulate_model(const ModelSpec& spec, const ParamValues& value
       }
       x = next + Lq * draw(n);
       for (int i = 0; i < n; ++i)
-        x(i) = detail::wrap(x(i), spec.states[static_cast<std::size_t>(i)].angle);
+        x(i) = wrap(x(i), spec.states[static_cast<std::size_t>(i)].angle);
       if (!x.allFinite()) return fail(k, "the simulated state is not finite");
     }
     u_prev = u;
@@ -157,7 +157,7 @@ Expected<Dataset> simulate_model(const ModelSpec& spec, const ParamValues& value
         }
         z += Lr[c] * draw(cs.size());
         for (std::size_t j = 0; j < m; ++j) {
-          d.columns[col + j][k] = detail::wrap(z(static_cast<Eigen::Index>(j)), cs.roles[j].angle);
+          d.columns[col + j][k] = wrap(z(static_cast<Eigen::Index>(j)), cs.roles[j].angle);
         }
       }
       col += m;

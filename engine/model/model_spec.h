@@ -9,15 +9,13 @@
 
 #include "core/expected.h"
 #include "core/param_spec.h"
+#include "filter/angle.h"
 #include "model/expression.h"
 
 namespace kfw::model {
 
 inline constexpr int kModelVersion = 1;
 inline constexpr int kMaxChannelSize = 8;  // components of one measurement channel
-
-// An angle wraps to (−π, π] (rad) or (−180, 180] (deg); innovations and UKF means follow.
-enum class Angle { kNone, kRad, kDeg };
 
 // A matrix of expressions, row-major, with the key that names it in messages.
 struct MatrixSpec {

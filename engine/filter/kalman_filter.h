@@ -99,7 +99,7 @@ Update<N, M> update(const Gaussian<N>& prior, const Vec<M>& z, const Mat<M, N>& 
                     const Covariance<M>& R) {
   Vec<M> y;
   y.noalias() = z - H * prior.x;
-  return update_innovation(prior, y, H, R, UpdateRules{});
+  return update_innovation(prior, y, H, R, UpdateRules{.log_det = false});
 }
 
 // Scalar-measurement specialisation of the Joseph update (no LLT): the hot path of 1-D sensors.
@@ -110,7 +110,8 @@ Update<N, 1> update_scalar(const Gaussian<N>& prior, double z, const Mat<1, N>& 
   const double S = H.dot(PHt) + R;
   u.S(0, 0) = S;
   u.post = prior;
-  set_outcome(u, update(u.post.x, u.post.P, z - H.dot(prior.x), S, PHt, UpdateRules{}));
+  set_outcome(
+      u, update(u.post.x, u.post.P, z - H.dot(prior.x), S, PHt, UpdateRules{.log_det = false}));
   return u;
 }
 

@@ -27,6 +27,7 @@ enum class UpdateStatus {
 struct UpdateRules {
   std::span<const Angle> angle;  // per component of y; empty: none is an angle
   double gate_nis = 0.0;         // an NIS above this gates the update; 0: no gate
+  bool log_det = true;  // compute log det S (the NLL's); off on the functional KF's hot path
   bool gates(double nis) const { return gate_nis > 0.0 && nis > gate_nis; }
 };
 
@@ -79,7 +80,7 @@ MeasurementUpdate<N, M, MaxM> update(Vec<N>& x, Covariance<N>& P,
     P.noalias() -= u.K * C.transpose();
     P.noalias() -= C * u.K.transpose();
     P.noalias() += (s * u.K) * u.K.transpose();
-    u.log_det_S = std::log(s);
+    if (rules.log_det) u.log_det_S = std::log(s);
     debug_check_covariance(P, "a scalar Kalman update");
   } else {
     Eigen::LLT<MeasCov> llt(S);
@@ -89,10 +90,12 @@ MeasurementUpdate<N, M, MaxM> update(Vec<N>& x, Covariance<N>& P,
       u.status = UpdateStatus::kGated;
       return u;
     }
-    double log_det = 0.0;
-    for (Eigen::Index j = 0; j < S.rows(); ++j)
-      log_det += 2.0 * std::log(llt.matrixLLT()(j, j));
-    u.log_det_S = log_det;
+    if (rules.log_det) {
+      double log_det = 0.0;
+      for (Eigen::Index j = 0; j < S.rows(); ++j)
+        log_det += 2.0 * std::log(llt.matrixLLT()(j, j));
+      u.log_det_S = log_det;
+    }
     u.K = llt.solve(C.transpose()).transpose();
     x.noalias() += u.K * u.y;
     if (H) {

@@ -83,6 +83,13 @@ std::vector<StateSeries> ModelResult::states() const {
   return out;
 }
 
+double detail::Context::nees(const detail::Dims<Eigen::Dynamic>::Meas& err,
+                             const detail::Dims<Eigen::Dynamic>::MeasCov& Ps) {
+  Eigen::LLT<detail::Dims<Eigen::Dynamic>::MeasCov> llt(Ps);
+  if (llt.info() == Eigen::Success) return err.dot(llt.solve(err));
+  return kNoSample;
+}
+
 Expected<FilterKind> filter_kind(const std::string& name) {
   if (name == "kf") return FilterKind::kKf;
   if (name == "ekf") return FilterKind::kEkf;

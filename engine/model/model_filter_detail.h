@@ -135,9 +135,13 @@ struct Context {
         Ps(a, b) =
             P(truth_states[static_cast<std::size_t>(a)], truth_states[static_cast<std::size_t>(b)]);
     }
-    Eigen::LLT<typename Dims<Eigen::Dynamic>::MeasCov> llt(Ps);
-    if (llt.info() == Eigen::Success) r.nees[k] = err.dot(llt.solve(err));
+    r.nees[k] = nees(err, Ps);
   }
+
+  // errᵀ Ps⁻¹ err, or NaN when Ps is not positive definite. Out of line: one copy for every
+  // filter and state count, and the step loops stay small enough to inline their own maths.
+  static double nees(const Dims<Eigen::Dynamic>::Meas& err,
+                     const Dims<Eigen::Dynamic>::MeasCov& Ps);
 
   // Counts channel c's update at step k by its outcome and stores its innovation and S diagonal
   // (updated or gated), NIS, log det S and gain (updated).

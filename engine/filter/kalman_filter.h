@@ -36,7 +36,8 @@ struct Update {
 // P_{k|k-1} = F P F^T + Q in place; FP is scratch, kept by the caller so that a dynamic size does
 // not allocate per step.
 template <class MatP, class MatF, class MatQ>
-void predict_covariance(MatP& P, const MatF& F, const MatQ& Q, MatP& FP) {
+[[gnu::always_inline]] inline void predict_covariance(MatP& P, const MatF& F, const MatQ& Q,
+                                                      MatP& FP) {
   FP.noalias() = F * P;
   P.noalias() = FP * F.transpose();
   P += Q;

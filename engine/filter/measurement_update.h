@@ -47,10 +47,9 @@ struct MeasurementUpdate {
 namespace update_detail {
 
 // The covariance forms. C-form: P⁺ = P⁻ − K S Kᵀ (from C = P_xz, the UKF's). Joseph form:
-// P⁺ = (I − K H) P⁻ (I − K H)ᵀ + K R Kᵀ, symmetric PSD in floating point where P⁻ − K H P⁻ is not;
-// for a scalar measurement it is P⁻ − K Cᵀ − C Kᵀ + K S Kᵀ, which needs neither H nor R. Both
-// matrix forms are then symmetrised.
-template <bool kScalar, int N, int M, int MaxM, class MatR>
+// P⁺ = (I − K H) P⁻ (I − K H)ᵀ + K R Kᵀ, symmetric PSD in floating point where P⁻ − K H P⁻ is not.
+// Both are then symmetrised.
+template <int N, int M, int MaxM, class MatR>
 MeasurementUpdate<N, M, MaxM> update(Vec<N>& x, Covariance<N>& P,
                                      const typename FilterDims<N, M, MaxM>::Meas& y,
                                      const typename FilterDims<N, M, MaxM>::MeasCov& S,
@@ -66,54 +65,36 @@ MeasurementUpdate<N, M, MaxM> update(Vec<N>& x, Covariance<N>& P,
     const auto jj = static_cast<Eigen::Index>(j);
     u.y(jj) = wrap(u.y(jj), rules.angle[j]);
   }
-  if constexpr (kScalar) {
-    // A scalar S needs no factorisation (the hot path of 1-D sensors).
-    const double s = S(0, 0);
-    if (!(s > 0.0) || !std::isfinite(s)) return u;
-    u.nis = u.y(0) * u.y(0) / s;
-    if (rules.gates(u.nis)) {
-      u.status = UpdateStatus::kGated;
-      return u;
-    }
-    u.K = C / s;
-    x.noalias() += u.K * u.y(0);
-    P.noalias() -= u.K * C.transpose();
-    P.noalias() -= C * u.K.transpose();
-    P.noalias() += (s * u.K) * u.K.transpose();
-    if (rules.log_det) u.log_det_S = std::log(s);
-    debug_check_covariance(P, "a scalar Kalman update");
-  } else {
-    Eigen::LLT<MeasCov> llt(S);
-    if (llt.info() != Eigen::Success || !S.allFinite()) return u;
-    u.nis = u.y.dot(llt.solve(u.y));
-    if (rules.gates(u.nis)) {
-      u.status = UpdateStatus::kGated;
-      return u;
-    }
-    if (rules.log_det) {
-      double log_det = 0.0;
-      for (Eigen::Index j = 0; j < S.rows(); ++j)
-        log_det += 2.0 * std::log(llt.matrixLLT()(j, j));
-      u.log_det_S = log_det;
-    }
-    u.K = llt.solve(C.transpose()).transpose();
-    x.noalias() += u.K * u.y;
-    if (H) {
-      const Eigen::Index n = x.rows();
-      Covariance<N> IKH = Covariance<N>::Identity(n, n);
-      IKH.noalias() -= u.K * *H;
-      Covariance<N> tmp;
-      tmp.noalias() = IKH * P;
-      P.noalias() = tmp * IKH.transpose();
-      typename FilterDims<N, M, MaxM>::Cross KR;
-      KR.noalias() = u.K * *R;
-      P.noalias() += KR * u.K.transpose();
-    } else {
-      P.noalias() -= u.K * S * u.K.transpose();
-    }
-    P = 0.5 * (P + P.transpose()).eval();
-    debug_check_covariance(P, H ? "a Joseph-form update" : "an update from P_xz");
+  Eigen::LLT<MeasCov> llt(S);
+  if (llt.info() != Eigen::Success || !S.allFinite()) return u;
+  u.nis = u.y.dot(llt.solve(u.y));
+  if (rules.gates(u.nis)) {
+    u.status = UpdateStatus::kGated;
+    return u;
   }
+  if (rules.log_det) {
+    double log_det = 0.0;
+    for (Eigen::Index j = 0; j < S.rows(); ++j)
+      log_det += 2.0 * std::log(llt.matrixLLT()(j, j));
+    u.log_det_S = log_det;
+  }
+  u.K = llt.solve(C.transpose()).transpose();
+  x.noalias() += u.K * u.y;
+  if (H) {
+    const Eigen::Index n = x.rows();
+    Covariance<N> IKH = Covariance<N>::Identity(n, n);
+    IKH.noalias() -= u.K * *H;
+    Covariance<N> tmp;
+    tmp.noalias() = IKH * P;
+    P.noalias() = tmp * IKH.transpose();
+    typename FilterDims<N, M, MaxM>::Cross KR;
+    KR.noalias() = u.K * *R;
+    P.noalias() += KR * u.K.transpose();
+  } else {
+    P.noalias() -= u.K * S * u.K.transpose();
+  }
+  P = 0.5 * (P + P.transpose()).eval();
+  debug_check_covariance(P, H ? "a Joseph-form update" : "an update from P_xz");
   u.status = UpdateStatus::kUpdated;
   return u;
 }
@@ -128,7 +109,7 @@ MeasurementUpdate<N, M, MaxM> update(Vec<N>& x, Covariance<N>& P,
                                      const typename FilterDims<N, M, MaxM>::Cross& C,
                                      const UpdateRules& rules) {
   using MeasCov = typename FilterDims<N, M, MaxM>::MeasCov;
-  return update_detail::update<false, N, M, MaxM, MeasCov>(x, P, y, S, C, rules, nullptr, nullptr);
+  return update_detail::update<N, M, MaxM, MeasCov>(x, P, y, S, C, rules, nullptr, nullptr);
 }
 
 // The KF's and EKF's update from C = P⁻Hᵀ, S = H C + R, in Joseph form (seed 000 eq. 8–9
@@ -141,16 +122,36 @@ MeasurementUpdate<N, M, MaxM> update(Vec<N>& x, Covariance<N>& P,
                                      const UpdateRules& rules,
                                      const typename FilterDims<N, M, MaxM>::MeasJac& H,
                                      const MatR& R) {
-  return update_detail::update<false, N, M, MaxM, MatR>(x, P, y, S, C, rules, &H, &R);
+  return update_detail::update<N, M, MaxM, MatR>(x, P, y, S, C, rules, &H, &R);
 }
 
-// The same for a scalar measurement, without factorisation: K = C / S, NIS = y² / S.
+// The same for a scalar measurement, without factorisation: K = C / S, NIS = y² / S, and the
+// Joseph form as P⁻ − K Cᵀ − C Kᵀ + K S Kᵀ, which needs neither H nor R (the hot path of 1-D
+// sensors; y stays in a register until the end).
 template <int N>
-MeasurementUpdate<N, 1> update(Vec<N>& x, Covariance<N>& P, double y, double S, const Vec<N>& C,
-                               const UpdateRules& rules) {
-  using Dims = FilterDims<N, 1>;
-  return update_detail::update<true, N, 1, 1, double>(
-      x, P, typename Dims::Meas(y), typename Dims::MeasCov(S), C, rules, nullptr, nullptr);
+[[gnu::always_inline]] inline MeasurementUpdate<N, 1> update(Vec<N>& x, Covariance<N>& P, double y,
+                                                             double S, const Vec<N>& C,
+                                                             const UpdateRules& rules) {
+  MeasurementUpdate<N, 1> u;
+  if (!rules.angle.empty()) y = wrap(y, rules.angle[0]);
+  u.y(0) = y;
+  u.S(0, 0) = S;
+  if (!(S > 0.0) || !std::isfinite(S)) return u;
+  const double nis = y * y / S;
+  u.nis = nis;
+  if (rules.gates(nis)) {
+    u.status = UpdateStatus::kGated;
+    return u;
+  }
+  u.K = C / S;
+  x.noalias() += u.K * y;
+  P.noalias() -= u.K * C.transpose();
+  P.noalias() -= C * u.K.transpose();
+  P.noalias() += (S * u.K) * u.K.transpose();
+  if (rules.log_det) u.log_det_S = std::log(S);
+  debug_check_covariance(P, "a scalar Kalman update");
+  u.status = UpdateStatus::kUpdated;
+  return u;
 }
 
 }  // namespace kfw

@@ -39,7 +39,9 @@ struct UnscentedFilter {
       ev.set_state(x.data());
       ev.process_noise();
     }
-    if (auto st = ctx.check_process_noise(k); !st) return st;
+    if (ev.process_noise_varies()) {
+      if (auto st = ctx.check_process_noise(k); !st) return st;
+    }
     if (!sigma_points<N>(x, P, w, X)) return lost(k);
     for (Eigen::Index j = 0; j < ns; ++j) {
       if (nonlinear) {
@@ -67,7 +69,9 @@ struct UnscentedFilter {
       ev.set_state(x.data());
       ev.channel_noise(c);
     }
-    if (auto st = ctx.check_channel_noise(c, k); !st) return st;
+    if (ch.R_varies) {
+      if (auto st = ctx.check_channel_noise(c, k); !st) return st;
+    }
     if (!sigma_points<N>(x, P, w, X)) return lost(k);
     MatX& Zc = Z[c];
     for (Eigen::Index j = 0; j < ns; ++j) {

@@ -32,6 +32,20 @@ static GiNaC::ex max_deriv(const GiNaC::ex& a, const GiNaC::ex& b, unsigned i) {
 REGISTER_FUNCTION(kfw_min, derivative_func(min_deriv).set_name("min"))
 REGISTER_FUNCTION(kfw_max, derivative_func(max_deriv).set_name("max"))
 
+// sinc(x) = sin(x)/x, 1 at 0, for the removable singularity of steps such as the coordinated
+// turn's v/ω·(sin(ψ + ω dt) − sin ψ) = v dt cos(ψ + ω dt/2) sinc(ω dt/2). Its derivative
+// dsinc(x) = (cos x − sinc x)/x, 0 at 0, appears only in printed derivatives (no second
+// derivative is ever taken).
+DECLARE_FUNCTION_1P(kfw_sinc)
+DECLARE_FUNCTION_1P(kfw_dsinc)
+
+static GiNaC::ex sinc_deriv(const GiNaC::ex& x, unsigned) {
+  return kfw_dsinc(x);
+}
+
+REGISTER_FUNCTION(kfw_sinc, derivative_func(sinc_deriv).set_name("sinc"))
+REGISTER_FUNCTION(kfw_dsinc, set_name("dsinc"))
+
 }  // namespace kfw::model::symbolic
 
 namespace kfw::model {
@@ -45,8 +59,32 @@ double sign_fn(double x) {
   return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0);
 }
 
+}  // namespace
+
+// sin(x)/x: exact to rounding for every x ≠ 0 (sin is accurate relative to its value), 1 at 0.
+double sinc(double x) {
+  return x == 0.0 ? 1.0 : std::sin(x) / x;
+}
+
+// (cos x − sinc x)/x; below |x| = 0.1, where the difference would cancel (a relative error of
+// up to ε/x²), its series −x/3 + x³/30 − x⁵/840 + x⁷/45360 − x⁹/3991680 + x¹¹/518918400 (next
+// term below 1e-20 of the value there).
+double dsinc(double x) {
+  if (std::fabs(x) < 0.1) {
+    const double x2 = x * x;
+    return x * (-1.0 / 3.0 +
+                x2 * (1.0 / 30.0 +
+                      x2 * (-1.0 / 840.0 +
+                            x2 * (1.0 / 45360.0 + x2 * (-1.0 / 3991680.0 + x2 / 518918400.0)))));
+  }
+  return (std::cos(x) - std::sin(x) / x) / x;
+}
+
+namespace {
+
 // The language's functions in muparser (its own built-ins are cleared so that the two libraries
-// read the same set). sign and step appear only in printed derivatives (GiNaC's csgn, step).
+// read the same set). sign, step and dsinc appear only in printed derivatives (GiNaC's csgn,
+// step, the derivative of sinc).
 void setup_parser(mu::Parser& p) {
   p.ClearFun();
   p.ClearConst();
@@ -84,6 +122,8 @@ void setup_parser(mu::Parser& p) {
       "min", +[](double a, double b) { return std::fmin(a, b); });
   p.DefineFun(
       "max", +[](double a, double b) { return std::fmax(a, b); });
+  p.DefineFun("sinc", &sinc);
+  p.DefineFun("dsinc", &dsinc);
   p.DefineFun("sign", &sign_fn);
   p.DefineFun("step", &step_fn);
   p.DefineConst("pi", std::numbers::pi);
@@ -228,7 +268,7 @@ std::string to_muparser(const GiNaC::ex& e) {
   if (is_a<function>(e)) {
     std::string name = ex_to<function>(e).get_name();
     if (name == "csgn") name = "sign";
-    bool known = name == "sign" || name == "step";
+    bool known = name == "sign" || name == "step" || name == "dsinc";
     for (const auto& f : language_functions()) {
       if (f.name == name && static_cast<std::size_t>(f.arity) == e.nops()) known = true;
     }
@@ -259,8 +299,10 @@ Error at(const std::string& key, const std::string& what, std::size_t pos0,
                quoted(text)};
 }
 
-// The position of the first use of identifier `name` in `text` (numbers skipped), or npos.
-std::size_t find_identifier(const std::string& text, const std::string& name) {
+// Calls visit(start, length) for each identifier of `text` in order (numbers skipped) until it
+// returns true; returns that identifier's start, or npos.
+template <class Visit>
+std::size_t for_each_identifier(const std::string& text, Visit visit) {
   std::size_t i = 0;
   while (i < text.size()) {
     const char c = text[i];
@@ -279,12 +321,48 @@ std::size_t find_identifier(const std::string& text, const std::string& name) {
       while (i < text.size() &&
              (std::isalnum(static_cast<unsigned char>(text[i])) || text[i] == '_'))
         ++i;
-      if (text.compare(start, i - start, name) == 0 && i - start == name.size()) return start;
+      if (visit(start, i - start)) return start;
     } else {
       ++i;
     }
   }
   return std::string::npos;
+}
+
+// The position of the first use of identifier `name` in `text` (numbers skipped), or npos.
+std::size_t find_identifier(const std::string& text, const std::string& name) {
+  return for_each_identifier(text, [&](std::size_t start, std::size_t len) {
+    return len == name.size() && text.compare(start, len, name) == 0;
+  });
+}
+
+// The text with every sub-expression replaced by its own text in parentheses (theirs are
+// expanded already, so one pass does).
+std::string expand_subs(const std::string& text, const Symbols& symbols) {
+  std::string out;
+  std::size_t done = 0;
+  for_each_identifier(text, [&](std::size_t start, std::size_t len) {
+    const int slot = symbols.find(std::string_view(text).substr(start, len));
+    if (slot >= 0 && symbols.kinds[static_cast<std::size_t>(slot)] == kSubSymbol) {
+      out.append(text, done, start - done);
+      out += "(" + symbols.subs[static_cast<std::size_t>(slot)].text + ")";
+      done = start + len;
+    }
+    return false;
+  });
+  return out + text.substr(done);
+}
+
+// The first symbol of `e` (expanded) whose kind is outside `allowed`: its name and kind.
+std::pair<std::string, SymbolKind> first_disallowed(const Expr& e, const Symbols& symbols,
+                                                    KindMask allowed) {
+  for (const auto& id : identifiers(e.text)) {
+    const int slot = symbols.find(id);
+    if (slot < 0) continue;
+    const SymbolKind k = symbols.kinds[static_cast<std::size_t>(slot)];
+    if (!(k & allowed)) return {id, k};
+  }
+  return {"", kStateSymbol};
 }
 
 const char* kind_name(SymbolKind k) {
@@ -299,6 +377,8 @@ const char* kind_name(SymbolKind k) {
       return "state";
     case kInputSymbol:
       return "input";
+    case kSubSymbol:
+      return "sub-expression";
   }
   return "symbol";
 }
@@ -313,6 +393,7 @@ Dep dep_of(SymbolKind k) {
     case kInputSymbol:
       return Dep::kStep;
     case kStateSymbol:
+    case kSubSymbol:  // not reached: a sub-expression's class is its own
       return Dep::kState;
   }
   return Dep::kState;
@@ -323,7 +404,24 @@ Dep dep_of(SymbolKind k) {
 int Symbols::add(const std::string& name, SymbolKind kind) {
   names.push_back(name);
   kinds.push_back(kind);
+  subs.emplace_back();
   return static_cast<int>(names.size()) - 1;
+}
+
+int Symbols::add_sub(const std::string& name, Expr e) {
+  const int slot = add(name, kSubSymbol);
+  subs.back() = std::move(e);
+  return slot;
+}
+
+std::vector<std::string> identifiers(const std::string& text) {
+  std::vector<std::string> out;
+  for_each_identifier(text, [&](std::size_t start, std::size_t len) {
+    std::string id = text.substr(start, len);
+    if (std::find(out.begin(), out.end(), id) == out.end()) out.push_back(std::move(id));
+    return false;
+  });
+  return out;
 }
 
 int Symbols::find(std::string_view name) const {
@@ -345,7 +443,7 @@ const std::vector<LanguageFunction>& language_functions() {
   static const std::vector<LanguageFunction> f = {
       {"sin", 1},   {"cos", 1},  {"tan", 1},  {"asin", 1}, {"acos", 1}, {"atan", 1},
       {"atan2", 2}, {"sinh", 1}, {"cosh", 1}, {"tanh", 1}, {"exp", 1},  {"log", 1},
-      {"sqrt", 1},  {"abs", 1},  {"pow", 2},  {"min", 2},  {"max", 2}};
+      {"sqrt", 1},  {"abs", 1},  {"pow", 2},  {"min", 2},  {"max", 2},  {"sinc", 1}};
   return f;
 }
 
@@ -359,7 +457,7 @@ bool is_identifier(std::string_view name) {
 }
 
 bool is_reserved_name(std::string_view name) {
-  static const char* const kReserved[] = {"t", "dt", "pi", "Pi", "sign", "step"};
+  static const char* const kReserved[] = {"t", "dt", "pi", "Pi", "sign", "step", "dsinc"};
   for (const char* r : kReserved) {
     if (name == r) return true;
   }
@@ -434,12 +532,28 @@ Expected<Expr> compile_expr(const std::string& text, const std::string& key, con
     return at(key, "syntax error: " + msg, pos, text);
   }
   Dep dep = Dep::kConst;
+  bool any_sub = false;
   for (const auto& [name, ptr] : p.GetUsedVar()) {
     const int slot = symbols.find(name);
     if (slot < 0) continue;
     const SymbolKind kind = symbols.kinds[static_cast<std::size_t>(slot)];
+    const std::size_t pos = find_identifier(text, name);
+    if (kind == kSubSymbol) {
+      const Expr& sub = symbols.subs[static_cast<std::size_t>(slot)];
+      if (sub.uses & ~allowed) {
+        const auto [what, k] = first_disallowed(sub, symbols, allowed);
+        return at(key,
+                  "sub-expression '" + name + "' uses " + kind_name(k) +
+                      (k == kDtSymbol || k == kTimeSymbol ? "" : " '" + what + "'") +
+                      ", which cannot be used here (" + std::string(allowed_what) + ")",
+                  pos == std::string::npos ? 0 : pos, text);
+      }
+      any_sub = true;
+      dep = std::max(dep, sub.dep);
+      out.uses |= sub.uses;
+      continue;
+    }
     if (!(kind & allowed)) {
-      const std::size_t pos = find_identifier(text, name);
       return at(key,
                 std::string(kind_name(kind)) +
                     (kind == kDtSymbol || kind == kTimeSymbol ? "" : " '" + name + "'") +
@@ -447,15 +561,32 @@ Expected<Expr> compile_expr(const std::string& text, const std::string& key, con
                 pos == std::string::npos ? 0 : pos, text);
     }
     dep = std::max(dep, dep_of(kind));
+    out.uses |= kind;
   }
   out.dep = dep;
+  if (any_sub) {
+    out.text = expand_subs(text, symbols);
+    if (out.text.size() > kMaxExpandedText) {
+      return Error{key + ": its sub-expressions expand to " + std::to_string(out.text.size()) +
+                   " characters (at most " + std::to_string(kMaxExpandedText) +
+                   "): " + quoted(text)};
+    }
+    if (dep == Dep::kConst) {
+      try {
+        p.SetExpr(out.text);
+        out.value = p.Eval();
+      } catch (const mu::Parser::exception_type& e) {
+        return Error{key + ": internal: the expanded text does not read: " + e.GetMsg()};
+      }
+    }
+  }
   if (dep != Dep::kConst) out.value = 0.0;
 
   // The same text must mean the same to GiNaC (e.g. a^b^c is ambiguous there).
   std::lock_guard lock(ginac_mutex());
   try {
     const auto scope = make_scope(symbols);
-    (void)parse_symbolic(text, scope);
+    (void)parse_symbolic(out.text, scope);
   } catch (const std::exception& e) {
     // GiNaC's message: its first line (the rest is the reader's call stack).
     const std::string what = first_line(e.what());

@@ -19,14 +19,15 @@ namespace kfw::model {
 
 // What a symbol stands for; a mask of these says which symbols an expression may use.
 enum SymbolKind : unsigned {
-  kParamSymbol = 1u,  // a parameter (slider, --set key)
-  kDtSymbol = 2u,     // dt, the sample interval t[k] − t[k−1], s
-  kTimeSymbol = 4u,   // t, the time of the row, s
-  kStateSymbol = 8u,  // a state
-  kInputSymbol = 16u  // an input (a known signal, e.g. a gyro rate)
+  kParamSymbol = 1u,   // a parameter (slider, --set key)
+  kDtSymbol = 2u,      // dt, the sample interval t[k] − t[k−1], s
+  kTimeSymbol = 4u,    // t, the time of the row, s
+  kStateSymbol = 8u,   // a state
+  kInputSymbol = 16u,  // an input (a known signal, e.g. a gyro rate)
+  kSubSymbol = 32u     // a sub-expression (model.expressions): stands for its own text
 };
 using KindMask = unsigned;
-inline constexpr KindMask kAllSymbols = 31u;
+inline constexpr KindMask kAllSymbols = 63u;
 
 // When an expression must be re-evaluated. Ordered: each class includes what comes before.
 enum class Dep {
@@ -37,20 +38,36 @@ enum class Dep {
   kState,  // states: at every linearisation or sigma point
 };
 
-// The symbols of one model; an expression's symbol binds to vars[slot] when evaluated.
+struct Expr {
+  std::string text;  // muparser source: the user's text (sub-expressions expanded), or a derivative
+  Dep dep = Dep::kConst;
+  double value = 0.0;  // the value when dep == kConst
+  KindMask uses = 0;   // the kinds of symbol it uses, through its sub-expressions too
+};
+
+// The symbols of one model; an expression's symbol binds to vars[slot] when evaluated. A
+// sub-expression is a symbol too: compile_expr replaces it by its own (expanded) text in
+// parentheses, so values, classes and derivatives follow from the symbols it uses.
 struct Symbols {
   std::vector<std::string> names;
   std::vector<SymbolKind> kinds;
+  std::vector<Expr> subs;  // per slot: the sub-expression (kSubSymbol only)
   int add(const std::string& name, SymbolKind kind);
+  int add_sub(const std::string& name, Expr e);
   int find(std::string_view name) const;  // the slot, or -1
   std::vector<int> slots(SymbolKind kind) const;
 };
 
-struct Expr {
-  std::string text;  // muparser source: the user's text, or a printed derivative
-  Dep dep = Dep::kConst;
-  double value = 0.0;  // the value when dep == kConst
-};
+// The identifiers of an expression, in order of first use (numbers skipped).
+std::vector<std::string> identifiers(const std::string& text);
+// A sub-expression's expanded text beyond this many characters is refused (a chain of
+// sub-expressions that each use the previous one twice doubles at every link).
+inline constexpr std::size_t kMaxExpandedText = 100'000;
+
+// sin(x)/x (1 at 0) and its derivative (cos x − sinc x)/x (0 at 0): the language's function for
+// removable singularities, as muparser evaluates it.
+double sinc(double x);
+double dsinc(double x);
 
 // The functions of the expression language, with their arity.
 struct LanguageFunction {

@@ -153,6 +153,8 @@ Status ModelEval::bind(const ParamValues& values) {
     Q.setZero(n, n);
     if (!pr.Bc.empty()) B.setZero(n, pr.Bc.cols);
     process_dt_ = true;
+  } else if (pr.form == ProcessForm::kContinuousNonlinear) {
+    if (auto st = bind_continuous(param); !st) return st;
   } else {
     shape(F, pr.F);
     shape(Q, pr.Q);
@@ -201,7 +203,8 @@ Status ModelEval::bind(const ParamValues& values) {
   }
 
   // Compile every group against the symbols, then evaluate the parameter-only entries once.
-  for (ExprGroup* g : {&param, &p_dt_, &p_step_, &F_state_, &f_state_, &Q_state_}) {
+  for (ExprGroup* g :
+       {&param, &p_dt_, &p_step_, &F_state_, &f_state_, &Q_state_, &xdot_state_, &A_state_}) {
     if (auto st = g->bind(s.symbols, vars_.data()); !st) return st;
   }
   for (auto& ch : channels_) {
@@ -211,8 +214,13 @@ Status ModelEval::bind(const ParamValues& values) {
   }
   param.eval();
 
+  if (rk4_ && !(substep_ >= 0.0 && std::isfinite(substep_))) {
+    return Error{path + ": model.process.substep: " + number(substep_) +
+                 " at the parameters' values; expected a sub-step ≥ 0 s (0: one RK4 step per "
+                 "interval)"};
+  }
   if (auto st = check_psd(P0, s.P0, path, false); !st) return st;
-  if (pr.form == ProcessForm::kContinuous) {
+  if (pr.form == ProcessForm::kContinuous || rk4_) {
     if (auto st = check_psd(Qc, pr.Qc, path, false); !st) return st;
   } else if (pr.Q.dep() <= Dep::kParam) {
     if (auto st = check_psd(Q, pr.Q, path, false); !st) return st;
@@ -225,12 +233,41 @@ Status ModelEval::bind(const ParamValues& values) {
   return Ok{};
 }
 
+Status ModelEval::bind_continuous(ExprGroup& param) {
+  const ProcessSpec& pr = spec_.process;
+  const int n = spec_.n();
+  rk4_ = true;
+  q_varies_ = true;  // Q follows A(x): refactorised every step in simulation
+  ExprGroup unused;
+  // ẋ and A are evaluated at each RK4 stage's state and time: entries of t, inputs or states
+  // all join the stage groups.
+  xdot_.setZero(n);
+  for (int i = 0; i < n; ++i)
+    place(pr.f[static_cast<std::size_t>(i)], &xdot_(i), param, unused, xdot_state_, &xdot_state_);
+  shape(A, pr.A);
+  place_matrix(pr.A, A, param, unused, A_state_, &A_state_);
+  if (!pr.G.empty()) {
+    shape(G, pr.G);
+    place_matrix(pr.G, G, param, unused, unused, nullptr);
+  } else {
+    G = MatX::Identity(n, n);
+  }
+  shape(Qc, pr.Qc);
+  place_matrix(pr.Qc, Qc, param, unused, unused, nullptr);
+  place(pr.substep, &substep_, param, unused, unused, nullptr);
+  fx.setZero(n);
+  F.setZero(n, n);
+  Q.setZero(n, n);
+  return Ok{};
+}
+
 Status ModelEval::set_dt(double dt) {
   if (dt == dt_) return Ok{};
   dt_ = dt;
   vars_[static_cast<std::size_t>(spec_.dt_slot)] = dt;
   for (auto& ch : channels_)
     ch.dt.eval();
+  if (rk4_) return set_rk4_steps(dt);
   if (!process_dt_) return Ok{};
   for (auto& e : cache_) {
     if (e.dt == dt) {

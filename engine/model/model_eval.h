@@ -41,11 +41,31 @@ class ModelEval {
   Status set_dt(double dt);
 
   // The process at the current symbols. step: entries of t and inputs (once per step);
-  // jacobian / f / noise: the entries that depend on states, at the state set by set_state.
+  // f / f_jacobian / noise: what depends on states, at the state set by set_state: fx = f(x) (or
+  // the RK4 step of ẋ over dt), F = ∂fx/∂x, Q (or Van Loan of A(x), G Qc Gᵀ over dt).
   void process_step() { p_step_.eval(); }
-  void process_jacobian() { F_state_.eval(); }
-  void process_f() { f_state_.eval(); }
-  void process_noise() { Q_state_.eval(); }
+  void process_f() {
+    if (rk4_) {
+      rk4(false);
+    } else {
+      f_state_.eval();
+    }
+  }
+  void process_f_jacobian() {
+    if (rk4_) {
+      rk4(true);
+    } else {
+      f_state_.eval();
+      F_state_.eval();
+    }
+  }
+  void process_noise() {
+    if (rk4_) {
+      continuous_noise();
+    } else {
+      Q_state_.eval();
+    }
+  }
   // Q depends on t, inputs or states: its definiteness is checked where it is evaluated.
   bool process_noise_varies() const { return q_varies_; }
 
@@ -80,12 +100,24 @@ class ModelEval {
  private:
   explicit ModelEval(const ModelSpec& spec);
   Status bind(const ParamValues& values);
+  // The continuous nonlinear form (model_continuous.cpp): its groups, the RK4 step over dt from
+  // the state and time set (restored after), with the exact Jacobian of the step map when asked,
+  // and Q by Van Loan at A(x).
+  Status bind_continuous(ExprGroup& param);
+  Status set_rk4_steps(double dt);
+  void rk4(bool jacobian);
+  void continuous_noise();
 
   const ModelSpec& spec_;
   std::vector<double> vars_;  // sized once: the muparser groups hold pointers into it
   double dt_;
   std::vector<Channel> channels_;
   ExprGroup p_dt_, p_step_, F_state_, f_state_, Q_state_;
+  ExprGroup xdot_state_, A_state_;  // continuous nonlinear: ẋ and A = ∂ẋ/∂x at the symbols
+  VecX xdot_;
+  double substep_ = 0.0;
+  int rk4_steps_ = 1;
+  bool rk4_ = false;  // the continuous nonlinear form
   bool q_varies_ = false;
   bool process_dt_ = false;  // the process matrices depend on dt
 

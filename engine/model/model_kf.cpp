@@ -18,8 +18,8 @@ struct KalmanFilter {
   Vec<N> x;
   Covariance<N> P;
   Eigen::Index n = x.size();
-  bool nonlinear = ctx.spec.process.form == ProcessForm::kNonlinear;
-  bool q_state = ctx.spec.process.Q.dep() == Dep::kState;
+  bool nonlinear = ctx.spec.nonlinear_process();
+  bool q_state = ctx.spec.process_noise_at_state();
   Covariance<N> F{n, n}, FP{n, n};
   Vec<N> fx{n};
 
@@ -28,8 +28,7 @@ struct KalmanFilter {
     ModelEval& ev = ctx.ev;
     if (nonlinear || q_state) ev.set_state(x.data());
     if (nonlinear) {
-      ev.process_f();
-      ev.process_jacobian();
+      ev.process_f_jacobian();
     }
     if (q_state) ev.process_noise();
     if (ev.process_noise_varies()) {

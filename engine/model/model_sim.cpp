@@ -92,7 +92,7 @@ Expected<Dataset> simulate_model(const ModelSpec& spec, const ParamValues& value
   VecX x = ev.x0 + L * draw(n);
   MatX Lq;
   bool lq_valid = false;
-  const bool nonlinear = spec.process.form == ProcessForm::kNonlinear;
+  const bool nonlinear = spec.nonlinear_process();
   std::vector<MatX> Lr(spec.channels.size());
   std::vector<bool> lr_valid(spec.channels.size(), false);
 

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "core/suggest.h"
+#include "model/model_expressions.h"
 
 namespace kfw::model {
 
@@ -174,14 +175,74 @@ Status check_name(const Reader& p, const Symbols& symbols, const std::string& na
   return Ok{};
 }
 
+// G (n × q, default I) and Qc (q × q): the continuous forms' noise, parameters only.
+Status parse_continuous_noise(const Reader& p, const json& j, ModelSpec& m) {
+  const std::string key = "model.process";
+  const int n = m.n();
+  ProcessSpec& pr = m.process;
+  if (j.contains("Q")) return p.error(key + ".Q", "the continuous forms take Qc, not Q");
+  int q = n;
+  if (j.contains("G")) {
+    const json& g = j["G"];
+    q = g.is_array() && !g.empty() && g[0].is_array() ? static_cast<int>(g[0].size()) : 1;
+    auto G = p.matrix(g, key + ".G", n, q, kParamsOnly, kParamsOnlyWhat);
+    if (!G) return G.err();
+    pr.G = *G;
+  }
+  if (!j.contains("Qc")) return p.error(key, "missing key 'Qc'");
+  auto Qc = p.matrix(j["Qc"], key + ".Qc", q, q, kParamsOnly, kParamsOnlyWhat, true);
+  if (!Qc) return Qc.err();
+  pr.Qc = *Qc;
+  return p.symmetric(pr.Qc);
+}
+
+// ẋ = f(x, u, t) + G w (version 2): f, its Jacobian A(x) by GiNaC, G, Qc and the RK4 sub-step.
+Status parse_xdot(const Reader& p, const json& j, ModelSpec& m) {
+  const std::string key = "model.process";
+  const int n = m.n();
+  ProcessSpec& pr = m.process;
+  pr.form = ProcessForm::kContinuousNonlinear;
+  const json& f = j["xdot"];
+  if (!f.is_array() || f.size() != static_cast<std::size_t>(n)) {
+    return p.error(key + ".xdot", "wrong dimensions: expected a list of " + std::to_string(n) +
+                                      " expressions, one per state");
+  }
+  pr.A.key = key + ".xdot (Jacobian)";
+  pr.A.rows = pr.A.cols = n;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    auto e = p.expr(f[i], idx(key + ".xdot", i), kAllSymbols & ~KindMask{kDtSymbol},
+                    "parameters, t, states and inputs: a derivative does not depend on dt");
+    if (!e) return e.err();
+    pr.f.push_back(*e);
+    auto d = derivatives(*e, idx(key + ".xdot", i), m.symbols, m.state_slots);
+    if (!d) return d.err();
+    pr.A.e.insert(pr.A.e.end(), d->begin(), d->end());
+  }
+  pr.substep = Expr{"0", Dep::kConst, 0.0};
+  if (j.contains("substep")) {
+    auto h = p.expr(j["substep"], key + ".substep", kParamsOnly, kParamsOnlyWhat);
+    if (!h) return h.err();
+    pr.substep = *h;
+  }
+  return parse_continuous_noise(p, j, m);
+}
+
 Status parse_process(const Reader& p, const json& j, ModelSpec& m) {
   const std::string key = "model.process";
   if (!j.is_object()) return p.error(key, "expected an object");
-  if (auto st = p.only_keys(j, key, {"F", "B", "Q", "f", "A", "G", "Qc"}); !st) return st;
+  if (auto st = p.only_keys(j, key, {"F", "B", "Q", "f", "A", "G", "Qc", "xdot", "substep"}); !st) {
+    return st;
+  }
   const int n = m.n(), nu = static_cast<int>(m.inputs.size());
   const bool has_f = j.contains("f"), has_F = j.contains("F"), has_A = j.contains("A");
-  if (has_f + has_F + has_A != 1) {
-    return p.error(key, "declare exactly one of F (linear), A (continuous) or f (nonlinear)");
+  const bool has_xdot = j.contains("xdot");
+  if (has_f + has_F + has_A + has_xdot != 1) {
+    return p.error(key,
+                   "declare exactly one of F (linear), A (continuous), f (nonlinear) or xdot "
+                   "(continuous nonlinear)");
+  }
+  if (j.contains("substep") && !has_xdot) {
+    return p.error(key + ".substep", "belongs to the continuous nonlinear form (with xdot)");
   }
   ProcessSpec& pr = m.process;
   auto need = [&](const char* name) -> Expected<const json*> {
@@ -191,10 +252,13 @@ Status parse_process(const Reader& p, const json& j, ModelSpec& m) {
   if (j.contains("B")) {
     if (nu == 0) return p.error(key + ".B", "the model declares no inputs");
     if (has_f) return p.error(key + ".B", "a nonlinear model uses the inputs in f");
+    if (has_xdot)
+      return p.error(key + ".B", "a continuous nonlinear model uses the inputs in xdot");
   }
+  if (has_xdot) return parse_xdot(p, j, m);
   if (has_A) {
     pr.form = ProcessForm::kContinuous;
-    if (j.contains("Q")) return p.error(key + ".Q", "the continuous form takes Qc, not Q");
+    if (j.contains("Q")) return p.error(key + ".Q", "the continuous forms take Qc, not Q");
     auto A = p.matrix(j["A"], key + ".A", n, n, kParamsOnly, kParamsOnlyWhat);
     if (!A) return A.err();
     pr.A = *A;
@@ -203,23 +267,10 @@ Status parse_process(const Reader& p, const json& j, ModelSpec& m) {
       if (!B) return B.err();
       pr.Bc = *B;
     }
-    int q = n;
-    if (j.contains("G")) {
-      const json& g = j["G"];
-      q = g.is_array() && !g.empty() && g[0].is_array() ? static_cast<int>(g[0].size()) : 1;
-      auto G = p.matrix(g, key + ".G", n, q, kParamsOnly, kParamsOnlyWhat);
-      if (!G) return G.err();
-      pr.G = *G;
-    }
-    auto qc = need("Qc");
-    if (!qc) return qc.err();
-    auto Qc = p.matrix(**qc, key + ".Qc", q, q, kParamsOnly, kParamsOnlyWhat, true);
-    if (!Qc) return Qc.err();
-    pr.Qc = *Qc;
-    return p.symmetric(pr.Qc);
+    return parse_continuous_noise(p, j, m);
   }
   if (j.contains("G") || j.contains("Qc")) {
-    return p.error(key, "G and Qc belong to the continuous form (with A)");
+    return p.error(key, "G and Qc belong to the continuous forms (with A or xdot)");
   }
   auto q = need("Q");
   if (!q) return q.err();
@@ -360,6 +411,19 @@ Expected<ChannelSpec> parse_channel(const Reader& p, const std::string& name, co
   return c;
 }
 
+// The keys that version 2 added, refused in a file that says version 1 (the writer writes the
+// lowest version that holds the file, so a version-1 file never needs them).
+Status check_version_keys(const Reader& p, const json& j, int version) {
+  if (version >= 2) return Ok{};
+  if (j.contains("expressions")) {
+    return p.error("model.expressions", "a version-2 key: set \"version\": 2");
+  }
+  if (j.contains("process") && j["process"].is_object() && j["process"].contains("xdot")) {
+    return p.error("model.process.xdot", "a version-2 key: set \"version\": 2");
+  }
+  return Ok{};
+}
+
 }  // namespace
 
 Dep MatrixSpec::dep() const {
@@ -370,7 +434,7 @@ Dep MatrixSpec::dep() const {
 }
 
 bool ModelSpec::linear() const {
-  if (process.form == ProcessForm::kNonlinear) return false;
+  if (nonlinear_process()) return false;
   return std::all_of(channels.begin(), channels.end(), [](const auto& c) { return c.linear; });
 }
 
@@ -404,18 +468,21 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   const std::string key = "model";
   if (!j.is_object()) return p.error(key, "expected an object");
   if (auto st = p.only_keys(j, key,
-                            {"version", "description", "states", "inputs", "x0", "P0", "process",
-                             "measurements", "truth", "primary", "filter"});
+                            {"version", "description", "states", "inputs", "expressions", "x0",
+                             "P0", "process", "measurements", "truth", "primary", "filter"});
       !st) {
     return st.err();
   }
   if (!j.contains("version") || !j["version"].is_number_integer()) {
     return p.error("model.version", "missing or not an integer");
   }
-  if (j["version"].get<int>() != kModelVersion) {
-    return p.error("model.version", "is " + j["version"].dump() + ", this build reads version " +
+  m.version = j["version"].get<int>();
+  if (m.version < 1 || m.version > kModelVersion) {
+    return p.error("model.version", "is " + j["version"].dump() +
+                                        ", this build reads versions 1 to " +
                                         std::to_string(kModelVersion));
   }
+  if (auto st = check_version_keys(p, j, m.version); !st) return st.err();
 
   // Symbols: the parameters whose keys are names, dt, t, the states, the inputs.
   for (const auto& spec : params.specs()) {
@@ -496,6 +563,10 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
         m.inputs[i].sim = *e;
       }
     }
+  }
+
+  if (auto it = j.find("expressions"); it != j.end()) {
+    if (auto st = parse_expressions(*it, path, m.symbols); !st) return st.err();
   }
 
   // Initial state and covariance.

@@ -1,4 +1,4 @@
-// A state-space model declared in a preset's "model" block (version 1), parsed and validated:
+// A state-space model declared in a preset's "model" block (version 1 or 2), parsed and validated:
 // every expression compiled and classified, every size checked, Jacobians derived. The format is
 // documented in presets/models/README.md. Immutable once built; runs share it.
 #pragma once
@@ -14,7 +14,9 @@
 
 namespace kfw::model {
 
-inline constexpr int kModelVersion = 1;
+// The model format this build reads up to; a version-1 file loads unchanged (version 2 adds
+// sub-expressions and the continuous nonlinear process).
+inline constexpr int kModelVersion = 2;
 inline constexpr int kMaxChannelSize = 8;  // components of one measurement channel
 
 // A matrix of expressions, row-major, with the key that names it in messages.
@@ -61,15 +63,17 @@ enum class ProcessForm {
   kLinear,      // x_k = F x_{k−1} + B u_{k−1} + w, w ~ N(0, Q)
   kContinuous,  // ẋ = A x + B u + G w, E[w wᵀ] = Qc δ: discretised exactly (Van Loan) per dt
   kNonlinear,   // x_k = f(x_{k−1}, u_{k−1}, dt, t) + w
+  kContinuousNonlinear,  // ẋ = f(x, u, t) + G w: RK4 for the mean, Van Loan of (A(x), G Qc Gᵀ)
 };
 
 struct ProcessSpec {
   ProcessForm form = ProcessForm::kLinear;
-  MatrixSpec F;  // linear: F; nonlinear: ∂f/∂x (symbolic); continuous: empty
-  MatrixSpec B;  // linear: n × inputs (may be empty)
-  MatrixSpec Q;  // linear and nonlinear
-  std::vector<Expr> f;
-  MatrixSpec A, Bc, G, Qc;  // continuous (parameters only)
+  MatrixSpec F;         // linear: F; nonlinear: ∂f/∂x (symbolic); continuous: empty
+  MatrixSpec B;         // linear: n × inputs (may be empty)
+  MatrixSpec Q;         // linear and nonlinear
+  std::vector<Expr> f;  // nonlinear: f; continuous nonlinear: ẋ
+  MatrixSpec A, Bc, G, Qc;  // continuous (parameters only); continuous nonlinear: A = ∂ẋ/∂x, G, Qc
+  Expr substep;             // continuous nonlinear: the longest RK4 sub-step, s (0: one per dt)
 };
 
 // x0[i]: an expression of the parameters, or the first finite sample of a column (then `value`
@@ -81,6 +85,7 @@ struct InitialSpec {
 
 struct ModelSpec {
   std::string path;
+  int version = 1;
   Symbols symbols;
   int dt_slot = -1, t_slot = -1;
   std::vector<int> param_slots;  // the parameters usable in expressions, by slot
@@ -98,6 +103,15 @@ struct ModelSpec {
   int n() const { return static_cast<int>(states.size()); }
   // F or A and H in every channel: the KF applies, and a steady state may exist.
   bool linear() const;
+  // The mean moves by f or by RK4 of ẋ (not by F x + B u).
+  bool nonlinear_process() const {
+    return process.form == ProcessForm::kNonlinear ||
+           process.form == ProcessForm::kContinuousNonlinear;
+  }
+  // Q is evaluated at the state x_{k−1|k−1} (a Q of states, or Van Loan at A(x)).
+  bool process_noise_at_state() const {
+    return process.form == ProcessForm::kContinuousNonlinear || process.Q.dep() == Dep::kState;
+  }
   // Linear, and F, B, Q, H, R depend on nothing but parameters and dt: the DARE applies.
   bool time_invariant() const;
   int state_index(const std::string& name) const;  // -1 when unknown

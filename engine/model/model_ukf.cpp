@@ -22,8 +22,8 @@ struct UnscentedFilter {
   Eigen::Index n = x.size();
   Eigen::Index ns = 2 * n + 1;
   UkfWeights w = UkfWeights::scaled(n, ctx.options.alpha, ctx.options.beta, ctx.options.kappa);
-  bool nonlinear = ctx.spec.process.form == ProcessForm::kNonlinear;
-  bool q_state = ctx.spec.process.Q.dep() == Dep::kState;
+  bool nonlinear = ctx.spec.nonlinear_process();
+  bool q_state = ctx.spec.process_noise_at_state();
   Sig X{n, ns}, Y{n, ns};
   Vec<N> xs{n};           // one sigma point, for the evaluator
   std::vector<MatX> Z{};  // per channel: h of the sigma points

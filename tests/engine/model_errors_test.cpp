@@ -169,8 +169,8 @@ TEST(ModelErrors, ARunWithACovarianceThatIsNotPsdIsRefusedBeforeItStarts) {
 
 TEST(ModelErrors, StructureErrors) {
   json j = base();
-  j["model"]["version"] = 2;
-  expect_error(j, {"model.version: is 2, this build reads version 1"});
+  j["model"]["version"] = 3;
+  expect_error(j, {"model.version: is 3, this build reads versions 1 to 2"});
   j = base();
   j["model"]["proces"] = j["model"]["process"];
   expect_error(j, {"model.proces: unknown key"});

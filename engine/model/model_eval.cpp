@@ -115,13 +115,11 @@ void ModelEval::set_state(const double* x) {
 Status ModelEval::bind(const ParamValues& values) {
   const ModelSpec& s = spec_;
   const std::string& path = s.path;
-  for (int slot : s.param_slots) {
-    auto it = values.find(s.symbols.names[static_cast<std::size_t>(slot)]);
-    if (it == values.end()) {
-      return Error{path + ": parameter '" + s.symbols.names[static_cast<std::size_t>(slot)] +
-                   "' has no value"};
-    }
-    vars_[static_cast<std::size_t>(slot)] = it->second;
+  for (std::size_t i = 0; i < s.param_slots.size(); ++i) {
+    auto it = values.find(s.param_keys[i]);
+    if (it == values.end())
+      return Error{path + ": parameter '" + s.param_keys[i] + "' has no value"};
+    vars_[static_cast<std::size_t>(s.param_slots[i])] = it->second;
   }
   ExprGroup param;  // evaluated once, below
   ExprGroup unused;

@@ -130,7 +130,9 @@ class ModelScenario final : public Scenario {
 
   Expected<Dataset> simulate(const ParamValues& v) const override {
     if (auto st = params().check(v); !st) return st.err();
-    return model::simulate_model(*spec_, v, "model '" + title_ + "'");
+    // A world block generates the data; without one the model simulates itself.
+    return model::simulate_model(spec_->world ? *spec_->world : *spec_, v,
+                                 "model '" + title_ + "'");
   }
 
   Expected<Metrics> gain(const ParamValues& v, const Dataset* data) const override;
@@ -384,6 +386,10 @@ Expected<std::unique_ptr<Scenario>> make_model_scenario(const json& preset,
   // P0, Q, R and Qc that depend on parameters only must be PSD at the preset's values.
   auto ev = model::ModelEval::create(*shared, table.defaults());
   if (!ev) return ev.err();
+  if (shared->world) {
+    auto wev = model::ModelEval::create(*shared->world, table.defaults());
+    if (!wev) return wev.err();
+  }
   return std::unique_ptr<Scenario>(
       std::make_unique<ModelScenario>(std::move(shared), std::move(table), std::move(title)));
 }

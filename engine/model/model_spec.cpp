@@ -7,6 +7,7 @@
 
 #include "core/suggest.h"
 #include "model/model_expressions.h"
+#include "model/model_world.h"
 
 namespace kfw::model {
 
@@ -411,12 +412,29 @@ Expected<ChannelSpec> parse_channel(const Reader& p, const std::string& name, co
   return c;
 }
 
+// A world's symbols for the simulator's parameters: the declared sim.X as X.
+Status add_sim_symbols(const Reader& p, const ParamTable& params, ModelSpec& m) {
+  for (const auto& spec : params.specs()) {
+    if (spec.key.rfind("sim.", 0) != 0) continue;
+    const std::string name = spec.key.substr(4);
+    if (!is_identifier(name) || is_reserved_name(name)) continue;
+    if (m.symbols.find(name) >= 0) {
+      return p.error("model.world", "the parameters '" + spec.key + "' and '" + name +
+                                        "' would both be the world's symbol '" + name + "'");
+    }
+    m.param_slots.push_back(m.symbols.add(name, kParamSymbol));
+    m.param_keys.push_back(spec.key);
+  }
+  return Ok{};
+}
+
 // The keys that version 2 added, refused in a file that says version 1 (the writer writes the
 // lowest version that holds the file, so a version-1 file never needs them).
 Status check_version_keys(const Reader& p, const json& j, int version) {
   if (version >= 2) return Ok{};
-  if (j.contains("expressions")) {
-    return p.error("model.expressions", "a version-2 key: set \"version\": 2");
+  for (const char* k : {"expressions", "world"}) {
+    if (j.contains(k))
+      return p.error(std::string("model.") + k, "a version-2 key: set \"version\": 2");
   }
   if (j.contains("process") && j["process"].is_object() && j["process"].contains("xdot")) {
     return p.error("model.process.xdot", "a version-2 key: set \"version\": 2");
@@ -461,15 +479,17 @@ std::vector<std::string> filter_choices(const ModelSpec& spec) {
   return {"ekf", "ukf"};
 }
 
-Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const std::string& path) {
+Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const std::string& path,
+                                bool world) {
   ModelSpec m;
   m.path = path;
   Reader p(path, m.symbols);
   const std::string key = "model";
   if (!j.is_object()) return p.error(key, "expected an object");
-  if (auto st = p.only_keys(j, key,
-                            {"version", "description", "states", "inputs", "expressions", "x0",
-                             "P0", "process", "measurements", "truth", "primary", "filter"});
+  if (auto st =
+          p.only_keys(j, key,
+                      {"version", "description", "states", "inputs", "expressions", "x0", "P0",
+                       "process", "measurements", "truth", "primary", "filter", "world"});
       !st) {
     return st.err();
   }
@@ -488,7 +508,11 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   for (const auto& spec : params.specs()) {
     if (is_identifier(spec.key) && !is_reserved_name(spec.key)) {
       m.param_slots.push_back(m.symbols.add(spec.key, kParamSymbol));
+      m.param_keys.push_back(spec.key);
     }
+  }
+  if (world) {
+    if (auto st = add_sim_symbols(p, params, m); !st) return st.err();
   }
   m.dt_slot = m.symbols.add("dt", kDtSymbol);
   m.t_slot = m.symbols.add("t", kTimeSymbol);
@@ -651,6 +675,12 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
                                        list + (m.linear() ? "" : "; kf needs F and H") + ")");
   }
   m.filter = *filter;
+  if (auto it = j.find("world"); it != j.end()) {
+    if (world) return p.error("model.world", "a world holds no world of its own");
+    auto w = parse_world(j, params, path, m);
+    if (!w) return w.err();
+    m.world = std::move(*w);
+  }
   return m;
 }
 

@@ -3,6 +3,7 @@
 // documented in presets/models/README.md. Immutable once built; runs share it.
 #pragma once
 
+#include <memory>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
@@ -88,7 +89,8 @@ struct ModelSpec {
   int version = 1;
   Symbols symbols;
   int dt_slot = -1, t_slot = -1;
-  std::vector<int> param_slots;  // the parameters usable in expressions, by slot
+  std::vector<int> param_slots;         // the parameters usable in expressions, by slot
+  std::vector<std::string> param_keys;  // each one's key (a world's symbol X reads sim.X)
   std::vector<int> state_slots, input_slots;
   std::vector<StateSpec> states;
   std::vector<InputSpec> inputs;
@@ -99,6 +101,10 @@ struct ModelSpec {
   std::vector<std::string> truth;  // per state: its truth column, or empty
   std::string primary;
   std::string filter;  // the default filter: kf, ekf or ukf
+  // The world block (version 2): what generates the data in simulation, a model of its own whose
+  // channels are the sensors writing the columns this model reads; null: the model simulates
+  // itself.
+  std::shared_ptr<const ModelSpec> world;
 
   int n() const { return static_cast<int>(states.size()); }
   // F or A and H in every channel: the KF applies, and a steady state may exist.
@@ -119,8 +125,10 @@ struct ModelSpec {
 
 // Parses the "model" block. `params` is the scenario's parameter table (keys that are identifiers
 // are symbols of the expressions). Errors read "PATH: model.KEY...: what".
+// A world block (`world` true) also sees each parameter sim.X as the symbol X, and may not hold
+// a world of its own.
 Expected<ModelSpec> parse_model(const nlohmann::json& model, const ParamTable& params,
-                                const std::string& path);
+                                const std::string& path, bool world = false);
 
 // The filters a model can run: kf (linear only), ekf, ukf.
 std::vector<std::string> filter_choices(const ModelSpec& spec);

@@ -1,0 +1,81 @@
+#include "model/model_world.h"
+
+#include <nlohmann/json.hpp>
+#include <set>
+
+namespace kfw::model {
+
+using nlohmann::json;
+
+namespace {
+
+// "PATH: model.KEY: what" from the world's own parse -> "PATH: model.world.KEY: what" (a message
+// already about model.world as a whole stays).
+Error under_world(const Error& e, const std::string& path) {
+  const std::string from = path + ": model.";
+  std::string msg = e.message;
+  if (msg.rfind(path + ": model.world: ", 0) == 0) return e;  // about the world as a whole
+  if (msg.rfind(from, 0) == 0) {
+    msg = path + ": model.world." + msg.substr(from.size());
+  } else if (msg.rfind(path + ": ", 0) == 0) {
+    msg = path + ": model.world: " + msg.substr(path.size() + 2);
+  }
+  return Error{msg, e.exit_code};
+}
+
+// Every column the world writes: t, its inputs, its sensors' roles, its truth columns.
+std::set<std::string> written(const ModelSpec& w) {
+  std::set<std::string> out{"t"};
+  for (const auto& in : w.inputs)
+    out.insert(in.name);
+  for (const auto& c : w.channels) {
+    for (const auto& r : c.roles)
+      out.insert(r.name);
+  }
+  for (const auto& col : w.truth) {
+    if (!col.empty()) out.insert(col);
+  }
+  return out;
+}
+
+}  // namespace
+
+Expected<std::shared_ptr<const ModelSpec>> parse_world(const json& model, const ParamTable& params,
+                                                       const std::string& path,
+                                                       const ModelSpec& filter) {
+  json w = model.at("world");
+  if (!w.is_object()) {
+    return Error{path +
+                 ": model.world: expected an object (a model block: states, x0, P0, "
+                 "process, measurements as its sensors, truth)"};
+  }
+  if (w.contains("version")) {
+    return Error{path + ": model.world.version: the world has the model's version; remove it"};
+  }
+  w["version"] = filter.version;
+  auto spec = parse_model(w, params, path, true);
+  if (!spec) return under_world(spec.err(), path);
+  const auto made = written(*spec);
+  auto missing = [&](const std::string& column, const std::string& reader) -> Error {
+    return Error{path + ": model.world: writes no column '" + column + "', which " + reader +
+                 " reads (declare a sensor role, an input or a truth column of that name)"};
+  };
+  for (std::size_t i = 0; i < filter.inputs.size(); ++i) {
+    if (!made.count(filter.inputs[i].name)) {
+      return missing(filter.inputs[i].name, "model.inputs[" + std::to_string(i) + "]");
+    }
+  }
+  for (const auto& c : filter.channels) {
+    for (const auto& r : c.roles) {
+      if (!made.count(r.name)) return missing(r.name, "model.measurements." + c.name);
+    }
+  }
+  for (std::size_t i = 0; i < filter.truth.size(); ++i) {
+    if (!filter.truth[i].empty() && !made.count(filter.truth[i])) {
+      return missing(filter.truth[i], "model.truth." + filter.states[i].name);
+    }
+  }
+  return std::shared_ptr<const ModelSpec>(std::make_shared<ModelSpec>(std::move(*spec)));
+}
+
+}  // namespace kfw::model

@@ -7,6 +7,7 @@
 
 #include "core/suggest.h"
 #include "model/model_expressions.h"
+#include "model/model_reader.h"
 #include "model/model_world.h"
 
 namespace kfw::model {
@@ -15,154 +16,15 @@ using nlohmann::json;
 
 namespace {
 
-// What each place in the model may use, for compile_expr and its messages.
-constexpr KindMask kParamsOnly = kParamSymbol;
-constexpr KindMask kLinear = kParamSymbol | kDtSymbol | kTimeSymbol;
-constexpr KindMask kInputSim = kParamSymbol | kTimeSymbol;
-constexpr const char* kParamsOnlyWhat = "parameters only";
-constexpr const char* kLinearWhat =
-    "parameters, dt and t: a matrix of a linear model cannot depend on states or inputs; "
-    "declare f or h instead";
-constexpr const char* kInputSimWhat = "parameters and t";
-
-std::string idx(const std::string& key, std::size_t i) {
-  return key + "[" + std::to_string(i) + "]";
-}
-
-std::string number_text(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
-std::string size_text(int r, int c) {
-  return std::to_string(r) + "×" + std::to_string(c);
-}
-
-class Reader {
- public:
-  Reader(std::string path, Symbols& symbols) : path_(std::move(path)), symbols_(symbols) {}
-
-  Error error(const std::string& key, const std::string& what) const {
-    return Error{path_ + ": " + key + ": " + what};
-  }
-
-  Expected<Expr> expr(const json& j, const std::string& key, KindMask allowed,
-                      const char* what) const {
-    std::string text;
-    if (j.is_number()) {
-      text = number_text(j.get<double>());
-    } else if (j.is_string()) {
-      text = j.get<std::string>();
-    } else {
-      return error(key, "expected an expression (a string or a number), got " + j.dump());
-    }
-    auto e = compile_expr(text, key, symbols_, allowed, what);
-    if (!e) return Error{path_ + ": " + e.error()};
-    return e;
-  }
-
-  // A rows × cols matrix: a list of rows; a flat list is a column (cols == 1) or, when `diag`,
-  // the diagonal of a square matrix.
-  Expected<MatrixSpec> matrix(const json& j, const std::string& key, int rows, int cols,
-                              KindMask allowed, const char* what, bool diag = false) const {
-    MatrixSpec m;
-    m.key = key;
-    m.rows = rows;
-    m.cols = cols;
-    if (!j.is_array()) return error(key, "expected a matrix (a list of rows), got " + j.dump());
-    const bool flat =
-        !j.empty() && std::none_of(j.begin(), j.end(), [](const json& e) { return e.is_array(); });
-    const auto n = static_cast<std::size_t>(rows);
-    if (flat && (cols == 1 || (diag && rows == cols))) {
-      if (j.size() != n) {
-        return error(key, "wrong dimensions: expected " + std::to_string(rows) +
-                              (cols == 1 ? " entries (a column)" : " diagonal entries") + ", got " +
-                              std::to_string(j.size()));
-      }
-      m.e.assign(n * static_cast<std::size_t>(cols), Expr{"0", Dep::kConst, 0.0});
-      for (std::size_t i = 0; i < n; ++i) {
-        auto e = expr(j[i], idx(key, i), allowed, what);
-        if (!e) return e.err();
-        m.e[i * static_cast<std::size_t>(cols) + (cols == 1 ? 0 : i)] = *e;
-      }
-      return m;
-    }
-    std::size_t got_cols = j.empty() || !j[0].is_array() ? 0 : j[0].size();
-    if (j.size() != n || std::any_of(j.begin(), j.end(), [&](const json& r) {
-          return !r.is_array() || r.size() != static_cast<std::size_t>(cols);
-        })) {
-      for (const auto& r : j) {
-        if (r.is_array() && r.size() != got_cols) got_cols = r.size();
-      }
-      return error(key, "wrong dimensions: expected " + size_text(rows, cols) + ", got " +
-                            std::to_string(j.size()) + " rows" +
-                            (flat ? " of single entries" : " of " + std::to_string(got_cols)));
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t c = 0; c < static_cast<std::size_t>(cols); ++c) {
-        auto e = expr(j[i][c], idx(idx(key, i), c), allowed, what);
-        if (!e) return e.err();
-        m.e.push_back(*e);
-      }
-    }
-    return m;
-  }
-
-  // A covariance: square, symmetric (symbolically, by GiNaC).
-  Status symmetric(const MatrixSpec& m) const {
-    for (int i = 0; i < m.rows; ++i) {
-      for (int j = i + 1; j < m.cols; ++j) {
-        if (!same_function(m.at(i, j), m.at(j, i), symbols_)) {
-          const auto key = [&](int a, int b) {
-            return idx(idx(m.key, static_cast<std::size_t>(a)), static_cast<std::size_t>(b));
-          };
-          return error(m.key, "not symmetric: " + key(i, j) + " = \"" + m.at(i, j).text +
-                                  "\" but " + key(j, i) + " = \"" + m.at(j, i).text + "\"");
-        }
-      }
-    }
-    return Ok{};
-  }
-
-  Expected<Angle> angle(const json& obj, const std::string& key) const {
-    auto it = obj.find("angle");
-    if (it == obj.end() || it->is_null() || (it->is_boolean() && !it->get<bool>())) {
-      return Angle::kNone;
-    }
-    if (it->is_string() && it->get<std::string>() == "rad") return Angle::kRad;
-    if (it->is_string() && it->get<std::string>() == "deg") return Angle::kDeg;
-    return error(key + ".angle", "expected \"rad\" or \"deg\", got " + it->dump());
-  }
-
-  Status only_keys(const json& obj, const std::string& key,
-                   std::initializer_list<const char*> known) const {
-    for (auto it = obj.begin(); it != obj.end(); ++it) {
-      if (std::none_of(known.begin(), known.end(), [&](const char* k) { return it.key() == k; })) {
-        std::string list;
-        for (const char* k : known)
-          list += std::string(list.empty() ? "" : ", ") + k;
-        return error(key + "." + it.key(), "unknown key (known: " + list + ")");
-      }
-    }
-    return Ok{};
-  }
-
-  Expected<std::string> string(const json& obj, const char* name, const std::string& key,
-                               bool required, std::string def = {}) const {
-    auto it = obj.find(name);
-    if (it == obj.end() || it->is_null()) {
-      if (required) return error(key, std::string("missing key '") + name + "'");
-      return def;
-    }
-    if (!it->is_string()) return error(key + "." + name, "expected a string");
-    return it->get<std::string>();
-  }
-
- private:
-  std::string path_;
-  Symbols& symbols_;
-};
+using detail::idx;
+using detail::kInputSim;
+using detail::kInputSimWhat;
+using detail::kLinear;
+using detail::kLinearWhat;
+using detail::kParamsOnly;
+using detail::kParamsOnlyWhat;
+using detail::parse_process;
+using detail::Reader;
 
 // A new symbol name must be an identifier, not reserved, not yet taken.
 Status check_name(const Reader& p, const Symbols& symbols, const std::string& name,
@@ -173,140 +35,6 @@ Status check_name(const Reader& p, const Symbols& symbols, const std::string& na
   }
   if (is_reserved_name(name)) return p.error(key, quote_token(name) + " is reserved");
   if (symbols.find(name) >= 0) return p.error(key, quote_token(name) + " is already a symbol");
-  return Ok{};
-}
-
-// G (n × q, default I) and Qc (q × q): the continuous forms' noise, parameters only.
-Status parse_continuous_noise(const Reader& p, const json& j, ModelSpec& m) {
-  const std::string key = "model.process";
-  const int n = m.n();
-  ProcessSpec& pr = m.process;
-  if (j.contains("Q")) return p.error(key + ".Q", "the continuous forms take Qc, not Q");
-  int q = n;
-  if (j.contains("G")) {
-    const json& g = j["G"];
-    q = g.is_array() && !g.empty() && g[0].is_array() ? static_cast<int>(g[0].size()) : 1;
-    auto G = p.matrix(g, key + ".G", n, q, kParamsOnly, kParamsOnlyWhat);
-    if (!G) return G.err();
-    pr.G = *G;
-  }
-  if (!j.contains("Qc")) return p.error(key, "missing key 'Qc'");
-  auto Qc = p.matrix(j["Qc"], key + ".Qc", q, q, kParamsOnly, kParamsOnlyWhat, true);
-  if (!Qc) return Qc.err();
-  pr.Qc = *Qc;
-  return p.symmetric(pr.Qc);
-}
-
-// ẋ = f(x, u, t) + G w (version 2): f, its Jacobian A(x) by GiNaC, G, Qc and the RK4 sub-step.
-Status parse_xdot(const Reader& p, const json& j, ModelSpec& m) {
-  const std::string key = "model.process";
-  const int n = m.n();
-  ProcessSpec& pr = m.process;
-  pr.form = ProcessForm::kContinuousNonlinear;
-  const json& f = j["xdot"];
-  if (!f.is_array() || f.size() != static_cast<std::size_t>(n)) {
-    return p.error(key + ".xdot", "wrong dimensions: expected a list of " + std::to_string(n) +
-                                      " expressions, one per state");
-  }
-  pr.A.key = key + ".xdot (Jacobian)";
-  pr.A.rows = pr.A.cols = n;
-  for (std::size_t i = 0; i < f.size(); ++i) {
-    auto e = p.expr(f[i], idx(key + ".xdot", i), kAllSymbols & ~KindMask{kDtSymbol},
-                    "parameters, t, states and inputs: a derivative does not depend on dt");
-    if (!e) return e.err();
-    pr.f.push_back(*e);
-    auto d = derivatives(*e, idx(key + ".xdot", i), m.symbols, m.state_slots);
-    if (!d) return d.err();
-    pr.A.e.insert(pr.A.e.end(), d->begin(), d->end());
-  }
-  pr.substep = Expr{"0", Dep::kConst, 0.0};
-  if (j.contains("substep")) {
-    auto h = p.expr(j["substep"], key + ".substep", kParamsOnly, kParamsOnlyWhat);
-    if (!h) return h.err();
-    pr.substep = *h;
-  }
-  return parse_continuous_noise(p, j, m);
-}
-
-Status parse_process(const Reader& p, const json& j, ModelSpec& m) {
-  const std::string key = "model.process";
-  if (!j.is_object()) return p.error(key, "expected an object");
-  if (auto st = p.only_keys(j, key, {"F", "B", "Q", "f", "A", "G", "Qc", "xdot", "substep"}); !st) {
-    return st;
-  }
-  const int n = m.n(), nu = static_cast<int>(m.inputs.size());
-  const bool has_f = j.contains("f"), has_F = j.contains("F"), has_A = j.contains("A");
-  const bool has_xdot = j.contains("xdot");
-  if (has_f + has_F + has_A + has_xdot != 1) {
-    return p.error(key,
-                   "declare exactly one of F (linear), A (continuous), f (nonlinear) or xdot "
-                   "(continuous nonlinear)");
-  }
-  if (j.contains("substep") && !has_xdot) {
-    return p.error(key + ".substep", "belongs to the continuous nonlinear form (with xdot)");
-  }
-  ProcessSpec& pr = m.process;
-  auto need = [&](const char* name) -> Expected<const json*> {
-    if (!j.contains(name)) return p.error(key, std::string("missing key '") + name + "'");
-    return &j.at(name);
-  };
-  if (j.contains("B")) {
-    if (nu == 0) return p.error(key + ".B", "the model declares no inputs");
-    if (has_f) return p.error(key + ".B", "a nonlinear model uses the inputs in f");
-    if (has_xdot)
-      return p.error(key + ".B", "a continuous nonlinear model uses the inputs in xdot");
-  }
-  if (has_xdot) return parse_xdot(p, j, m);
-  if (has_A) {
-    pr.form = ProcessForm::kContinuous;
-    if (j.contains("Q")) return p.error(key + ".Q", "the continuous forms take Qc, not Q");
-    auto A = p.matrix(j["A"], key + ".A", n, n, kParamsOnly, kParamsOnlyWhat);
-    if (!A) return A.err();
-    pr.A = *A;
-    if (j.contains("B")) {
-      auto B = p.matrix(j["B"], key + ".B", n, nu, kParamsOnly, kParamsOnlyWhat);
-      if (!B) return B.err();
-      pr.Bc = *B;
-    }
-    return parse_continuous_noise(p, j, m);
-  }
-  if (j.contains("G") || j.contains("Qc")) {
-    return p.error(key, "G and Qc belong to the continuous forms (with A or xdot)");
-  }
-  auto q = need("Q");
-  if (!q) return q.err();
-  auto Q = p.matrix(**q, key + ".Q", n, n, kAllSymbols, "", true);
-  if (!Q) return Q.err();
-  pr.Q = *Q;
-  if (auto st = p.symmetric(pr.Q); !st) return st;
-  if (has_F) {
-    pr.form = ProcessForm::kLinear;
-    auto F = p.matrix(j["F"], key + ".F", n, n, kLinear, kLinearWhat);
-    if (!F) return F.err();
-    pr.F = *F;
-    if (j.contains("B")) {
-      auto B = p.matrix(j["B"], key + ".B", n, nu, kLinear, kLinearWhat);
-      if (!B) return B.err();
-      pr.B = *B;
-    }
-    return Ok{};
-  }
-  pr.form = ProcessForm::kNonlinear;
-  const json& f = j["f"];
-  if (!f.is_array() || f.size() != static_cast<std::size_t>(n)) {
-    return p.error(key + ".f", "wrong dimensions: expected a list of " + std::to_string(n) +
-                                   " expressions, one per state");
-  }
-  pr.F.key = key + ".f (Jacobian)";
-  pr.F.rows = pr.F.cols = n;
-  for (std::size_t i = 0; i < f.size(); ++i) {
-    auto e = p.expr(f[i], idx(key + ".f", i), kAllSymbols, "");
-    if (!e) return e.err();
-    pr.f.push_back(*e);
-    auto d = derivatives(*e, idx(key + ".f", i), m.symbols, m.state_slots);
-    if (!d) return d.err();
-    pr.F.e.insert(pr.F.e.end(), d->begin(), d->end());
-  }
   return Ok{};
 }
 
@@ -442,6 +170,164 @@ Status check_version_keys(const Reader& p, const json& j, int version) {
   return Ok{};
 }
 
+// The states: names (symbols), units, labels, angles.
+Status parse_states(const Reader& p, const json& j, ModelSpec& m) {
+  if (!j.contains("states") || !j["states"].is_array() || j["states"].empty()) {
+    return p.error("model.states", "expected a non-empty list of states");
+  }
+  for (std::size_t i = 0; i < j["states"].size(); ++i) {
+    const json& s = j["states"][i];
+    const std::string skey = idx("model.states", i);
+    StateSpec st;
+    if (s.is_string()) {
+      st.name = s.get<std::string>();
+    } else if (s.is_object()) {
+      if (auto ok = p.only_keys(s, skey, {"name", "unit", "label", "angle"}); !ok) return ok.err();
+      auto nm = p.string(s, "name", skey, true);
+      if (!nm) return nm.err();
+      st.name = *nm;
+      auto unit = p.string(s, "unit", skey, false);
+      if (!unit) return unit.err();
+      st.unit = *unit;
+      auto label = p.string(s, "label", skey, false, st.name);
+      if (!label) return label.err();
+      st.label = *label;
+      auto a = p.angle(s, skey);
+      if (!a) return a.err();
+      st.angle = *a;
+    } else {
+      return p.error(skey, "expected a state name or {\"name\", \"unit\", \"label\", \"angle\"}");
+    }
+    if (st.label.empty()) st.label = st.name;
+    if (auto ok = check_name(p, m.symbols, st.name, skey + ".name"); !ok) return ok.err();
+    m.state_slots.push_back(m.symbols.add(st.name, kStateSymbol));
+    m.states.push_back(st);
+  }
+  return Ok{};
+}
+
+// The inputs (symbols, columns of the same name) and their simulation expressions.
+Status parse_inputs(const Reader& p, const json& j, ModelSpec& m,
+                    std::set<std::string>& roles_seen) {
+  if (auto it = j.find("inputs"); it != j.end()) {
+    if (!it->is_array()) return p.error("model.inputs", "expected a list of inputs");
+    for (std::size_t i = 0; i < it->size(); ++i) {
+      const json& u = (*it)[i];
+      const std::string ukey = idx("model.inputs", i);
+      InputSpec in;
+      in.sim = Expr{"0", Dep::kConst, 0.0};
+      if (u.is_string()) {
+        in.name = u.get<std::string>();
+      } else if (u.is_object()) {
+        if (auto ok = p.only_keys(u, ukey, {"name", "unit", "label", "sim"}); !ok) return ok.err();
+        auto nm = p.string(u, "name", ukey, true);
+        if (!nm) return nm.err();
+        in.name = *nm;
+        auto unit = p.string(u, "unit", ukey, false);
+        if (!unit) return unit.err();
+        in.unit = *unit;
+        auto label = p.string(u, "label", ukey, false, in.name);
+        if (!label) return label.err();
+        in.label = *label;
+      } else {
+        return p.error(ukey, "expected an input name or {\"name\", \"unit\", \"label\", \"sim\"}");
+      }
+      if (auto ok = check_name(p, m.symbols, in.name, ukey + ".name"); !ok) return ok.err();
+      roles_seen.insert(in.name);
+      m.input_slots.push_back(m.symbols.add(in.name, kInputSymbol));
+      m.inputs.push_back(in);
+    }
+    // Simulation expressions once every symbol is known.
+    for (std::size_t i = 0; i < it->size(); ++i) {
+      const json& u = (*it)[i];
+      if (u.is_object() && u.contains("sim")) {
+        auto e = p.expr(u["sim"], idx("model.inputs", i) + ".sim", kInputSim, kInputSimWhat);
+        if (!e) return e.err();
+        m.inputs[i].sim = *e;
+      }
+    }
+  }
+  return Ok{};
+}
+
+// x0 (expressions of parameters or a column's first sample) and P0.
+Status parse_initial(const Reader& p, const json& j, ModelSpec& m) {
+  const std::string key = "model";
+  const int n = m.n();
+  if (!j.contains("x0")) return p.error(key, "missing key 'x0'");
+  const json& x0 = j["x0"];
+  if (!x0.is_array() || x0.size() != static_cast<std::size_t>(n)) {
+    return p.error("model.x0", "wrong dimensions: expected a list of " + std::to_string(n) +
+                                   " entries, one per state");
+  }
+  for (std::size_t i = 0; i < x0.size(); ++i) {
+    const std::string xkey = idx("model.x0", i);
+    InitialSpec init;
+    if (x0[i].is_object()) {
+      if (auto ok = p.only_keys(x0[i], xkey, {"first", "default"}); !ok) return ok.err();
+      auto col = p.string(x0[i], "first", xkey, true);
+      if (!col) return col.err();
+      init.first_column = *col;
+      auto e = p.expr(x0[i].value("default", json("0")), xkey + ".default", kParamsOnly,
+                      kParamsOnlyWhat);
+      if (!e) return e.err();
+      init.value = *e;
+    } else {
+      auto e = p.expr(x0[i], xkey, kParamsOnly, kParamsOnlyWhat);
+      if (!e) return e.err();
+      init.value = *e;
+    }
+    m.x0.push_back(init);
+  }
+  if (!j.contains("P0")) return p.error(key, "missing key 'P0'");
+  auto P0 = p.matrix(j["P0"], "model.P0", n, n, kParamsOnly, kParamsOnlyWhat, true);
+  if (!P0) return P0.err();
+  m.P0 = *P0;
+  if (auto st = p.symmetric(m.P0); !st) return st.err();
+  return Ok{};
+}
+
+// The truth columns, the primary state and the default filter.
+Status parse_outputs(const Reader& p, const json& j, ModelSpec& m,
+                     const std::set<std::string>& roles_seen) {
+  const std::string key = "model";
+  const int n = m.n();
+  m.truth.assign(static_cast<std::size_t>(n), std::string());
+  if (auto it = j.find("truth"); it != j.end()) {
+    if (!it->is_object()) return p.error("model.truth", "expected {\"state\": \"column\", ...}");
+    for (auto t = it->begin(); t != it->end(); ++t) {
+      const int s = m.state_index(t.key());
+      if (s < 0) return p.error("model.truth." + t.key(), "unknown state");
+      if (!t->is_string() || t->get<std::string>().empty() || t->get<std::string>() == "t") {
+        return p.error("model.truth." + t.key(), "expected a column name");
+      }
+      if (roles_seen.count(t->get<std::string>())) {
+        return p.error("model.truth." + t.key(), "column '" + t->get<std::string>() +
+                                                     "' is already an input or a measurement");
+      }
+      m.truth[static_cast<std::size_t>(s)] = t->get<std::string>();
+    }
+  }
+  auto primary = p.string(j, "primary", key, false, m.states.front().name);
+  if (!primary) return primary.err();
+  if (m.state_index(*primary) < 0) {
+    return p.error("model.primary", "'" + *primary + "' is not a state");
+  }
+  m.primary = *primary;
+  const auto choices = filter_choices(m);
+  auto filter = p.string(j, "filter", key, false, choices.front());
+  if (!filter) return filter.err();
+  if (std::find(choices.begin(), choices.end(), *filter) == choices.end()) {
+    std::string list;
+    for (const auto& c : choices)
+      list += " " + c;
+    return p.error("model.filter", "'" + *filter + "' is not a filter for this model (one of" +
+                                       list + (m.linear() ? "" : "; kf needs F and H") + ")");
+  }
+  m.filter = *filter;
+  return Ok{};
+}
+
 }  // namespace
 
 Dep MatrixSpec::dep() const {
@@ -517,114 +403,16 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   m.dt_slot = m.symbols.add("dt", kDtSymbol);
   m.t_slot = m.symbols.add("t", kTimeSymbol);
 
-  if (!j.contains("states") || !j["states"].is_array() || j["states"].empty()) {
-    return p.error("model.states", "expected a non-empty list of states");
-  }
-  for (std::size_t i = 0; i < j["states"].size(); ++i) {
-    const json& s = j["states"][i];
-    const std::string skey = idx("model.states", i);
-    StateSpec st;
-    if (s.is_string()) {
-      st.name = s.get<std::string>();
-    } else if (s.is_object()) {
-      if (auto ok = p.only_keys(s, skey, {"name", "unit", "label", "angle"}); !ok) return ok.err();
-      auto nm = p.string(s, "name", skey, true);
-      if (!nm) return nm.err();
-      st.name = *nm;
-      auto unit = p.string(s, "unit", skey, false);
-      if (!unit) return unit.err();
-      st.unit = *unit;
-      auto label = p.string(s, "label", skey, false, st.name);
-      if (!label) return label.err();
-      st.label = *label;
-      auto a = p.angle(s, skey);
-      if (!a) return a.err();
-      st.angle = *a;
-    } else {
-      return p.error(skey, "expected a state name or {\"name\", \"unit\", \"label\", \"angle\"}");
-    }
-    if (st.label.empty()) st.label = st.name;
-    if (auto ok = check_name(p, m.symbols, st.name, skey + ".name"); !ok) return ok.err();
-    m.state_slots.push_back(m.symbols.add(st.name, kStateSymbol));
-    m.states.push_back(st);
-  }
+  if (auto st = parse_states(p, j, m); !st) return st.err();
 
   std::set<std::string> roles_seen;
-  if (auto it = j.find("inputs"); it != j.end()) {
-    if (!it->is_array()) return p.error("model.inputs", "expected a list of inputs");
-    for (std::size_t i = 0; i < it->size(); ++i) {
-      const json& u = (*it)[i];
-      const std::string ukey = idx("model.inputs", i);
-      InputSpec in;
-      in.sim = Expr{"0", Dep::kConst, 0.0};
-      if (u.is_string()) {
-        in.name = u.get<std::string>();
-      } else if (u.is_object()) {
-        if (auto ok = p.only_keys(u, ukey, {"name", "unit", "label", "sim"}); !ok) return ok.err();
-        auto nm = p.string(u, "name", ukey, true);
-        if (!nm) return nm.err();
-        in.name = *nm;
-        auto unit = p.string(u, "unit", ukey, false);
-        if (!unit) return unit.err();
-        in.unit = *unit;
-        auto label = p.string(u, "label", ukey, false, in.name);
-        if (!label) return label.err();
-        in.label = *label;
-      } else {
-        return p.error(ukey, "expected an input name or {\"name\", \"unit\", \"label\", \"sim\"}");
-      }
-      if (auto ok = check_name(p, m.symbols, in.name, ukey + ".name"); !ok) return ok.err();
-      roles_seen.insert(in.name);
-      m.input_slots.push_back(m.symbols.add(in.name, kInputSymbol));
-      m.inputs.push_back(in);
-    }
-    // Simulation expressions once every symbol is known.
-    for (std::size_t i = 0; i < it->size(); ++i) {
-      const json& u = (*it)[i];
-      if (u.is_object() && u.contains("sim")) {
-        auto e = p.expr(u["sim"], idx("model.inputs", i) + ".sim", kInputSim, kInputSimWhat);
-        if (!e) return e.err();
-        m.inputs[i].sim = *e;
-      }
-    }
-  }
+  if (auto st = parse_inputs(p, j, m, roles_seen); !st) return st.err();
 
   if (auto it = j.find("expressions"); it != j.end()) {
     if (auto st = parse_expressions(*it, path, m.symbols); !st) return st.err();
   }
 
-  // Initial state and covariance.
-  const int n = m.n();
-  if (!j.contains("x0")) return p.error(key, "missing key 'x0'");
-  const json& x0 = j["x0"];
-  if (!x0.is_array() || x0.size() != static_cast<std::size_t>(n)) {
-    return p.error("model.x0", "wrong dimensions: expected a list of " + std::to_string(n) +
-                                   " entries, one per state");
-  }
-  for (std::size_t i = 0; i < x0.size(); ++i) {
-    const std::string xkey = idx("model.x0", i);
-    InitialSpec init;
-    if (x0[i].is_object()) {
-      if (auto ok = p.only_keys(x0[i], xkey, {"first", "default"}); !ok) return ok.err();
-      auto col = p.string(x0[i], "first", xkey, true);
-      if (!col) return col.err();
-      init.first_column = *col;
-      auto e = p.expr(x0[i].value("default", json("0")), xkey + ".default", kParamsOnly,
-                      kParamsOnlyWhat);
-      if (!e) return e.err();
-      init.value = *e;
-    } else {
-      auto e = p.expr(x0[i], xkey, kParamsOnly, kParamsOnlyWhat);
-      if (!e) return e.err();
-      init.value = *e;
-    }
-    m.x0.push_back(init);
-  }
-  if (!j.contains("P0")) return p.error(key, "missing key 'P0'");
-  auto P0 = p.matrix(j["P0"], "model.P0", n, n, kParamsOnly, kParamsOnlyWhat, true);
-  if (!P0) return P0.err();
-  m.P0 = *P0;
-  if (auto st = p.symmetric(m.P0); !st) return st.err();
+  if (auto st = parse_initial(p, j, m); !st) return st.err();
 
   if (!j.contains("process")) return p.error(key, "missing key 'process'");
   if (auto st = parse_process(p, j["process"], m); !st) return st.err();
@@ -642,39 +430,7 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
     m.channels.push_back(std::move(*c));
   }
 
-  m.truth.assign(static_cast<std::size_t>(n), std::string());
-  if (auto it = j.find("truth"); it != j.end()) {
-    if (!it->is_object()) return p.error("model.truth", "expected {\"state\": \"column\", ...}");
-    for (auto t = it->begin(); t != it->end(); ++t) {
-      const int s = m.state_index(t.key());
-      if (s < 0) return p.error("model.truth." + t.key(), "unknown state");
-      if (!t->is_string() || t->get<std::string>().empty() || t->get<std::string>() == "t") {
-        return p.error("model.truth." + t.key(), "expected a column name");
-      }
-      if (roles_seen.count(t->get<std::string>())) {
-        return p.error("model.truth." + t.key(), "column '" + t->get<std::string>() +
-                                                     "' is already an input or a measurement");
-      }
-      m.truth[static_cast<std::size_t>(s)] = t->get<std::string>();
-    }
-  }
-  auto primary = p.string(j, "primary", key, false, m.states.front().name);
-  if (!primary) return primary.err();
-  if (m.state_index(*primary) < 0) {
-    return p.error("model.primary", "'" + *primary + "' is not a state");
-  }
-  m.primary = *primary;
-  const auto choices = filter_choices(m);
-  auto filter = p.string(j, "filter", key, false, choices.front());
-  if (!filter) return filter.err();
-  if (std::find(choices.begin(), choices.end(), *filter) == choices.end()) {
-    std::string list;
-    for (const auto& c : choices)
-      list += " " + c;
-    return p.error("model.filter", "'" + *filter + "' is not a filter for this model (one of" +
-                                       list + (m.linear() ? "" : "; kf needs F and H") + ")");
-  }
-  m.filter = *filter;
+  if (auto st = parse_outputs(p, j, m, roles_seen); !st) return st.err();
   if (auto it = j.find("world"); it != j.end()) {
     if (world) return p.error("model.world", "a world holds no world of its own");
     auto w = parse_world(j, params, path, m);

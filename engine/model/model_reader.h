@@ -1,0 +1,170 @@
+// The reader of a model block (model_spec.cpp, model_process.cpp): what each place may use, the
+// key-naming helpers and the Reader that turns JSON into checked expressions and matrices with
+// messages "PATH: KEY: what". Internal to the model room.
+#pragma once
+
+#include <algorithm>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/suggest.h"
+#include "model/model_spec.h"
+
+namespace kfw::model::detail {
+
+using nlohmann::json;
+
+// What each place in the model may use, for compile_expr and its messages.
+inline constexpr KindMask kParamsOnly = kParamSymbol;
+inline constexpr KindMask kLinear = kParamSymbol | kDtSymbol | kTimeSymbol;
+inline constexpr KindMask kInputSim = kParamSymbol | kTimeSymbol;
+inline constexpr const char* kParamsOnlyWhat = "parameters only";
+inline constexpr const char* kLinearWhat =
+    "parameters, dt and t: a matrix of a linear model cannot depend on states or inputs; "
+    "declare f or h instead";
+inline constexpr const char* kInputSimWhat = "parameters and t";
+
+inline std::string idx(const std::string& key, std::size_t i) {
+  return key + "[" + std::to_string(i) + "]";
+}
+
+inline std::string number_text(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+inline std::string size_text(int r, int c) {
+  return std::to_string(r) + "×" + std::to_string(c);
+}
+
+class Reader {
+ public:
+  Reader(std::string path, Symbols& symbols) : path_(std::move(path)), symbols_(symbols) {}
+
+  Error error(const std::string& key, const std::string& what) const {
+    return Error{path_ + ": " + key + ": " + what};
+  }
+
+  Expected<Expr> expr(const json& j, const std::string& key, KindMask allowed,
+                      const char* what) const {
+    std::string text;
+    if (j.is_number()) {
+      text = number_text(j.get<double>());
+    } else if (j.is_string()) {
+      text = j.get<std::string>();
+    } else {
+      return error(key, "expected an expression (a string or a number), got " + j.dump());
+    }
+    auto e = compile_expr(text, key, symbols_, allowed, what);
+    if (!e) return Error{path_ + ": " + e.error()};
+    return e;
+  }
+
+  // A rows × cols matrix: a list of rows; a flat list is a column (cols == 1) or, when `diag`,
+  // the diagonal of a square matrix.
+  Expected<MatrixSpec> matrix(const json& j, const std::string& key, int rows, int cols,
+                              KindMask allowed, const char* what, bool diag = false) const {
+    MatrixSpec m;
+    m.key = key;
+    m.rows = rows;
+    m.cols = cols;
+    if (!j.is_array()) return error(key, "expected a matrix (a list of rows), got " + j.dump());
+    const bool flat =
+        !j.empty() && std::none_of(j.begin(), j.end(), [](const json& e) { return e.is_array(); });
+    const auto n = static_cast<std::size_t>(rows);
+    if (flat && (cols == 1 || (diag && rows == cols))) {
+      if (j.size() != n) {
+        return error(key, "wrong dimensions: expected " + std::to_string(rows) +
+                              (cols == 1 ? " entries (a column)" : " diagonal entries") + ", got " +
+                              std::to_string(j.size()));
+      }
+      m.e.assign(n * static_cast<std::size_t>(cols), Expr{"0", Dep::kConst, 0.0});
+      for (std::size_t i = 0; i < n; ++i) {
+        auto e = expr(j[i], idx(key, i), allowed, what);
+        if (!e) return e.err();
+        m.e[i * static_cast<std::size_t>(cols) + (cols == 1 ? 0 : i)] = *e;
+      }
+      return m;
+    }
+    std::size_t got_cols = j.empty() || !j[0].is_array() ? 0 : j[0].size();
+    if (j.size() != n || std::any_of(j.begin(), j.end(), [&](const json& r) {
+          return !r.is_array() || r.size() != static_cast<std::size_t>(cols);
+        })) {
+      for (const auto& r : j) {
+        if (r.is_array() && r.size() != got_cols) got_cols = r.size();
+      }
+      return error(key, "wrong dimensions: expected " + size_text(rows, cols) + ", got " +
+                            std::to_string(j.size()) + " rows" +
+                            (flat ? " of single entries" : " of " + std::to_string(got_cols)));
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t c = 0; c < static_cast<std::size_t>(cols); ++c) {
+        auto e = expr(j[i][c], idx(idx(key, i), c), allowed, what);
+        if (!e) return e.err();
+        m.e.push_back(*e);
+      }
+    }
+    return m;
+  }
+
+  // A covariance: square, symmetric (symbolically, by GiNaC).
+  Status symmetric(const MatrixSpec& m) const {
+    for (int i = 0; i < m.rows; ++i) {
+      for (int j = i + 1; j < m.cols; ++j) {
+        if (!same_function(m.at(i, j), m.at(j, i), symbols_)) {
+          const auto key = [&](int a, int b) {
+            return idx(idx(m.key, static_cast<std::size_t>(a)), static_cast<std::size_t>(b));
+          };
+          return error(m.key, "not symmetric: " + key(i, j) + " = \"" + m.at(i, j).text +
+                                  "\" but " + key(j, i) + " = \"" + m.at(j, i).text + "\"");
+        }
+      }
+    }
+    return Ok{};
+  }
+
+  Expected<Angle> angle(const json& obj, const std::string& key) const {
+    auto it = obj.find("angle");
+    if (it == obj.end() || it->is_null() || (it->is_boolean() && !it->get<bool>())) {
+      return Angle::kNone;
+    }
+    if (it->is_string() && it->get<std::string>() == "rad") return Angle::kRad;
+    if (it->is_string() && it->get<std::string>() == "deg") return Angle::kDeg;
+    return error(key + ".angle", "expected \"rad\" or \"deg\", got " + it->dump());
+  }
+
+  Status only_keys(const json& obj, const std::string& key,
+                   std::initializer_list<const char*> known) const {
+    for (auto it = obj.begin(); it != obj.end(); ++it) {
+      if (std::none_of(known.begin(), known.end(), [&](const char* k) { return it.key() == k; })) {
+        std::string list;
+        for (const char* k : known)
+          list += std::string(list.empty() ? "" : ", ") + k;
+        return error(key + "." + it.key(), "unknown key (known: " + list + ")");
+      }
+    }
+    return Ok{};
+  }
+
+  Expected<std::string> string(const json& obj, const char* name, const std::string& key,
+                               bool required, std::string def = {}) const {
+    auto it = obj.find(name);
+    if (it == obj.end() || it->is_null()) {
+      if (required) return error(key, std::string("missing key '") + name + "'");
+      return def;
+    }
+    if (!it->is_string()) return error(key + "." + name, "expected a string");
+    return it->get<std::string>();
+  }
+
+ private:
+  std::string path_;
+  Symbols& symbols_;
+};
+
+// The process block, in any of its four forms (model_process.cpp).
+Status parse_process(const Reader& p, const json& j, ModelSpec& m);
+
+}  // namespace kfw::model::detail

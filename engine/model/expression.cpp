@@ -169,6 +169,8 @@ const char* kind_name(SymbolKind k) {
       return "input";
     case kSubSymbol:
       return "sub-expression";
+    case kTruthSymbol:
+      return "truth column";
   }
   return "symbol";
 }
@@ -183,6 +185,7 @@ Dep dep_of(SymbolKind k) {
     case kInputSymbol:
       return Dep::kStep;
     case kStateSymbol:
+    case kTruthSymbol:
     case kSubSymbol:  // not reached: a sub-expression's class is its own
       return Dep::kState;
   }

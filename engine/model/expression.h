@@ -24,9 +24,11 @@ enum SymbolKind : unsigned {
   kTimeSymbol = 4u,    // t, the time of the row, s
   kStateSymbol = 8u,   // a state
   kInputSymbol = 16u,  // an input (a known signal, e.g. a gyro rate)
-  kSubSymbol = 32u     // a sub-expression (model.expressions): stands for its own text
+  kSubSymbol = 32u,    // a sub-expression (model.expressions): stands for its own text
+  kTruthSymbol = 64u   // a truth column (model.truth), in derived quantities only
 };
 using KindMask = unsigned;
+// Every kind but truth: what the model's own expressions may use.
 inline constexpr KindMask kAllSymbols = 63u;
 
 // When an expression must be re-evaluated. Ordered: each class includes what comes before.

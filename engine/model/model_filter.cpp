@@ -34,6 +34,8 @@ Dataset ModelResult::table() const {
   }
   for (std::size_t r = 0; r < role_names.size(); ++r)
     put(role_names[r], z[r]);
+  for (std::size_t q = 0; q < derived.size(); ++q)
+    put("derived." + derived_names[q], derived[q]);
   for (const auto& c : chans) {
     for (std::size_t j = 0; j < c.roles.size(); ++j) {
       put("y." + c.roles[j], c.y[j]);

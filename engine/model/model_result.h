@@ -30,6 +30,8 @@ struct ModelResult final : RunResult {
   std::vector<std::string> role_names;     // the measurement columns as read, for table()
   std::vector<std::vector<double>> z;      // [role][step]
   std::vector<ChannelSeries> chans;
+  std::vector<std::string> derived_names;    // the series of model.derived, by name
+  std::vector<std::vector<double>> derived;  // [quantity][step]
   std::vector<double> nees;  // over the states with truth; NaN where a truth value is missing
   double nees_dof = 0.0;
 

@@ -12,6 +12,7 @@
 #include "filter/angle.h"
 #include "filter/consistency.h"
 #include "filter/dare.h"
+#include "model/model_derived.h"
 #include "model/model_eval.h"
 #include "model/model_filter.h"
 #include "model/model_sim.h"
@@ -116,6 +117,8 @@ class ModelScenario final : public Scenario {
                        Direction::kLower});
       }
     }
+    for (auto& d : model::derived_metric_specs(*spec_))
+      out.push_back(std::move(d));
     return out;
   }
 
@@ -168,6 +171,7 @@ class ModelScenario final : public Scenario {
       }
     }
     add_consistency_metrics(res.channels(), res.nees_series(), m, res.undefined);
+    if (auto st = model::add_derived(*spec_, v, d, res); !st) return st.err();
     return std::shared_ptr<RunResult>(std::move(*r));
   }
 

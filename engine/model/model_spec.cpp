@@ -6,6 +6,7 @@
 #include <set>
 
 #include "core/suggest.h"
+#include "model/model_derived.h"
 #include "model/model_expressions.h"
 #include "model/model_reader.h"
 #include "model/model_world.h"
@@ -160,7 +161,7 @@ Status add_sim_symbols(const Reader& p, const ParamTable& params, ModelSpec& m) 
 // lowest version that holds the file, so a version-1 file never needs them).
 Status check_version_keys(const Reader& p, const json& j, int version) {
   if (version >= 2) return Ok{};
-  for (const char* k : {"expressions", "world"}) {
+  for (const char* k : {"expressions", "world", "derived"}) {
     if (j.contains(k))
       return p.error(std::string("model.") + k, "a version-2 key: set \"version\": 2");
   }
@@ -372,10 +373,10 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   Reader p(path, m.symbols);
   const std::string key = "model";
   if (!j.is_object()) return p.error(key, "expected an object");
-  if (auto st =
-          p.only_keys(j, key,
-                      {"version", "description", "states", "inputs", "expressions", "x0", "P0",
-                       "process", "measurements", "truth", "primary", "filter", "world"});
+  if (auto st = p.only_keys(
+          j, key,
+          {"version", "description", "states", "inputs", "expressions", "x0", "P0", "process",
+           "measurements", "truth", "primary", "filter", "world", "derived"});
       !st) {
     return st.err();
   }
@@ -431,6 +432,9 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   }
 
   if (auto st = parse_outputs(p, j, m, roles_seen); !st) return st.err();
+  if (auto it = j.find("derived"); it != j.end()) {
+    if (auto st = parse_derived(p, *it, m); !st) return st.err();
+  }
   if (auto it = j.find("world"); it != j.end()) {
     if (world) return p.error("model.world", "a world holds no world of its own");
     auto w = parse_world(j, params, path, m);

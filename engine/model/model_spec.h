@@ -77,6 +77,13 @@ struct ProcessSpec {
   Expr substep;             // continuous nonlinear: the longest RK4 sub-step, s (0: one per dt)
 };
 
+// A derived quantity (model_derived.h): a scalar of parameters and dt, or a series per step.
+struct DerivedSpec {
+  std::string name, label, unit, description;
+  Expr e;
+  bool series() const { return e.dep > Dep::kDt; }
+};
+
 // x0[i]: an expression of the parameters, or the first finite sample of a column (then `value`
 // is used when the column has none, and in simulation).
 struct InitialSpec {
@@ -105,6 +112,8 @@ struct ModelSpec {
   // channels are the sensors writing the columns this model reads; null: the model simulates
   // itself.
   std::shared_ptr<const ModelSpec> world;
+  std::vector<DerivedSpec> derived;  // in the order of their names
+  std::vector<int> truth_slots;      // per state: its truth column's symbol, or -1
 
   int n() const { return static_cast<int>(states.size()); }
   // F or A and H in every channel: the KF applies, and a steady state may exist.

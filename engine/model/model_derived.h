@@ -1,0 +1,38 @@
+// Derived quantities of a model file (version 2, issue 27): named expressions computed from a
+// run. One of parameters and dt only is a scalar per run — the metric derived.NAME, at the data's
+// median dt (or sim.dt) — such as seed 000's tracking index β. One that uses states (the
+// estimates), truth columns, t or inputs is a series per run — a column derived.NAME of the
+// run's table, with the metrics derived.NAME.rms and derived.NAME.max (largest magnitude).
+#pragma once
+
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+#include <vector>
+
+#include "core/dataset.h"
+#include "core/expected.h"
+#include "core/metrics.h"
+#include "core/param_spec.h"
+#include "model/model_spec.h"
+
+namespace kfw::model {
+
+struct ModelResult;
+
+namespace detail {
+class Reader;
+}
+
+// Adds each truth column whose name is a free identifier as a symbol (kTruthSymbol), then parses
+// "derived": {"NAME": {"expression", "label", "unit", "description"}} (or "NAME": "expression").
+Status parse_derived(const detail::Reader& p, const nlohmann::json& block, ModelSpec& m);
+
+// The metrics the derived quantities declare.
+std::vector<MetricSpec> derived_metric_specs(const ModelSpec& spec);
+
+// Evaluates every derived quantity on a finished run: series into r.derived, metrics into
+// r.metrics (a value that is not finite goes to r.undefined with the reason).
+Status add_derived(const ModelSpec& spec, const ParamValues& values, const Dataset& d,
+                   ModelResult& r);
+
+}  // namespace kfw::model

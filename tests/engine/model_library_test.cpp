@@ -80,6 +80,7 @@ INSTANTIATE_TEST_SUITE_P(Presets, ModelLibrary,
                                            LibraryCase{"singer.json", "z", "x_true"},
                                            LibraryCase{"pendulum.json", nullptr, "theta_true"},
                                            LibraryCase{"van_der_pol.json", nullptr, "x_true"},
+                                           LibraryCase{"gyro_bias.json", nullptr, "theta_true"},
                                            LibraryCase{"range_bearing.json", nullptr, "px_true"},
                                            LibraryCase{"helicopter_indirect.json", "angle",
                                                        "truth"}),
@@ -95,7 +96,7 @@ TEST(ModelLibrary, EveryPresetHasADescriptionAndIsInTheList) {
     EXPECT_EQ(j.value("scenario", ""), "model") << entry.path();
     EXPECT_GT(j.value("description", "").size(), 40u) << entry.path();
   }
-  EXPECT_EQ(files, 8u);
+  EXPECT_EQ(files, 9u);
 }
 
 // One scenario, runs on two threads at once (Sweep uses both cores): each run has its own

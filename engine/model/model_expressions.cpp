@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <vector>
 
@@ -43,13 +44,20 @@ class SubReader {
       return error(name, "expected an expression (a string or a number), got " + j.dump());
     }
     stack_.push_back(name);
+    std::size_t depth = 1;
     for (const auto& id : identifiers(text)) {
       if (id != name && block_.contains(id)) {
         if (auto st = define(id); !st) return st;
+        depth = std::max(depth, depth_[id] + 1);
       } else if (id == name) {
         return error(name, "defined in terms of itself (" + name + " → " + name + ")");
       }
     }
+    if (depth > kMaxSubExpressionDepth) {
+      return error(name, "sub-expressions nested more than " +
+                             std::to_string(kMaxSubExpressionDepth) + " deep");
+    }
+    depth_[name] = depth;
     auto e = compile_expr(text, "model.expressions." + name, symbols_, kAllSymbols, "");
     if (!e) return Error{path_ + ": " + e.error()};
     symbols_.add_sub(name, *e);
@@ -62,6 +70,7 @@ class SubReader {
   const std::string& path_;
   Symbols& symbols_;
   std::vector<std::string> stack_;
+  std::map<std::string, std::size_t> depth_;  // 1 + the deepest sub-expression each one uses
 };
 
 }  // namespace

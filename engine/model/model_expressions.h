@@ -12,6 +12,10 @@ namespace kfw::model {
 
 // At most this many sub-expressions in one model (each is compiled once, by both libraries).
 inline constexpr std::size_t kMaxSubExpressions = 1000;
+// At most this deep a chain of sub-expressions that use each other (each link is compiled with
+// the whole chain expanded: the load time grows with the cube of the depth — 0.13 s at 100,
+// 41 s at 1000).
+inline constexpr std::size_t kMaxSubExpressionDepth = 100;
 
 // Adds each sub-expression of `block` to `symbols` (after the parameters, dt, t, the states and
 // the inputs), a sub-expression that others use before them; a cycle is refused with the chain.

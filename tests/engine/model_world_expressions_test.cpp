@@ -171,6 +171,18 @@ TEST(ModelWorldSubExpressions, CyclesNamesAndSizesAreRefused) {
     chain += ", \"a" + std::to_string(i) + "\": \"a" + std::to_string(i - 1) + " + a" +
              std::to_string(i - 1) + "\"";
   auto big = with_subs(chain + "}");
+  // A chain 101 deep is refused (a 1000-deep chain took 41 s to load).
+  std::string deep = R"J({"c0": "x")J";
+  for (int i = 1; i <= 100; ++i)
+    deep += ", \"c" + std::to_string(i) + "\": \"c" + std::to_string(i - 1) + " + 1\"";
+  auto too_deep = with_subs(deep + "}");
+  ASSERT_FALSE(too_deep.ok());
+  EXPECT_NE(too_deep.error().find("sub-expressions nested more than 100 deep"), std::string::npos)
+      << too_deep.error();
+  deep = R"J({"c0": "x")J";
+  for (int i = 1; i < 100; ++i)
+    deep += ", \"c" + std::to_string(i) + "\": \"c" + std::to_string(i - 1) + " + 1\"";
+  EXPECT_TRUE(with_subs(deep + "}").ok());
   ASSERT_FALSE(big.ok());
   EXPECT_NE(big.error().find("its sub-expressions expand to"), std::string::npos) << big.error();
 }

@@ -4,9 +4,9 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <sstream>
 
+#include "core/random.h"
 #include "filter/angle.h"
 #include "model/model_eval.h"
 
@@ -72,12 +72,16 @@ Expected<Dataset> simulate_model(const ModelSpec& spec, const ParamValues& value
     }
   }
 
-  std::mt19937_64 rng(static_cast<std::uint64_t>(seed));
-  std::normal_distribution<double> unit(0.0, 1.0);
-  auto draw = [&](Eigen::Index m) {
+  // One stream per noise source (core/random.h): x0, the process, each channel.
+  const auto seed_bits = static_cast<std::uint64_t>(seed);
+  RandomStream x0_stream(seed_bits, "x0"), process_stream(seed_bits, "process");
+  std::vector<RandomStream> channel_streams;
+  for (const auto& c : spec.channels)
+    channel_streams.emplace_back(seed_bits, "channel." + c.name);
+  auto draw = [](RandomStream& r, Eigen::Index m) {
     VecX v(m);
     for (Eigen::Index i = 0; i < m; ++i)
-      v(i) = unit(rng);
+      v(i) = r.normal();
     return v;
   };
   auto fail = [&](std::size_t k, const std::string& what) -> Error {
@@ -89,7 +93,7 @@ Expected<Dataset> simulate_model(const ModelSpec& spec, const ParamValues& value
   if (auto st = ev.set_dt(dt); !st) return fail(0, st.error());
   MatX L;
   if (!psd_sqrt(ev.P0, L)) return Error{spec.path + ": model.P0: not positive semidefinite"};
-  VecX x = ev.x0 + L * draw(n);
+  VecX x = ev.x0 + L * draw(x0_stream, n);
   MatX Lq;
   bool lq_valid = false;
   const bool nonlinear = spec.nonlinear_process();
@@ -124,7 +128,7 @@ Expected<Dataset> simulate_model(const ModelSpec& spec, const ParamValues& value
         if (!psd_sqrt(ev.Q, Lq)) return fail(k, "model.process.Q is not positive semidefinite");
         lq_valid = true;
       }
-      x = next + Lq * draw(n);
+      x = next + Lq * draw(process_stream, n);
       for (int i = 0; i < n; ++i)
         x(i) = wrap(x(i), spec.states[static_cast<std::size_t>(i)].angle);
       if (!x.allFinite()) return fail(k, "the simulated state is not finite");
@@ -155,7 +159,7 @@ Expected<Dataset> simulate_model(const ModelSpec& spec, const ParamValues& value
           }
           lr_valid[c] = true;
         }
-        z += Lr[c] * draw(cs.size());
+        z += Lr[c] * draw(channel_streams[c], cs.size());
         for (std::size_t j = 0; j < m; ++j) {
           d.columns[col + j][k] = wrap(z(static_cast<Eigen::Index>(j)), cs.roles[j].angle);
         }

@@ -1,6 +1,7 @@
 // Every model simulates itself: the truth from x0 ~ N(x0, P0) through its own process with noise
 // drawn from Q, and each channel's measurement z = h(x) + v, v ~ N(0, R), on the rows its clock
-// allows (`every`). Seeded (mt19937_64) by sim.seed; a time grid of sim.dt over sim.duration.
+// allows (`every`). Random numbers by core/random.h from sim.seed, one stream per noise source
+// (x0, process, channel.NAME); a time grid of sim.dt over sim.duration.
 #pragma once
 
 #include <string>

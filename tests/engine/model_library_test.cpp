@@ -56,9 +56,20 @@ TEST_P(ModelLibrary, RunsOnItsOwnSimulationUnderEachFilter) {
     if (c.measured) {
       EXPECT_LT(m.at("rmse"), sensor);
     }
-    // Matched model: NEES/dof and NIS/dof near 1 over the run.
-    EXPECT_GT(m.at("nees_mean"), 0.6);
-    EXPECT_LT(m.at("nees_mean"), 1.5);
+    // Matched model: NEES/dof and NIS/dof near 1 over the run; NEES, whose slow states make one
+    // run's mean vary (0.55 to 3.4 over seeds 1..10 for helicopter_indirect), over seeds 1..3.
+    double nees = m.at("nees_mean");
+    for (int seed = 2; seed <= 3; ++seed) {
+      ParamValues w = v;
+      w["sim.seed"] = seed;
+      auto ds = s->simulate(w);
+      ASSERT_TRUE(ds.ok()) << ds.error();
+      auto rs = s->run(*ds, w);
+      ASSERT_TRUE(rs.ok()) << rs.error();
+      nees += (*rs)->metrics.at("nees_mean");
+    }
+    EXPECT_GT(nees / 3, 0.6);
+    EXPECT_LT(nees / 3, 1.5);
     EXPECT_GT(m.at("nis_mean"), 0.8);
     EXPECT_LT(m.at("nis_mean"), 1.25);
     EXPECT_GT(m.at("nis_in_bounds"), 0.9);

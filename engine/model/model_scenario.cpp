@@ -115,6 +115,16 @@ class ModelScenario final : public Scenario {
                        "measurements rejected by the χ² gate", MetricGroup::kConsistency,
                        Direction::kLower});
       }
+      // A channel of several components is tested for whiteness component by component.
+      if (c.roles.size() > 1) {
+        for (const auto& r : c.roles) {
+          out.push_back({"whiteness_p." + c.name + "." + r.name,
+                         "whiteness p of " + c.label + ": " + r.name, "",
+                         "Ljung–Box p-value (20 lags) of " + r.name + "'s innovation over √S (" +
+                             r.name + "'s diagonal entry), at the channel's own rate",
+                         MetricGroup::kConsistency, Direction::kHigher, 0.0, 0.01, 1.0});
+        }
+      }
     }
     return out;
   }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <set>
 #include <sstream>
 
@@ -249,12 +250,16 @@ std::optional<ModelLayout> model_layout_of(const Scenario& s) {
   const auto* m = dynamic_cast<const ModelScenario*>(&s);
   if (!m) return std::nullopt;
   ModelLayout l;
+  // An angle's full turn (wrap() keeps it within half a turn of zero).
+  auto turn = [](Angle a) {
+    return a == Angle::kRad ? 2.0 * std::numbers::pi : a == Angle::kDeg ? 360.0 : 0.0;
+  };
   for (const auto& st : m->spec()->states)
-    l.states.push_back({st.name, st.label.empty() ? st.name : st.label, st.unit});
+    l.states.push_back({st.name, st.label.empty() ? st.name : st.label, st.unit, turn(st.angle)});
   for (const auto& c : m->spec()->channels) {
     ModelLayout::Channel ch{c.name, c.label.empty() ? c.name : c.label, {}};
     for (const auto& r : c.roles)
-      ch.roles.push_back({r.name, r.unit, r.angle != Angle::kNone});
+      ch.roles.push_back({r.name, r.unit, r.angle != Angle::kNone, turn(r.angle)});
     l.channels.push_back(std::move(ch));
   }
   l.time_invariant = m->spec()->time_invariant();

@@ -71,6 +71,33 @@ std::vector<ParamSpec> standard_params(const std::vector<std::string>& filters,
   };
 }
 
+// True when a unit needs parentheses as one side of a ratio ("m/s", "m s⁻¹"; not "m²", "(m/s)²").
+bool compound_unit(const std::string& u) {
+  int depth = 0;
+  for (char c : u) {
+    if (c == '(') ++depth;
+    if (c == ')') --depth;
+    // '\xB7' ends the UTF-8 of '·' (a product, "N·m").
+    if (depth == 0 && (c == '/' || c == '*' || c == ' ' || c == '\xB7')) return true;
+  }
+  return false;
+}
+
+std::string ratio_side(const std::string& u) {
+  return compound_unit(u) ? "(" + u + ")" : u;
+}
+
+// The unit of a ratio num/den as a reader writes it: "" when they cancel (m/m), "1/s" for
+// (m/s)/m, "s" for m/(m/s), "m/rad" otherwise.
+std::string unit_ratio(const std::string& num, const std::string& den) {
+  if (num == den) return "";
+  if (den.empty()) return num;
+  if (num.empty()) return "1/" + ratio_side(den);
+  if (num.rfind(den + "/", 0) == 0) return "1/" + ratio_side(num.substr(den.size() + 1));
+  if (den.rfind(num + "/", 0) == 0) return den.substr(num.size() + 1);
+  return ratio_side(num) + "/" + ratio_side(den);
+}
+
 class ModelScenario final : public Scenario {
  public:
   ModelScenario(std::shared_ptr<const model::ModelSpec> spec, ParamTable table, std::string title)
@@ -124,6 +151,19 @@ class ModelScenario final : public Scenario {
                          "Ljung–Box p-value (20 lags) of " + r.name + "'s innovation over √S (" +
                              r.name + "'s diagonal entry), at the channel's own rate",
                          MetricGroup::kConsistency, Direction::kHigher, 0.0, 0.01, 1.0});
+        }
+      }
+    }
+    // The gain entries (`gain`'s steady state, the gains plot over time): [state]/[role].
+    for (const auto& st : spec_->states) {
+      for (const auto& c : spec_->channels) {
+        for (const auto& r : c.roles) {
+          out.push_back({"K." + st.name + "." + r.name, "gain of " + st.name + " from " + r.name,
+                         unit_ratio(st.unit, r.unit),
+                         "Kalman gain entry: the change of " + st.name + "'s estimate per " +
+                             "unit of " + r.name + "'s innovation (kfw-cli gain: its DARE " +
+                             "steady state, for a linear time-invariant model)",
+                         MetricGroup::kGains, Direction::kNone});
         }
       }
     }

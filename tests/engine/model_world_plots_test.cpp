@@ -1,11 +1,14 @@
 // Issue 27 (model files, part 2), what plots are drawn from: an angle's line breaks where it
-// wraps (engine/data/wrap_gaps.h).
+// wraps (engine/data/wrap_gaps.h), and each steady-state gain entry K.STATE.ROLE declares its
+// unit [STATE]/[ROLE].
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
+#include "common/model_files.h"
 #include "data/wrap_gaps.h"
+#include "experiment/gain_curve.h"
 
 namespace kfw {
 namespace model_world_plots_test {
@@ -79,6 +82,29 @@ TEST(ModelWorldPlots, ABandBreaksWhereItsCentreWraps) {
   EXPECT_TRUE(std::isnan(b.lo[2]) && std::isnan(b.hi[2]));
   EXPECT_EQ(b.hi[3], -2.9);
   EXPECT_EQ(b.points_for(4), 5u);
+}
+
+TEST(ModelWorldPlots, GainEntriesDeclareTheirUnits) {
+  auto cv1d = testing::load_model("cv1d.json");
+  ASSERT_TRUE(cv1d);
+  // K.x.z is m/m (dimensionless), K.v.z (m/s)/m = 1/s.
+  EXPECT_TRUE(is_declared_metric(*cv1d, "K.x.z"));
+  EXPECT_EQ(describe_metric(*cv1d, "K.x.z").unit, "");
+  EXPECT_EQ(describe_metric(*cv1d, "K.v.z").unit, "1/s");
+  EXPECT_EQ(describe_metric(*cv1d, "K.v.z").group, MetricGroup::kGains);
+  EXPECT_EQ(describe_metric(*cv1d, "K.v.z").direction, Direction::kNone);
+  auto rb = testing::load_model("range_bearing.json");
+  ASSERT_TRUE(rb);
+  EXPECT_EQ(describe_metric(*rb, "K.px.range").unit, "");
+  EXPECT_EQ(describe_metric(*rb, "K.px.bearing").unit, "m/rad");
+  EXPECT_EQ(describe_metric(*rb, "K.vx.range").unit, "1/s");
+  EXPECT_EQ(describe_metric(*rb, "K.vx.bearing").unit, "(m/s)/rad");
+  // The gain curve carries them, entry by entry.
+  auto curve = gain_curve(*cv1d, cv1d->params().defaults(), "sigma_a", 5);
+  ASSERT_TRUE(curve.ok()) << curve.error();
+  ASSERT_EQ(curve->units.size(), curve->entries.size());
+  for (std::size_t e = 0; e < curve->entries.size(); ++e)
+    EXPECT_EQ(curve->units[e], curve->entries[e] == "K.v.z" ? "1/s" : "") << curve->entries[e];
 }
 
 }  // namespace

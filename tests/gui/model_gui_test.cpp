@@ -152,7 +152,7 @@ TEST(ModelView, GainCurveShowsTheLiveOperatingPointAtTheDareGain) {
   combo->setCurrentIndex(combo->findData("sigma_r"));
   check("sigma_r");
   // The curve has points over the whole declared range of σ_r (log-spaced).
-  QCPGraph* k = graphNamed(plotNamed(w, "gain_curve"), "K[x, z]");
+  QCPGraph* k = graphNamed(plotNamed(w, "gain_curve"), "K[x, z] (–)");  // m/m (issue 27)
   ASSERT_NE(k, nullptr);
   EXPECT_EQ(k->data()->size(), 100);
 }
@@ -167,7 +167,7 @@ TEST(ModelView, NonlinearModelHasNoGainCurve) {
   EXPECT_EQ(w.findChild<QComboBox*>("gainCurveParameter"), nullptr);
   QCustomPlot* gain = plotNamed(w, "gain");
   ASSERT_NE(gain, nullptr);
-  QCPGraph* k = graphNamed(gain, "K[px, range]");
+  QCPGraph* k = graphNamed(gain, "K[px, range] (–)");  // m/m (issue 27)
   ASSERT_NE(k, nullptr);
   EXPECT_GT(k->data()->size(), 10);
 }

@@ -1,6 +1,6 @@
 // Issue 27 (model files, part 2) in the window: a channel of two components gets its whiteness
 // per component in the Consistency tab; an angle's lines break at its wrap instead of crossing
-// the plot.
+// the plot; each gain entry carries its unit.
 #include <qcustomplot.h>
 
 #include <gtest/gtest.h>
@@ -117,6 +117,30 @@ TEST(ModelWorldPlots, AnAngleStateAndPredictionBreakAtTheWrap) {
   EXPECT_GE(half.gaps, 1);
   EXPECT_LT(half.gaps, e.gaps);
   EXPECT_LE(est->data()->at(est->data()->size() - 1)->key, 10.0 + 1e-9);
+}
+
+TEST(ModelWorldPlots, EachGainEntryCarriesItsUnit) {
+  MainWindow w;
+  ASSERT_TRUE(w.loadPreset(modelPreset("cv1d"), {}, {"sim.duration=20"}).ok());
+  ASSERT_TRUE(w.waitForRun(60000));
+  QCustomPlot* gain = plotNamed(w, "gain");
+  ASSERT_NE(gain, nullptr);
+  EXPECT_NE(graphNamed(gain, "K[x, z] (–)"), nullptr);
+  EXPECT_NE(graphNamed(gain, "K[v, z] (1/s)"), nullptr);
+  EXPECT_EQ(gain->yAxis->label(), "gain (units in the legend)");
+  QCustomPlot* curve = plotNamed(w, "gain_curve");
+  ASSERT_NE(curve, nullptr);
+  EXPECT_NE(graphNamed(curve, "K[v, z] (1/s)"), nullptr);
+  EXPECT_EQ(curve->yAxis->label(), "gain (units in the legend)");
+
+  MainWindow rb;
+  ASSERT_TRUE(rb.loadPreset(modelPreset("range_bearing"), {}, {"sim.duration=20"}).ok());
+  ASSERT_TRUE(rb.waitForRun(60000));
+  QCustomPlot* g = plotNamed(rb, "gain");
+  ASSERT_NE(g, nullptr);
+  EXPECT_NE(graphNamed(g, "K[px, bearing] (m/rad)"), nullptr);
+  EXPECT_NE(graphNamed(g, "K[vx, bearing] ((m/s)/rad)"), nullptr);
+  EXPECT_NE(graphNamed(g, "K[vy, range] (1/s)"), nullptr);
 }
 
 TEST(ModelWorldPlots, AVectorChannelShowsItsComponentsWhiteness) {

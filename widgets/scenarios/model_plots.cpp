@@ -211,15 +211,19 @@ class ModelView final : public ScenarioView {
     const ModelResult& r = *result_;
     auto steady = curve_ ? scenario_->gain(values_, data_.get()) : Expected<Metrics>(Error{""});
     int colour = 0;
+    std::vector<std::string> units;
     for (const auto& ch : r.chans) {
       const std::size_t m = ch.y.size();
       for (std::size_t i = 0; i < r.n(); ++i) {
         for (std::size_t j = 0; j < m; ++j) {
           const std::string entry = "K." + r.state_keys[i] + "." + ch.roles[j];
+          // Each entry in its own unit, [state]/[role], as the model declares it.
+          units.push_back(describe_metric(*scenario_, entry).unit);
           const QColor c = plot::color::cycle(colour++);
           GainGraph g;
           g.k = &ch.K[i * m + j];
-          g.live = plot::addGraph(gain_, plot::gainEntryLabel(entry), c, plot::Style::kStep);
+          g.live = plot::addGraph(gain_, plot::gainEntryLabel(entry, units.back()), c,
+                                  plot::Style::kStep);
           if (steady) {
             if (auto it = steady->find(entry); it != steady->end()) {
               g.steady = plot::addGraph(gain_, "", c, plot::Style::kDashed);
@@ -231,6 +235,7 @@ class ModelView final : public ScenarioView {
         }
       }
     }
+    gain_->yAxis->setLabel(plot::gainAxisLabel(units));
   }
 
   // The curve is 100 DARE solutions (≈ 10 ms for a small model): computed on a pool thread so

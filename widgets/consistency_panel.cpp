@@ -132,7 +132,7 @@ QList<ExportItem> ConsistencyPanel::exportItems() {
       refresh();
     };
     out << ExportItem{"consistency_nis." + key, "Consistency: NIS of " + label, nis_, draw};
-    if (!c.normalized.empty()) {
+    if (!c.normalized.empty() || !c.components.empty()) {
       out << ExportItem{"consistency_whiteness." + key, "Consistency: whiteness of " + label, acf_,
                         draw};
     }
@@ -172,10 +172,12 @@ void ConsistencyPanel::refresh() {
   if (nis_title_)
     nis_title_->setText("NIS of " + cname + " per update with two-sided 95 % χ² bounds");
   if (acf_title_) {
-    acf_title_->setText(c.normalized.empty()
-                            ? QString("Whiteness: autocorrelation of y/√S of each scalar channel")
-                            : "Whiteness of " + cname +
-                                  ": autocorrelation of y/√S at the channel's own rate");
+    acf_title_->setText(!c.normalized.empty()
+                            ? "Whiteness of " + cname +
+                                  ": autocorrelation of y/√S at the channel's own rate"
+                        : !c.components.empty()
+                            ? "Whiteness of " + cname + ": autocorrelation of each component's y/√S"
+                            : QString("Whiteness: autocorrelation of y/√S of each scalar channel"));
   }
   const auto& t = result_->t;
   const auto w = static_cast<std::size_t>(window_->value());
@@ -205,23 +207,31 @@ void ConsistencyPanel::refresh() {
     acf_->removeGraph(g);
   acf_lines_.clear();
   double top = 0.1;
-  // A scalar channel: its own bars. A vector channel: each scalar channel's autocorrelation.
-  std::vector<const InnovationChannel*> scalar;
+  // A scalar channel: its own bars. A vector channel: each component's autocorrelation (when
+  // the scenario reports its components), else each scalar channel's.
+  struct Series {
+    std::string name;
+    const std::vector<double>* normalized;
+    bool bars;  // the channel itself: drawn as bars
+  };
+  std::vector<Series> scalar;
   if (!c.normalized.empty()) {
-    scalar.push_back(&c);
+    scalar.push_back({c.name, &c.normalized, true});
+  } else if (!c.components.empty()) {
+    for (const auto& comp : c.components)
+      scalar.push_back({comp.name, &comp.normalized, false});
   } else {
     for (const auto& other : channels_) {
-      if (!other.normalized.empty()) scalar.push_back(&other);
+      if (!other.normalized.empty()) scalar.push_back({other.name, &other.normalized, false});
     }
   }
   double worst_p = std::nan(""), band = 0.0;
   QStringList per_channel;
-  for (const InnovationChannel* sc : scalar) {
-    const auto wt = ljung_box(sc->normalized, kLags);
+  for (const Series& sc : scalar) {
+    const auto wt = ljung_box(*sc.normalized, kLags);
     band = std::max(band, wt.band);
     if (!(wt.p_value >= worst_p)) worst_p = wt.p_value;
-    per_channel
-        << QString("%1 %2").arg(QString::fromStdString(sc->name)).arg(wt.p_value, 0, 'g', 3);
+    per_channel << QString("%1 %2").arg(QString::fromStdString(sc.name)).arg(wt.p_value, 0, 'g', 3);
     QVector<double> l, a;
     for (std::size_t k = 1; k < wt.acf.size(); ++k) {
       if (!std::isfinite(wt.acf[k])) continue;
@@ -229,11 +239,11 @@ void ConsistencyPanel::refresh() {
       a << wt.acf[k];
       top = std::max(top, std::abs(wt.acf[k]));
     }
-    if (sc == &c) {
+    if (sc.bars) {
       lag = l;
       acf = a;
     } else {
-      auto* g = plot::addGraph(acf_, QString::fromStdString(sc->name),
+      auto* g = plot::addGraph(acf_, QString::fromStdString(sc.name),
                                plot::color::cycle(static_cast<int>(acf_lines_.size()) + 2));
       g->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCircle, 5));
       g->setData(l, a, true);
@@ -243,7 +253,8 @@ void ConsistencyPanel::refresh() {
   if (!scalar.empty()) {
     plot::setSeries(acf_lo_, {0.5, kLags + 0.5}, {-band, -band}, 2);
     plot::setSeries(acf_hi_, {0.5, kLags + 0.5}, {band, band}, 2);
-    text += scalar.size() > 1 ? QString("; Ljung–Box p per channel: %1").arg(per_channel.join(", "))
+    const QString per = c.components.empty() ? "channel" : "component";
+    text += scalar.size() > 1 ? QString("; Ljung–Box p per %1: %2").arg(per, per_channel.join(", "))
                               : QString("; Ljung–Box p = %1").arg(worst_p, 0, 'g', 3);
     if (worst_p < 0.01) {
       text +=

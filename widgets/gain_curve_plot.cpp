@@ -21,6 +21,20 @@ QString gainEntryLabel(const std::string& entry) {
            QString::fromStdString(rest.substr(dot + 1)));
 }
 
+QString gainEntryLabel(const std::string& entry, const std::string& unit) {
+  return QString("%1 (%2)").arg(gainEntryLabel(entry),
+                                unit.empty() ? QString("–") : QString::fromStdString(unit));
+}
+
+QString gainAxisLabel(const std::vector<std::string>& units) {
+  if (units.empty()) return "gain (–)";
+  for (const auto& u : units) {
+    if (u != units.front()) return "gain (units in the legend)";
+  }
+  return QString("gain (%1)")
+      .arg(units.front().empty() ? QString("–") : QString::fromStdString(units.front()));
+}
+
 GainCurvePlot::GainCurvePlot(QWidget* parent) {
   plot_ = makePlot(parent, "Steady-state gain vs a parameter (DARE)", "parameter", "gain (–)");
   label_ = addNote(plot_);
@@ -47,8 +61,10 @@ void GainCurvePlot::setCurve(const GainCurve& c, const QString& label, const QSt
   clearGraphs();
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (std::size_t e = 0; e < c.entries.size(); ++e) {
-    QCPGraph* g = addGraph(plot_, gainEntryLabel(c.entries[e]), color::cycle(static_cast<int>(e)),
-                           Style::kLine, 1.5);
+    const QString name = c.units.size() == c.entries.size()
+                             ? gainEntryLabel(c.entries[e], c.units[e])
+                             : gainEntryLabel(c.entries[e]);
+    QCPGraph* g = addGraph(plot_, name, color::cycle(static_cast<int>(e)), Style::kLine, 1.5);
     setSeries(g, c.x, c.values[e], kAll);
     curves_.push_back(g);
     for (double v : c.values[e]) {
@@ -70,6 +86,7 @@ void GainCurvePlot::setCurve(const GainCurve& c, const QString& label, const QSt
 
   const QString xname = unit.isEmpty() ? label : QString("%1 (%2)").arg(label, unit);
   plot_->xAxis->setLabel(xname);
+  plot_->yAxis->setLabel(gainAxisLabel(c.units));
   if (c.log) {
     setLog(plot_->xAxis);
   } else {
@@ -90,8 +107,13 @@ void GainCurvePlot::setCurve(const GainCurve& c, const QString& label, const QSt
   }
 
   QString text = QString("%1 = %2").arg(QString::fromStdString(c.key)).arg(c.at_x, 0, 'g', 4);
-  for (std::size_t e = 0; e < c.entries.size() && e < 6; ++e)
-    text += QString("\n%1 = %2").arg(gainEntryLabel(c.entries[e])).arg(c.at[e], 0, 'g', 5);
+  for (std::size_t e = 0; e < c.entries.size() && e < 6; ++e) {
+    const bool has_unit = c.units.size() == c.entries.size() && !c.units[e].empty();
+    text += QString("\n%1 = %2%3")
+                .arg(gainEntryLabel(c.entries[e]))
+                .arg(c.at[e], 0, 'g', 5)
+                .arg(has_unit ? " " + QString::fromStdString(c.units[e]) : QString());
+  }
   // The DARE's steady-state standard deviations (P after an update) beside its gain.
   QStringList sigmas;
   for (const auto& [k, v] : c.steady) {

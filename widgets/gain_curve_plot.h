@@ -32,7 +32,10 @@ class GainCurvePlot {
   QCPItemText* label_ = nullptr;
 };
 
-// "K.pos.z" → "K[pos, z]".
+// "K.pos.z" → "K[pos, z]"; with its unit, "K[v, z] (1/s)" ("(–)" when dimensionless).
 QString gainEntryLabel(const std::string& entry);
+QString gainEntryLabel(const std::string& entry, const std::string& unit);
+// The gain axis: "gain (1/s)" when every entry has that unit, else "gain (units in the legend)".
+QString gainAxisLabel(const std::vector<std::string>& units);
 
 }  // namespace kfw::plot

@@ -73,6 +73,22 @@ void EstimatePlot::setData(const std::vector<double>* t, const std::vector<doubl
   }
   band_.upper->setVisible(variance_ != nullptr);
   band_.lower->setVisible(variance_ != nullptr);
+  if (turn_ > 0.0 && t_ && x_) {
+    estimate_gapped_ = gap_wraps(*t_, *x_, turn_);
+    truth_gapped_ = truth_y_ ? gap_wraps(*t_, *truth_y_, turn_) : GappedSeries{};
+    if (variance_) {
+      // The band's edges x ± 2σ, broken where the estimate wraps.
+      const std::size_t n = std::min(x_->size(), variance_->size());
+      std::vector<double> lo(n), hi(n);
+      for (std::size_t k = 0; k < n; ++k) {
+        const double v = (*variance_)[k];
+        const double half = v >= 0.0 ? 2.0 * std::sqrt(v) : std::nan("");
+        lo[k] = (*x_)[k] - half;
+        hi[k] = (*x_)[k] + half;
+      }
+      band_gapped_ = gap_band_wraps(*t_, *x_, lo, hi, turn_);
+    }
+  }
 }
 
 void EstimatePlot::setGhosts(const QList<GhostSeries>& ghosts) {
@@ -82,19 +98,32 @@ void EstimatePlot::setGhosts(const QList<GhostSeries>& ghosts) {
   int i = 0;
   for (const auto& s : ghosts) {
     if (!s.t || !s.y) continue;
-    ghosts_.push_back({s, addGhost(plot_, s.name, i++)});
+    ghosts_.push_back({s, addGhost(plot_, s.name, i++),
+                       turn_ > 0.0 ? gap_wraps(*s.t, *s.y, turn_) : GappedSeries{}});
   }
 }
 
 void EstimatePlot::draw(const Frame& f) {
   if (!t_ || !x_) return;
   const std::vector<double>& t = *t_;
-  if (variance_) setSigmaBand(band_, t, x_, *variance_, 2.0, f.n);
   if (sensor_ && sensor_y_) setSeries(sensor_, t, *sensor_y_, f.n);
-  if (truth_y_) setSeries(truth_, t, *truth_y_, f.n);
-  setSeries(estimate_, t, *x_, f.n);
-  for (const auto& g : ghosts_)
-    setSeries(g.graph, *g.s.t, *g.s.y, stepsUpTo(*g.s.t, f));
+  if (turn_ > 0.0) {
+    // An angle: the series with their wrap gaps, drawn as gaps.
+    const GappedBand& b = band_gapped_;
+    if (variance_) setBandLimits(band_, b.t, b.lo, b.hi, b.points_for(f.n), true);
+    const GappedSeries &e = estimate_gapped_, &tr = truth_gapped_;
+    if (truth_y_) setSeries(truth_, tr.t, tr.y, tr.points_for(f.n), false);
+    setSeries(estimate_, e.t, e.y, e.points_for(f.n), false);
+    for (const auto& g : ghosts_) {
+      setSeries(g.graph, g.gapped.t, g.gapped.y, g.gapped.points_for(stepsUpTo(*g.s.t, f)), false);
+    }
+  } else {
+    if (variance_) setSigmaBand(band_, t, x_, *variance_, 2.0, f.n);
+    if (truth_y_) setSeries(truth_, t, *truth_y_, f.n);
+    setSeries(estimate_, t, *x_, f.n);
+    for (const auto& g : ghosts_)
+      setSeries(g.graph, *g.s.t, *g.s.y, stepsUpTo(*g.s.t, f));
+  }
   rescale(plot_, f.t0, f.t1, f.settle());
   setCursorAt(cursor_, f.tc, !f.all);
   replot(plot_);

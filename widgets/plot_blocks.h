@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "data/wrap_gaps.h"
 #include "plot_kit.h"
 
 class QCustomPlot;
@@ -54,6 +55,10 @@ class EstimatePlot {
                const std::vector<double>* variance, const std::vector<double>* truth,
                const std::vector<double>* sensor = nullptr);
   void setGhosts(const QList<GhostSeries>& ghosts);
+  // An angle that wraps every `turn` (2π rad, 360 deg): the estimate, its band, truth and ghosts
+  // break where they jump by more than half a turn (engine/data/wrap_gaps.h) instead of drawing
+  // a line across the plot. 0 (the default): an ordinary value. Call before setData.
+  void setTurn(double turn) { turn_ = turn; }
   // Draws the frame's steps (ghosts up to its cursor time) and replots.
   void draw(const Frame& f);
 
@@ -67,8 +72,12 @@ class EstimatePlot {
   struct Ghost {
     GhostSeries s;
     QCPGraph* graph;
+    GappedSeries gapped;  // an angle's ghost with its wrap gaps
   };
   std::vector<Ghost> ghosts_;
+  double turn_ = 0.0;
+  GappedSeries estimate_gapped_, truth_gapped_;  // an angle's series with their wrap gaps
+  GappedBand band_gapped_;
 };
 
 // Innovation y of one measurement component with its ± 2√S band (zero-centred); a measurement

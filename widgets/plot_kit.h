@@ -56,7 +56,7 @@ void setExportLook(QCustomPlot* p, bool exporting);
 void setLog(QCPAxis* axis);
 
 // Sets the first n points (n clipped to the data). skipNaN: drop non-finite points (the line
-// joins across them); otherwise a non-finite y draws a gap.
+// joins across them); otherwise a non-finite y draws a gap (kept when a dense series is reduced).
 void setSeries(QCPGraph* g, const std::vector<double>& x, const std::vector<double>& y,
                std::size_t n, bool skipNaN = true);
 // Dots in any order (a raster of events, say), reduced to one per 2 × 2-pixel cell when dense.
@@ -85,9 +85,10 @@ void setSigmaBand(const Band& b, const std::vector<double>& x, const std::vector
 // opaque, `width` px, in `style` (solid, dashed, dotted: one per band), so each band reads where
 // the fills blend; the legend swatch shows the same edge lines.
 void outlineBand(const Band& b, Qt::PenStyle style, double width = 1.5);
-// A band between two given curves.
+// A band between two given curves. `gaps`: a step with a non-finite limit breaks the band
+// (otherwise it is left out and the band joins across it).
 void setBandLimits(const Band& b, const std::vector<double>& x, const std::vector<double>& lo,
-                   const std::vector<double>& hi, std::size_t n);
+                   const std::vector<double>& hi, std::size_t n, bool gaps = false);
 
 // The curve of pinned snapshot i (0, 1, ...): 2 px, dashed, its own faded colour; `name` is its
 // legend entry and should name the snapshot.

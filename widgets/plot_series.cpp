@@ -112,7 +112,7 @@ void setSeries(QCPGraph* g, const std::vector<double>& x, const std::vector<doub
   auto data = std::make_shared<QVector<QCPGraphData>>();
   // Dense series are reduced to the raster (lines and steps: first/min/max/last per column;
   // a step graph keeps its level changes to within a column), on either core (draw_batch.h).
-  if (n > static_cast<std::size_t>(4 * cols) && skipNaN) {
+  if (n > static_cast<std::size_t>(4 * cols)) {
     // The time span of the drawable points (time is increasing, so the first and last finite x).
     std::size_t a = 0, b = n;
     while (a < n && !std::isfinite(x[a]))
@@ -136,8 +136,10 @@ void setSeries(QCPGraph* g, const std::vector<double>& x, const std::vector<doub
         reduced.reserve(static_cast<std::size_t>(4 * cols + 8));
         if (dots) {
           reduceDots(px, py, a, b, logY, std::max(cols / 2, 300), rows, reduced);
-        } else {
+        } else if (skipNaN) {
           reduceLine(px, py, a, b, logY, x0, x1, cols, reduced);
+        } else {
+          reduceLineWithGaps(px, py, a, b, logY, x0, x1, cols, reduced);
         }
         data->reserve(static_cast<qsizetype>(reduced.size()));
         for (const XY& p : reduced)
@@ -219,10 +221,11 @@ namespace {
 // Fills a band from per-step limits (limits(i, lo, hi)); dense bands are reduced to their
 // per-column envelope (highest upper, lowest lower).
 // `finish` turns the reduced limits into the band's edges (the identity for most bands).
+// `gaps`: a step with a non-finite limit breaks the band (a NaN point) instead of being left out.
 template <typename Limits, typename Finish = void (*)(std::vector<XY>&, std::vector<XY>&)>
 void fillBand(
     const Band& b, const std::vector<double>& x, std::size_t n, Limits limits,
-    Finish finish = [](std::vector<XY>&, std::vector<XY>&) {}) {
+    Finish finish = [](std::vector<XY>&, std::vector<XY>&) {}, bool gaps = false) {
   const int cols = columnsFor(b.upper);
   std::size_t begin = 0, end = n;
   double x0 = n ? x.front() : 0.0, x1 = n ? x[n - 1] : 0.0;
@@ -241,13 +244,36 @@ void fillBand(
     const std::size_t cap = x1 > x0 ? static_cast<std::size_t>(cols + 4) : n;
     up.reserve(cap);
     lo.reserve(cap);
-    if (x1 > x0) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (x1 > x0 && gaps) {
+      // Each run between gaps reduced on its own, a NaN point between runs.
+      std::size_t s = begin;
+      while (s < end) {
+        std::size_t e = s;
+        double lo_e = 0.0, hi_e = 0.0;
+        while (e < end && (limits(e, lo_e, hi_e), drawable(lo_e, false) && drawable(hi_e, false)))
+          ++e;
+        if (e > s) reduceBand(x.data(), s, e, x0, x1, cols, limits, up, lo);
+        if (e < end && std::isfinite(x[e]) && !up.empty() && std::isfinite(up.back().y)) {
+          up.push_back({x[e], nan});
+          lo.push_back({x[e], nan});
+        }
+        s = e + 1;
+      }
+    } else if (x1 > x0) {
       reduceBand(x.data(), begin, end, x0, x1, cols, limits, up, lo);
     } else {
       for (std::size_t i = 0; i < n; ++i) {
         double lo_i = 0.0, hi_i = 0.0;
         limits(i, lo_i, hi_i);
-        if (!drawable(lo_i, false) || !drawable(hi_i, false) || !std::isfinite(x[i])) continue;
+        if (!std::isfinite(x[i])) continue;
+        if (!drawable(lo_i, false) || !drawable(hi_i, false)) {
+          if (gaps && !up.empty() && std::isfinite(up.back().y)) {
+            up.push_back({x[i], nan});
+            lo.push_back({x[i], nan});
+          }
+          continue;
+        }
         up.push_back({x[i], hi_i});
         lo.push_back({x[i], lo_i});
       }
@@ -312,12 +338,15 @@ void setSigmaBand(const Band& b, const std::vector<double>& x, const std::vector
 }
 
 void setBandLimits(const Band& b, const std::vector<double>& x, const std::vector<double>& lo,
-                   const std::vector<double>& hi, std::size_t n) {
+                   const std::vector<double>& hi, std::size_t n, bool gaps) {
   n = std::min({n, x.size(), lo.size(), hi.size()});
-  fillBand(b, x, n, [pl = lo.data(), ph = hi.data()](std::size_t i, double& l, double& h) {
-    l = pl[i];
-    h = ph[i];
-  });
+  fillBand(
+      b, x, n,
+      [pl = lo.data(), ph = hi.data()](std::size_t i, double& l, double& h) {
+        l = pl[i];
+        h = ph[i];
+      },
+      [](std::vector<XY>&, std::vector<XY>&) {}, gaps);
 }
 
 }  // namespace kfw::plot

@@ -38,6 +38,21 @@ void reduceLine(const double* x, const double* y, std::size_t a, std::size_t b, 
   });
 }
 
+void reduceLineWithGaps(const double* x, const double* y, std::size_t a, std::size_t b, bool logY,
+                        double x0, double x1, int cols, std::vector<XY>& out) {
+  std::size_t s = a;
+  while (s < b) {
+    std::size_t e = s;
+    while (e < b && drawable(y[e], logY))
+      ++e;
+    if (e > s) reduceLine(x, y, s, e, logY, x0, x1, cols, out);
+    if (e < b && std::isfinite(x[e]) && !out.empty() && std::isfinite(out.back().y)) {
+      out.push_back({x[e], std::numeric_limits<double>::quiet_NaN()});
+    }
+    s = e + 1;
+  }
+}
+
 void reduceDots(const double* x, const double* y, std::size_t a, std::size_t b, bool logY, int cols,
                 int rows, std::vector<XY>& out) {
   // Rows over the drawable values' extent (log2 on a log axis: a coarse log is enough to choose

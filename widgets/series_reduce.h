@@ -69,6 +69,11 @@ void forEachColumn(const double* x, std::size_t a, std::size_t b, double x0, dou
 void reduceLine(const double* x, const double* y, std::size_t a, std::size_t b, bool logY,
                 double x0, double x1, int cols, std::vector<XY>& out);
 
+// reduceLine for a line with gaps: each run of drawable samples reduced on its own, with a NaN
+// point (at the x of the first undrawable sample) between runs, so the gaps stay gaps.
+void reduceLineWithGaps(const double* x, const double* y, std::size_t a, std::size_t b, bool logY,
+                        double x0, double x1, int cols, std::vector<XY>& out);
+
 // Scatter of a time-ordered series: one dot per occupied cell of a cols × rows raster over the
 // drawable points' extent (dots are 2 px: cells of 2 × 2 px lose nothing visible), in time order.
 void reduceDots(const double* x, const double* y, std::size_t a, std::size_t b, bool logY, int cols,

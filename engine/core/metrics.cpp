@@ -75,8 +75,10 @@ const std::vector<MetricSpec>& shared_metric_specs() {
         "0.01 the innovations are not white",
         G::kConsistency, D::kHigher, 0.0, 0.01, 1.0);
     add("whiteness_p.<channel>", "whiteness p of <channel>", "",
-        "Ljung–Box p-value (20 lags) of one channel's normalised innovations", G::kConsistency,
-        D::kHigher, 0.0, 0.01, 1.0);
+        "Ljung–Box p-value (20 lags) of one channel's normalised innovations; a channel of "
+        "several components: the smallest of its components' p, each reported as "
+        "whiteness_p.CHANNEL.ROLE",
+        G::kConsistency, D::kHigher, 0.0, 0.01, 1.0);
     return v;
   }();
   return specs;

@@ -11,6 +11,7 @@
 //   nees_in_bounds       fraction of NEES inside its 95 % bounds (target 0.95)
 //   nll                  mean innovation negative log-likelihood
 //   whiteness_p          Ljung–Box p of the worst channel; whiteness_p.<channel> per channel
+//                        (a vector channel: its worst component, whiteness_p.<channel>.<role>)
 // Scenario-specific metrics keep their own names and are declared by the scenario.
 #pragma once
 

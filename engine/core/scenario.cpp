@@ -109,7 +109,7 @@ Status finalize_run(RunResult& r, const Scenario& s, bool check_finite) {
   const auto channels = check_finite ? r.channels() : std::vector<InnovationChannel>{};
   r.channel_names.clear();
   for (const auto& c : channels)
-    r.channel_names.push_back({c.name, c.label, c.dof, {}, {}, {}});
+    r.channel_names.push_back({c.name, c.label, c.dof, {}, {}, {}, {}});
   for (const auto& c : channels) {
     for (std::size_t k = 0; k < c.nis.size(); ++k) {
       if (std::isinf(c.nis[k])) {

@@ -27,6 +27,13 @@ struct InnovationChannel {
   std::vector<double> nis;         // per step; NaN where the channel did not update
   std::vector<double> normalized;  // y/√S per step (scalar channels; empty otherwise)
   std::vector<double> log_det_s;   // log det S per step, for the NLL (empty: not reported)
+  // A channel of several components: each component (its role) with y_j/√S_jj per step, tested
+  // for whiteness one by one (whiteness_p.<channel>.<role>); empty for a scalar channel.
+  struct Component {
+    std::string name;
+    std::vector<double> normalized;
+  };
+  std::vector<Component> components;
   const std::string& display() const { return label.empty() ? name : label; }
 };
 

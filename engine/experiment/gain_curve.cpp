@@ -62,12 +62,16 @@ Expected<GainCurve> gain_curve(const Scenario& s, const ParamValues& values, con
   c.log = spec->scale == Scale::kLog;
   c.steady = *here;
   c.at_x = values.count(key) ? values.at(key) : spec->def;
+  bool declared = true;
   for (const auto& [k, v] : *here) {
     if (k.rfind(prefix, 0) == 0) {
       c.entries.push_back(k);
+      c.units.push_back(describe_metric(s, k).unit);
       c.at.push_back(v);
+      declared = declared && is_declared_metric(s, k);
     }
   }
+  if (!declared) c.units.clear();
   if (c.entries.empty()) return Error{"gain curve: the scenario reports no '" + prefix + "' gains"};
   points = std::max<std::size_t>(points, 2);
   c.x.resize(points);

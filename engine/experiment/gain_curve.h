@@ -13,10 +13,12 @@
 namespace kfw {
 
 struct GainCurve {
-  std::string key;                          // the parameter moved
-  bool log = false;                         // spaced logarithmically (a log-scale parameter)
-  std::vector<double> x;                    // the parameter's values, ascending
-  std::vector<std::string> entries;         // gain keys ("K.x.pos", ...), as gain() names them
+  std::string key;                   // the parameter moved
+  bool log = false;                  // spaced logarithmically (a log-scale parameter)
+  std::vector<double> x;             // the parameter's values, ascending
+  std::vector<std::string> entries;  // gain keys ("K.x.pos", ...), as gain() names them
+  // Each entry's declared unit ("" when dimensionless); empty when the scenario declares none.
+  std::vector<std::string> units;
   std::vector<std::vector<double>> values;  // [entry][point]; NaN where there is no steady state
   double at_x = 0.0;                        // the live operating point: the current value ...
   std::vector<double> at;                   // ... and each entry's gain there

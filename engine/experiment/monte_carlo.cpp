@@ -74,6 +74,7 @@ Expected<SeedOutcome> run_seed(const Scenario& s, ParamValues v, long long seed,
   for (auto& c : outcome.series.channels) {
     c.normalized.clear();
     c.log_det_s.clear();
+    c.components.clear();
   }
   return outcome;
 }

@@ -137,6 +137,26 @@ void add_consistency_metrics(const std::vector<InnovationChannel>& channels, con
       } else {
         undefined.emplace("whiteness_p." + key, "too few updates for 20 lags");
       }
+    } else if (!c.components.empty()) {
+      // Each component on its own (a white vector sequence has white components); the channel
+      // is as white as its worst component.
+      double channel_p = std::numeric_limits<double>::quiet_NaN();
+      for (const auto& comp : c.components) {
+        const std::string ckey = "whiteness_p." + key + "." + metric_identifier(comp.name);
+        const double p = ljung_box(comp.normalized, 20).p_value;
+        if (std::isfinite(p)) {
+          if (!(p >= channel_p)) channel_p = p;
+          put(ckey, p);
+        } else {
+          undefined.emplace(ckey, "too few updates for 20 lags");
+        }
+      }
+      if (std::isfinite(channel_p)) {
+        if (!(channel_p >= worst_p)) worst_p = channel_p;
+        put("whiteness_p." + key, channel_p);
+      } else {
+        undefined.emplace("whiteness_p." + key, "too few updates for 20 lags");
+      }
     } else {
       undefined.emplace("whiteness_p." + key, "the channel is not scalar");
     }
@@ -156,7 +176,7 @@ void add_consistency_metrics(const std::vector<InnovationChannel>& channels, con
   if (std::isfinite(worst_p)) {
     put("whiteness_p", worst_p);
   } else {
-    undefined.emplace("whiteness_p", "no scalar channel with enough updates for 20 lags");
+    undefined.emplace("whiteness_p", "no channel with enough updates for 20 lags");
   }
   if (!nees.nees.empty() && count_finite(nees.nees)) {
     put("nees_mean", mean_finite(nees.nees) / nees.dof);

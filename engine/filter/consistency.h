@@ -40,7 +40,8 @@ struct NeesSeries;
 
 // The shared consistency metrics (metrics.h): nis_mean (NIS/dof over every update), nis_mean.<ch>
 // (raw), nis_in_bounds, nll (when every channel reports log det S), whiteness_p (worst channel)
-// and whiteness_p.<ch>, nees_mean (NEES/dof) and nees_in_bounds. Keys already present are kept
+// and whiteness_p.<ch> (a channel of several components: its worst component, each reported as
+// whiteness_p.<ch>.<role>), nees_mean (NEES/dof) and nees_in_bounds. Keys already present are kept
 // (a whiteness_p.<ch> already present is not computed again but counts for the worst channel);
 // what cannot be computed goes to `undefined` with the reason.
 void add_consistency_metrics(const std::vector<InnovationChannel>& channels, const NeesSeries& nees,

@@ -60,11 +60,20 @@ std::vector<InnovationChannel> ModelResult::channels() const {
     ic.dof = static_cast<double>(c.roles.size());
     ic.nis = c.nis;
     ic.log_det_s = c.log_det_s;
-    if (c.roles.size() == 1) {
-      ic.normalized.assign(c.nis.size(), kNoSample);
+    // y_j/√S_jj where the update was applied (NIS finite): the whole channel when scalar, else
+    // each component (its whiteness is tested one by one).
+    auto normalized = [&](std::size_t j) {
+      std::vector<double> v(c.nis.size(), kNoSample);
       for (std::size_t k = 0; k < c.nis.size(); ++k) {
-        if (std::isfinite(c.nis[k])) ic.normalized[k] = c.y[0][k] / std::sqrt(c.S[0][k]);
+        if (std::isfinite(c.nis[k])) v[k] = c.y[j][k] / std::sqrt(c.S[j][k]);
       }
+      return v;
+    };
+    if (c.roles.size() == 1) {
+      ic.normalized = normalized(0);
+    } else {
+      for (std::size_t j = 0; j < c.roles.size(); ++j)
+        ic.components.push_back({c.roles[j], normalized(j)});
     }
     out.push_back(std::move(ic));
   }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <set>
 #include <sstream>
 
@@ -71,6 +72,33 @@ std::vector<ParamSpec> standard_params(const std::vector<std::string>& filters,
   };
 }
 
+// True when a unit needs parentheses as one side of a ratio ("m/s", "m s⁻¹"; not "m²", "(m/s)²").
+bool compound_unit(const std::string& u) {
+  int depth = 0;
+  for (char c : u) {
+    if (c == '(') ++depth;
+    if (c == ')') --depth;
+    // '\xB7' ends the UTF-8 of '·' (a product, "N·m").
+    if (depth == 0 && (c == '/' || c == '*' || c == ' ' || c == '\xB7')) return true;
+  }
+  return false;
+}
+
+std::string ratio_side(const std::string& u) {
+  return compound_unit(u) ? "(" + u + ")" : u;
+}
+
+// The unit of a ratio num/den as a reader writes it: "" when they cancel (m/m), "1/s" for
+// (m/s)/m, "s" for m/(m/s), "m/rad" otherwise.
+std::string unit_ratio(const std::string& num, const std::string& den) {
+  if (num == den) return "";
+  if (den.empty()) return num;
+  if (num.empty()) return "1/" + ratio_side(den);
+  if (num.rfind(den + "/", 0) == 0) return "1/" + ratio_side(num.substr(den.size() + 1));
+  if (den.rfind(num + "/", 0) == 0) return den.substr(num.size() + 1);
+  return ratio_side(num) + "/" + ratio_side(den);
+}
+
 class ModelScenario final : public Scenario {
  public:
   ModelScenario(std::shared_ptr<const model::ModelSpec> spec, ParamTable table, std::string title)
@@ -115,6 +143,29 @@ class ModelScenario final : public Scenario {
         out.push_back({"gated." + c.name, "updates gated out (" + c.label + ")", "",
                        "measurements rejected by the χ² gate", MetricGroup::kConsistency,
                        Direction::kLower});
+      }
+      // A channel of several components is tested for whiteness component by component.
+      if (c.roles.size() > 1) {
+        for (const auto& r : c.roles) {
+          out.push_back({"whiteness_p." + c.name + "." + r.name,
+                         "whiteness p of " + c.label + ": " + r.name, "",
+                         "Ljung–Box p-value (20 lags) of " + r.name + "'s innovation over √S (" +
+                             r.name + "'s diagonal entry), at the channel's own rate",
+                         MetricGroup::kConsistency, Direction::kHigher, 0.0, 0.01, 1.0});
+        }
+      }
+    }
+    // The gain entries (`gain`'s steady state, the gains plot over time): [state]/[role].
+    for (const auto& st : spec_->states) {
+      for (const auto& c : spec_->channels) {
+        for (const auto& r : c.roles) {
+          out.push_back({"K." + st.name + "." + r.name, "gain of " + st.name + " from " + r.name,
+                         unit_ratio(st.unit, r.unit),
+                         "Kalman gain entry: the change of " + st.name + "'s estimate per " +
+                             "unit of " + r.name + "'s innovation (kfw-cli gain: its DARE " +
+                             "steady state, for a linear time-invariant model)",
+                         MetricGroup::kGains, Direction::kNone});
+        }
       }
     }
     for (auto& d : model::derived_metric_specs(*spec_))
@@ -245,12 +296,16 @@ std::optional<ModelLayout> model_layout_of(const Scenario& s) {
   const auto* m = dynamic_cast<const ModelScenario*>(&s);
   if (!m) return std::nullopt;
   ModelLayout l;
+  // An angle's full turn (wrap() keeps it within half a turn of zero).
+  auto turn = [](Angle a) {
+    return a == Angle::kRad ? 2.0 * std::numbers::pi : a == Angle::kDeg ? 360.0 : 0.0;
+  };
   for (const auto& st : m->spec()->states)
-    l.states.push_back({st.name, st.label.empty() ? st.name : st.label, st.unit});
+    l.states.push_back({st.name, st.label.empty() ? st.name : st.label, st.unit, turn(st.angle)});
   for (const auto& c : m->spec()->channels) {
     ModelLayout::Channel ch{c.name, c.label.empty() ? c.name : c.label, {}};
     for (const auto& r : c.roles)
-      ch.roles.push_back({r.name, r.unit, r.angle != Angle::kNone});
+      ch.roles.push_back({r.name, r.unit, r.angle != Angle::kNone, turn(r.angle)});
     l.channels.push_back(std::move(ch));
   }
   l.time_invariant = m->spec()->time_invariant();

@@ -20,10 +20,12 @@ namespace kfw {
 struct ModelLayout {
   struct State {
     std::string name, label, unit;
+    double turn = 0.0;  // an angle's full turn (2π rad, 360 deg): plots break at its wrap; 0: none
   };
   struct Role {
     std::string name, unit;
     bool angle = false;  // wrapped to (−π, π] or (−180, 180]: a line through it would jump
+    double turn = 0.0;   // the angle's full turn; 0 when not an angle
   };
   struct Channel {
     std::string name, label;

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <optional>
 
+#include "data/wrap_gaps.h"
 #include "experiment/gain_curve.h"
 #include "gain_curve_plot.h"
 #include "model/model_result.h"
@@ -83,6 +84,7 @@ class ModelView final : public ScenarioView {
       states_.push_back(std::make_unique<plot::EstimatePlot>(
           parent, QString("%1: truth and estimate ± 2σ").arg(label), withUnit(label, s.unit),
           "estimate of " + q(s.name)));
+      states_.back()->setTurn(s.turn);  // an angle's lines break at its wrap
       out.push_back({q("state." + s.name), label, states_.back()->plot()});
     }
     for (const auto& c : layout_->channels) {
@@ -94,10 +96,10 @@ class ModelView final : public ScenarioView {
                            "time (s)", withUnit(q(r.name), r.unit));
         comp.z = plot::addGraph(comp.measured, "measured " + q(r.name), plot::color::kSensor,
                                 plot::Style::kDots);
-        // An angle's prediction as dots: a line would jump across the ±π wrap.
-        comp.zhat =
-            plot::addGraph(comp.measured, "predicted ẑ (before the update)", plot::color::kEstimate,
-                           r.angle ? plot::Style::kDots : plot::Style::kLine);
+        // An angle's prediction is a line with a gap at each wrap (setResult).
+        comp.zhat = plot::addGraph(comp.measured, "predicted ẑ (before the update)",
+                                   plot::color::kEstimate, plot::Style::kLine);
+        comp.turn = r.turn;
         comp.cursor = plot::addCursor(comp.measured);
         comp.innovation = std::make_unique<plot::InnovationPlot>(
             parent, QString("%1: innovation of %2 with ± 2√S").arg(cl, q(r.name)),
@@ -145,6 +147,7 @@ class ModelView final : public ScenarioView {
         comp.zhat_y.assign(z.size(), kNoSample);
         for (std::size_t k = 0; k < z.size(); ++k)
           comp.zhat_y[k] = z[k] - ch.y[j][k];  // NaN where the channel did not update
+        if (comp.turn > 0.0) comp.zhat_gapped = gap_wraps(r->t, comp.zhat_y, comp.turn);
         comp.innovation->setData(&r->t, &ch.y[j], &ch.S[j]);
       }
       nis_[c]->setData(&r->t, &ch.nis, static_cast<double>(ch.y.size()));
@@ -191,6 +194,8 @@ class ModelView final : public ScenarioView {
     std::unique_ptr<plot::InnovationPlot> innovation;
     std::size_t z_row = 0;
     std::vector<double> zhat_y;
+    double turn = 0.0;         // an angle's full turn; 0: not an angle
+    GappedSeries zhat_gapped;  // an angle's prediction with a gap at each wrap
   };
   struct GainGraph {
     const std::vector<double>* k = nullptr;
@@ -206,15 +211,19 @@ class ModelView final : public ScenarioView {
     const ModelResult& r = *result_;
     auto steady = curve_ ? scenario_->gain(values_, data_.get()) : Expected<Metrics>(Error{""});
     int colour = 0;
+    std::vector<std::string> units;
     for (const auto& ch : r.chans) {
       const std::size_t m = ch.y.size();
       for (std::size_t i = 0; i < r.n(); ++i) {
         for (std::size_t j = 0; j < m; ++j) {
           const std::string entry = "K." + r.state_keys[i] + "." + ch.roles[j];
+          // Each entry in its own unit, [state]/[role], as the model declares it.
+          units.push_back(describe_metric(*scenario_, entry).unit);
           const QColor c = plot::color::cycle(colour++);
           GainGraph g;
           g.k = &ch.K[i * m + j];
-          g.live = plot::addGraph(gain_, plot::gainEntryLabel(entry), c, plot::Style::kStep);
+          g.live = plot::addGraph(gain_, plot::gainEntryLabel(entry, units.back()), c,
+                                  plot::Style::kStep);
           if (steady) {
             if (auto it = steady->find(entry); it != steady->end()) {
               g.steady = plot::addGraph(gain_, "", c, plot::Style::kDashed);
@@ -226,6 +235,7 @@ class ModelView final : public ScenarioView {
         }
       }
     }
+    gain_->yAxis->setLabel(plot::gainAxisLabel(units));
   }
 
   // The curve is 100 DARE solutions (≈ 10 ms for a small model): computed on a pool thread so
@@ -273,7 +283,12 @@ class ModelView final : public ScenarioView {
     for (auto& comp : components_) {
       if (comp.z_row >= r.z.size()) continue;
       plot::setSeries(comp.z, r.t, r.z[comp.z_row], f.n);
-      plot::setSeries(comp.zhat, r.t, comp.zhat_y, f.n);
+      if (comp.turn > 0.0) {
+        const GappedSeries& g = comp.zhat_gapped;
+        plot::setSeries(comp.zhat, g.t, g.y, g.points_for(f.n), false);
+      } else {
+        plot::setSeries(comp.zhat, r.t, comp.zhat_y, f.n);
+      }
       plot::rescale(comp.measured, f.t0, f.t1, f.settle());
       plot::setCursorAt(comp.cursor, f.tc, !f.all);
       plot::replot(comp.measured);

@@ -57,6 +57,19 @@ void place_matrix(const MatrixSpec& s, MatX& M, ExprGroup& param, ExprGroup& dt,
   }
 }
 
+// The continuous forms' noise, parameters only: G (n × q, default I) and Qc.
+void place_noise(const ProcessSpec& pr, int n, MatX& G, MatX& Qc, ExprGroup& param) {
+  ExprGroup unused;
+  if (!pr.G.empty()) {
+    shape(G, pr.G);
+    place_matrix(pr.G, G, param, unused, unused, nullptr);
+  } else {
+    G = MatX::Identity(n, n);
+  }
+  shape(Qc, pr.Qc);
+  place_matrix(pr.Qc, Qc, param, unused, unused, nullptr);
+}
+
 Status check_psd(const MatX& M, const MatrixSpec& s, const std::string& path, bool definite) {
   const double lo = min_eigenvalue(M);
   if (!M.allFinite()) {
@@ -139,14 +152,7 @@ Status ModelEval::bind(const ParamValues& values) {
       shape(Bc, pr.Bc);
       place_matrix(pr.Bc, Bc, param, unused, unused, nullptr);
     }
-    if (!pr.G.empty()) {
-      shape(G, pr.G);
-      place_matrix(pr.G, G, param, unused, unused, nullptr);
-    } else {
-      G = MatX::Identity(n, n);
-    }
-    shape(Qc, pr.Qc);
-    place_matrix(pr.Qc, Qc, param, unused, unused, nullptr);
+    place_noise(pr, n, G, Qc, param);
     F.setZero(n, n);
     Q.setZero(n, n);
     if (!pr.Bc.empty()) B.setZero(n, pr.Bc.cols);
@@ -244,14 +250,7 @@ Status ModelEval::bind_continuous(ExprGroup& param) {
     place(pr.f[static_cast<std::size_t>(i)], &xdot_(i), param, unused, xdot_state_, &xdot_state_);
   shape(A, pr.A);
   place_matrix(pr.A, A, param, unused, A_state_, &A_state_);
-  if (!pr.G.empty()) {
-    shape(G, pr.G);
-    place_matrix(pr.G, G, param, unused, unused, nullptr);
-  } else {
-    G = MatX::Identity(n, n);
-  }
-  shape(Qc, pr.Qc);
-  place_matrix(pr.Qc, Qc, param, unused, unused, nullptr);
+  place_noise(pr, n, G, Qc, param);
   place(pr.substep, &substep_, param, unused, unused, nullptr);
   fx.setZero(n);
   F.setZero(n, n);

@@ -82,7 +82,7 @@ Expected<std::vector<SearchParam>> search_params(const TuneArgs& a, const Worksp
   std::vector<SearchParam> params;
   if (a.params.empty()) {
     params = default_search(ws.preset);
-    if (params.empty()) return Error{"--params: this preset marks no key tunable"};
+    if (params.empty()) return Error{"--params: " + no_tunable_message(ws.preset)};
   }
   for (const auto& key : a.params) {
     auto p = search_param(ws.preset, key);

@@ -522,6 +522,38 @@ std::vector<SearchParam> default_search(const Preset& preset) {
   return out;
 }
 
+std::string no_tunable_message(const Preset& preset) {
+  const std::string file = preset.path.empty() ? std::string("this preset") : preset.path;
+  std::string msg = file + " marks no parameter tunable";
+  if (!preset.model.is_null()) {
+    // A model file that says nothing is tuned over its Q and R: this one opted out, or has none.
+    bool says = false;
+    if (preset.parameters_block.is_object()) {
+      for (const auto& e : preset.parameters_block)
+        says = says || (e.is_object() && e.contains("tunable"));
+    }
+    msg += says ? " (its entries say \"tunable\": false)"
+                : " and its Q and R use no continuous parameter";
+  }
+  std::vector<std::string> keys;
+  for (const auto& spec : preset.instance->params().specs()) {
+    const bool filter_setting = spec.key.rfind("ukf.", 0) == 0;
+    if ((spec.scale == Scale::kLinear || spec.scale == Scale::kLog) && !is_sim_key(spec.key) &&
+        !filter_setting)
+      keys.push_back(spec.key);
+  }
+  msg +=
+      ": add \"tunable\": true to the entries of the parameters the tuner may change (the "
+      "noise levels in Q and R)";
+  if (!keys.empty()) {
+    msg += "; its continuous parameters: ";
+    for (std::size_t i = 0; i < keys.size() && i < 8; ++i)
+      msg += (i ? ", " : "") + keys[i];
+    if (keys.size() > 8) msg += ", …";
+  }
+  return msg;
+}
+
 std::string default_objective(const RunResult& probe, const std::vector<SearchParam>& params) {
   const bool truth = probe.metrics.count("rmse") > 0;
   const bool nis = probe.metrics.count("nis_mean") > 0;

@@ -113,8 +113,11 @@ struct TuneResult {
 // log10 space for a log scale, its scale group. Unknown, non-tunable or non-continuous keys are
 // errors naming the key and the tunable ones.
 Expected<SearchParam> search_param(const Preset& preset, const std::string& key);
-// The preset's tunable keys (the default selection of Tune and `kfw-cli tune`).
+// The preset's tunable keys (the default selection of Tune and `kfw-cli tune`). A model file
+// that marks none is tuned over the parameters of its Q and R (engine/model/model_scenario.h).
 std::vector<SearchParam> default_search(const Preset& preset);
+// Why default_search is empty, and what to add to the file.
+std::string no_tunable_message(const Preset& preset);
 // The default objective for a run and a selection: rmse+nis with truth, NIS and a scale group;
 // rmse with truth; else nll (no truth needed).
 std::string default_objective(const RunResult& probe, const std::vector<SearchParam>& params);

@@ -240,13 +240,17 @@ const char* aggregate_name(Aggregate a) {
 
 double TuneObjective::badness(const Metrics& m) const {
   const double b = kfw::badness(spec, metric_or_nan(m, spec.key));
-  if (!with_nis) return b;
+  if (!combined()) return b;
   const double l = std::log(metric_or_nan(m, "nis_mean"));
+  if (with_log_nis) return b + std::abs(l);
   return b * (1.0 + l * l);
 }
 
 std::vector<std::string> objective_names(const Scenario& s, const RunResult* probe) {
-  std::vector<std::string> names = {kRmseNis, "nis"};
+  std::vector<std::string> names;
+  for (const auto& c : combined_objectives())
+    names.emplace_back(c.name);
+  names.emplace_back("nis");
   for (const auto& k : metric_keys(s, probe)) {
     if (describe_metric(s, k, probe).direction != Direction::kNone) names.push_back(k);
   }
@@ -261,6 +265,9 @@ Expected<TuneObjective> make_objective(const Scenario& s, const std::string& nam
   if (name == kRmseNis) {
     key = "rmse";
     o.with_nis = true;
+  } else if (name == kRmseAnis) {
+    key = "rmse";
+    o.with_log_nis = true;
   } else if (name == "nis") {
     key = "nis_mean";
   }
@@ -331,7 +338,9 @@ Expected<TuneResult> tune(const Scenario& s, const std::vector<TuneLog>& logs,
     const auto& lead = params[members.front()].key;
     pts[3][lead] = up >= down ? v0.at(lead) * up : v0.at(lead) / down;
     std::vector<Eval> ev(4);
-    parallel_for(4, options.threads, [&](std::size_t k) { ev[k] = tuner.evaluate(pts[k], false); });
+    // rmse+anis judges the scale itself (its NIS term); rmse+nis leaves it to consistency.
+    const bool whole = objective.with_log_nis;
+    parallel_for(4, options.threads, [&](std::size_t k) { ev[k] = tuner.evaluate(pts[k], whole); });
     auto rel = [&](std::size_t k) {
       if (!std::isfinite(ev[0].f) || !std::isfinite(ev[k].f)) return 0.0;
       return std::abs(ev[k].f - ev[0].f) / std::max(std::abs(ev[0].f), 1e-300);
@@ -402,7 +411,7 @@ Expected<TuneResult> tune(const Scenario& s, const std::vector<TuneLog>& logs,
   std::vector<char> anchored(dim, 0);
   for (const auto& g : resolve)
     anchored[g.front()] = 1;
-  const bool penalised = objective.with_nis && resolve.empty();
+  const bool penalised = (objective.with_nis && resolve.empty()) || objective.with_log_nis;
   const int rounds = resolve.empty() ? 1 : 2;
   const int reserve_per_round = 10 * static_cast<int>(resolve.size());
   std::vector<std::string> methods;
@@ -554,7 +563,11 @@ std::string no_tunable_message(const Preset& preset) {
   return msg;
 }
 
-std::string default_objective(const RunResult& probe, const std::vector<SearchParam>& params) {
+DefaultObjective default_objective(const Preset& preset, const RunResult& probe,
+                                   const std::vector<SearchParam>& params) {
+  if (!preset.default_objective.empty()) {
+    return {preset.default_objective, "declared by the preset (default_objective)"};
+  }
   const bool truth = probe.metrics.count("rmse") > 0;
   const bool nis = probe.metrics.count("nis_mean") > 0;
   std::map<std::string, int> groups;
@@ -562,9 +575,14 @@ std::string default_objective(const RunResult& probe, const std::vector<SearchPa
   for (const auto& p : params) {
     if (!p.scale_group.empty()) grouped |= ++groups[p.scale_group] >= 2;
   }
-  if (truth && nis && grouped) return kRmseNis;
-  if (truth) return "rmse";
-  return "nll";
+  if (truth && nis && grouped) {
+    return {kRmseNis, "truth and a scale group: RMSE, the group's scale set by NIS consistency"};
+  }
+  if (truth && nis) {
+    return {kRmseAnis, "truth and no scale group: RMSE + |ln(NIS mean / dof)|"};
+  }
+  if (truth) return {"rmse", "truth and no innovations: RMSE"};
+  return {"nll", "no truth: the mean innovation NLL over all channels"};
 }
 
 }  // namespace kfw

@@ -177,15 +177,18 @@ void declare_gain(CLI::App& app, GainArgs& a) {
 
 // tune: the selection, the objective and the optimiser's settings.
 void add_tune_search(CLI::App* c, TuneArgs& a) {
-  c->add_option("--params", a.params, "the parameters to search; default: the preset's tunable")
+  c->add_option("--params", a.params,
+                "the parameters to search; default: the preset's tunable (a model file that "
+                "marks none: the parameters of its Q and R)")
       ->type_name("KEY[,KEY...]")
       ->delimiter(',')
       ->allow_extra_args(false)
       ->take_all();
   c->add_option("--objective", a.objective,
                 "a metric key (minimised, maximised or driven to its target by its direction), "
-                "or rmse+nis (RMSE with the noise scale set by NIS consistency); default: "
-                "rmse+nis with truth and a scale group, rmse with truth, else nll")
+                "rmse+nis (RMSE with the noise scale set by NIS consistency) or rmse+anis (RMSE "
+                "+ |ln NIS mean/dof|); default: the preset's default_objective, else rmse+nis "
+                "with truth and a scale group, rmse+anis with truth, else nll")
       ->type_name("NAME");
   c->add_option("--method", a.method,
                 "bobyqa (local, default), sbplx (local), direct (DIRECT-L, global) or crs "

@@ -82,7 +82,7 @@ Expected<std::vector<SearchParam>> search_params(const TuneArgs& a, const Worksp
   std::vector<SearchParam> params;
   if (a.params.empty()) {
     params = default_search(ws.preset);
-    if (params.empty()) return Error{"--params: this preset marks no key tunable"};
+    if (params.empty()) return Error{"--params: " + no_tunable_message(ws.preset)};
   }
   for (const auto& key : a.params) {
     auto p = search_param(ws.preset, key);
@@ -182,6 +182,7 @@ Expected<TuningSet> tuning_set(const TuneArgs& a, const std::vector<std::string>
 // The objective, by name, and its value at the start averaged over the set.
 struct StartedObjective {
   std::string name;  // as given (--objective), or the default
+  std::string from;  // "--objective", or the default's reason
   TuneObjective objective;
   double start_value = 0.0;
 };
@@ -196,15 +197,19 @@ Expected<StartedObjective> start_objective(const TuneArgs& a, const Workspace& w
     if (!probe) return probe.err();
     probes.push_back(*probe);
   }
-  const std::string name =
-      a.objective.empty() ? default_objective(*probes.front(), params) : a.objective;
+  DefaultObjective chosen{a.objective, "--objective"};
+  if (a.objective.empty()) chosen = default_objective(ws.preset, *probes.front(), params);
+  const std::string& name = chosen.name;
   auto objective = make_objective(*ws.scenario, name, probes.front().get());
-  if (!objective) return objective.err();
+  if (!objective) {
+    if (a.objective.empty()) return Error{"default_objective: " + objective.error()};
+    return objective.err();
+  }
   double start_sum = 0.0;
   for (std::size_t i = 0; i < set.data.size(); ++i) {
     const std::string key = objective->spec.key;
     const bool undefined = !probes[i]->metrics.count(key) ||
-                           (objective->with_nis && !probes[i]->metrics.count("nis_mean"));
+                           (objective->combined() && !probes[i]->metrics.count("nis_mean"));
     if (undefined) {
       std::string why = key == "rmse" ? " (no truth column?)" : "";
       if (auto u = probes[i]->undefined.find(key); u != probes[i]->undefined.end()) {
@@ -215,7 +220,8 @@ Expected<StartedObjective> start_objective(const TuneArgs& a, const Workspace& w
     }
     start_sum += probes[i]->metrics.at(key);
   }
-  return StartedObjective{name, *objective, start_sum / static_cast<double>(set.data.size())};
+  return StartedObjective{name, chosen.why, *objective,
+                          start_sum / static_cast<double>(set.data.size())};
 }
 
 // The scale groups' reports, with a warning for each the objective could not set.
@@ -250,6 +256,11 @@ Json tune_report(const TuneArgs& a, const Workspace& ws, const TuningSet& set,
                  const StartedObjective& o, const TuneResult& r, std::ostream& err) {
   Json j;
   j["objective"] = o.name;
+  j["objective_from"] = o.from;
+  if (a.objective.empty()) {
+    err << "kfw-cli: objective " << quote_token(o.name) << " (" << o.from
+        << "; --objective chooses another)\n";
+  }
   j["metric"] = o.objective.spec.key;
   j["direction"] = direction_name(o.objective.spec.direction);
   if (o.objective.spec.direction == Direction::kTarget) j["target"] = o.objective.spec.target;
@@ -258,6 +269,7 @@ Json tune_report(const TuneArgs& a, const Workspace& ws, const TuningSet& set,
   if (a.seeds) j["seeds"] = set.data.size();
   j["value"] = r.value;
   j["start_value"] = o.start_value;
+  if (o.objective.combined()) j["objective_value"] = r.objective;  // the metric and its NIS term
   j["evaluations"] = r.evaluations;
   for (const auto& p : params) {
     j["params"][p.key] = r.best.at(p.key);

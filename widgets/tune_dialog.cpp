@@ -16,6 +16,7 @@
 #include <QTimer>
 #include <QVBoxLayout>
 #include <QtConcurrent>
+#include <algorithm>
 #include <cmath>
 
 #include "document/workspace.h"
@@ -80,8 +81,11 @@ TuneDialog::TuneDialog(const Preset& preset, std::shared_ptr<const Dataset> data
   for (const auto& n : objective_names(*scenario_, probe_.get())) {
     if (n == "nis") continue;  // nis_mean is listed
     QString text = q(n);
-    if (n == kRmseNis) {
-      text += " — RMSE, noise scale by NIS consistency";
+    const auto& combined = combined_objectives();
+    const auto c = std::find_if(combined.begin(), combined.end(),
+                                [&](const CombinedObjective& o) { return o.name == n; });
+    if (c != combined.end()) {
+      text += " — " + QString::fromUtf8(c->label.data(), static_cast<qsizetype>(c->label.size()));
     } else {
       const MetricSpec spec = describe_metric(*scenario_, n, probe_.get());
       text += " — " + q(spec.label) + " (" +
@@ -91,7 +95,11 @@ TuneDialog::TuneDialog(const Preset& preset, std::shared_ptr<const Dataset> data
     }
     objective_->addItem(text, q(n));
   }
-  if (probe_) setObjective(q(default_objective(*probe_, search)));
+  if (probe_) {
+    const DefaultObjective d = default_objective(preset_, *probe_, search);
+    setObjective(q(d.name));
+    objective_->setToolTip("Default: " + q(d.name) + " (" + q(d.why) + ")");
+  }
   form->addRow("objective", objective_);
   method_ = new QComboBox(this);
   method_->setObjectName("tune.method");

@@ -1,7 +1,7 @@
 // Auto-tune from the GUI: the preset's tunable keys with their search bounds, an objective by
-// the metric declarations (or rmse+nis), the NLopt method, budget and tolerance, a tuning set of
-// several logs; progress and Cancel; the result shown with what the objective could not
-// determine and any bound it sits on; Apply keeps it, Revert restores the start. The search is
+// the metric declarations (or rmse+nis / rmse+anis), the NLopt method, budget and tolerance, a
+// tuning set of several logs; progress and Cancel; the result shown with what the objective could
+// not determine and any bound it sits on; Apply keeps it, Revert restores the start. The search is
 // the engine's kfw::tune on a worker thread.
 #pragma once
 

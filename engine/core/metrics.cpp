@@ -84,6 +84,25 @@ const std::vector<MetricSpec>& shared_metric_specs() {
   return specs;
 }
 
+const std::vector<CombinedObjective>& combined_objectives() {
+  static const std::vector<CombinedObjective> v = {
+      {kRmseNis, "RMSE, noise scale by NIS consistency",
+       "RMSE, with the common scale of a scale group set by NIS consistency (NIS mean / dof = "
+       "1); without a group to set, RMSE · (1 + (ln NIS mean / dof)²)"},
+      {kRmseAnis, "RMSE + |ln NIS mean / dof|",
+       "RMSE + |ln(NIS mean / dof)|: the RMSE of a filter whose innovations are consistent "
+       "(the default with truth and no scale group)"},
+  };
+  return v;
+}
+
+bool is_combined_objective(std::string_view name) {
+  for (const auto& c : combined_objectives()) {
+    if (c.name == name) return true;
+  }
+  return false;
+}
+
 double badness(const MetricSpec& spec, double value) {
   switch (spec.direction) {
     case Direction::kLower:

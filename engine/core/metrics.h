@@ -57,6 +57,18 @@ bool better(const MetricSpec& spec, double a, double b);
 // "good", "bad" or "" (no bounds declared).
 std::string judge(const MetricSpec& spec, double value);
 
+// Tune objectives that combine metrics (ranked by experiment/tuning.h), declared once for the
+// CLI, the Tune dialog and a preset's default_objective.
+inline constexpr const char* kRmseNis = "rmse+nis";    // RMSE, a scale group's scale by NIS
+inline constexpr const char* kRmseAnis = "rmse+anis";  // RMSE + |ln(NIS mean / dof)|
+struct CombinedObjective {
+  std::string_view name;         // "rmse+nis"
+  std::string_view label;        // "RMSE, noise scale by NIS consistency"
+  std::string_view description;  // one line
+};
+const std::vector<CombinedObjective>& combined_objectives();
+bool is_combined_objective(std::string_view name);
+
 // The identifier form of a display name: "range 1" -> "range_1" (letters, digits, '_').
 std::string metric_identifier(std::string_view name);
 

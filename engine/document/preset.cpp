@@ -39,9 +39,9 @@ const char* scale_name(Scale s) {
 }
 
 // The schema (presets/README.md): top-level keys and the keys of a parameter entry.
-const std::vector<std::string> kTopKeys = {"format",      "version", "scenario",   "title",
-                                           "description", "data",    "parameters", "mapping",
-                                           "model",       "sim"};
+const std::vector<std::string> kTopKeys = {"format",      "version", "scenario",         "title",
+                                           "description", "data",    "parameters",       "mapping",
+                                           "model",       "sim",     "default_objective"};
 const std::vector<std::string> kParamKeys = {"value",       "min",   "max",         "unit",
                                              "scale",       "label", "choices",     "tunable",
                                              "scale_group", "group", "description", "decimals"};
@@ -234,6 +234,17 @@ Expected<Preset> preset_from_json(const json& j, const std::string& path) {
     if (!mapping) return Error{path + ": " + mapping.error()};
     p.mapping = std::move(*mapping);
   }
+  if (auto st = str("default_objective", p.default_objective, false); !st) return st.err();
+  if (!p.default_objective.empty() && !is_combined_objective(p.default_objective) &&
+      p.default_objective != "nis" && !is_declared_metric(*p.instance, p.default_objective)) {
+    std::vector<std::string> names;
+    for (const auto& c : combined_objectives())
+      names.emplace_back(c.name);
+    for (const auto& k : metric_keys(*p.instance))
+      names.push_back(k);
+    return Error{
+        path + ": default_objective: " + unknown_message("objective", p.default_objective, names)};
+  }
   if (auto s = j.find("sim"); s != j.end()) {
     if (!s->is_object()) return Error{path + ": sim: must be an object"};
     for (auto it = s->begin(); it != s->end(); ++it) {
@@ -341,6 +352,7 @@ std::string preset_to_json(const Preset& preset) {
   if (!preset.mapping.blank()) j["mapping"] = mapping_to_json(preset.mapping);
   if (!preset.model.is_null()) j["model"] = preset.model;
   if (preset.sim_x0_from_prior) j["sim"] = {{"x0_from_prior", true}};
+  if (!preset.default_objective.empty()) j["default_objective"] = preset.default_objective;
   return j.dump(2) + "\n";
 }
 

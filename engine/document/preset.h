@@ -44,6 +44,9 @@ struct Preset {
   nlohmann::json parameters_block;  // a model preset's own parameter declarations
   // The simulator draws x0 from the filter's prior (the instance is swapped).
   bool sim_x0_from_prior = false;
+  // The tune objective when none is asked for (a metric key or a combined objective such as
+  // rmse+nis); empty: the tuner's rule (experiment/tuning.h, default_objective).
+  std::string default_objective;
   // The scenario this preset runs (built-in, or built from the model block).
   std::shared_ptr<const Scenario> instance;
 };

@@ -240,13 +240,17 @@ const char* aggregate_name(Aggregate a) {
 
 double TuneObjective::badness(const Metrics& m) const {
   const double b = kfw::badness(spec, metric_or_nan(m, spec.key));
-  if (!with_nis) return b;
+  if (!combined()) return b;
   const double l = std::log(metric_or_nan(m, "nis_mean"));
+  if (with_log_nis) return b + std::abs(l);
   return b * (1.0 + l * l);
 }
 
 std::vector<std::string> objective_names(const Scenario& s, const RunResult* probe) {
-  std::vector<std::string> names = {kRmseNis, "nis"};
+  std::vector<std::string> names;
+  for (const auto& c : combined_objectives())
+    names.emplace_back(c.name);
+  names.emplace_back("nis");
   for (const auto& k : metric_keys(s, probe)) {
     if (describe_metric(s, k, probe).direction != Direction::kNone) names.push_back(k);
   }
@@ -261,6 +265,9 @@ Expected<TuneObjective> make_objective(const Scenario& s, const std::string& nam
   if (name == kRmseNis) {
     key = "rmse";
     o.with_nis = true;
+  } else if (name == kRmseAnis) {
+    key = "rmse";
+    o.with_log_nis = true;
   } else if (name == "nis") {
     key = "nis_mean";
   }
@@ -331,7 +338,9 @@ Expected<TuneResult> tune(const Scenario& s, const std::vector<TuneLog>& logs,
     const auto& lead = params[members.front()].key;
     pts[3][lead] = up >= down ? v0.at(lead) * up : v0.at(lead) / down;
     std::vector<Eval> ev(4);
-    parallel_for(4, options.threads, [&](std::size_t k) { ev[k] = tuner.evaluate(pts[k], false); });
+    // rmse+anis judges the scale itself (its NIS term); rmse+nis leaves it to consistency.
+    const bool whole = objective.with_log_nis;
+    parallel_for(4, options.threads, [&](std::size_t k) { ev[k] = tuner.evaluate(pts[k], whole); });
     auto rel = [&](std::size_t k) {
       if (!std::isfinite(ev[0].f) || !std::isfinite(ev[k].f)) return 0.0;
       return std::abs(ev[k].f - ev[0].f) / std::max(std::abs(ev[0].f), 1e-300);
@@ -402,7 +411,7 @@ Expected<TuneResult> tune(const Scenario& s, const std::vector<TuneLog>& logs,
   std::vector<char> anchored(dim, 0);
   for (const auto& g : resolve)
     anchored[g.front()] = 1;
-  const bool penalised = objective.with_nis && resolve.empty();
+  const bool penalised = (objective.with_nis && resolve.empty()) || objective.with_log_nis;
   const int rounds = resolve.empty() ? 1 : 2;
   const int reserve_per_round = 10 * static_cast<int>(resolve.size());
   std::vector<std::string> methods;
@@ -522,7 +531,43 @@ std::vector<SearchParam> default_search(const Preset& preset) {
   return out;
 }
 
-std::string default_objective(const RunResult& probe, const std::vector<SearchParam>& params) {
+std::string no_tunable_message(const Preset& preset) {
+  const std::string file = preset.path.empty() ? std::string("this preset") : preset.path;
+  std::string msg = file + " marks no parameter tunable";
+  if (!preset.model.is_null()) {
+    // A model file that says nothing is tuned over its Q and R: this one opted out, or has none.
+    bool says = false;
+    if (preset.parameters_block.is_object()) {
+      for (const auto& e : preset.parameters_block)
+        says = says || (e.is_object() && e.contains("tunable"));
+    }
+    msg += says ? " (its entries say \"tunable\": false)"
+                : " and its Q and R use no continuous parameter";
+  }
+  std::vector<std::string> keys;
+  for (const auto& spec : preset.instance->params().specs()) {
+    const bool filter_setting = spec.key.rfind("ukf.", 0) == 0;
+    if ((spec.scale == Scale::kLinear || spec.scale == Scale::kLog) && !is_sim_key(spec.key) &&
+        !filter_setting)
+      keys.push_back(spec.key);
+  }
+  msg +=
+      ": add \"tunable\": true to the entries of the parameters the tuner may change (the "
+      "noise levels in Q and R)";
+  if (!keys.empty()) {
+    msg += "; its continuous parameters: ";
+    for (std::size_t i = 0; i < keys.size() && i < 8; ++i)
+      msg += (i ? ", " : "") + keys[i];
+    if (keys.size() > 8) msg += ", …";
+  }
+  return msg;
+}
+
+DefaultObjective default_objective(const Preset& preset, const RunResult& probe,
+                                   const std::vector<SearchParam>& params) {
+  if (!preset.default_objective.empty()) {
+    return {preset.default_objective, "declared by the preset (default_objective)"};
+  }
   const bool truth = probe.metrics.count("rmse") > 0;
   const bool nis = probe.metrics.count("nis_mean") > 0;
   std::map<std::string, int> groups;
@@ -530,9 +575,14 @@ std::string default_objective(const RunResult& probe, const std::vector<SearchPa
   for (const auto& p : params) {
     if (!p.scale_group.empty()) grouped |= ++groups[p.scale_group] >= 2;
   }
-  if (truth && nis && grouped) return kRmseNis;
-  if (truth) return "rmse";
-  return "nll";
+  if (truth && nis && grouped) {
+    return {kRmseNis, "truth and a scale group: RMSE, the group's scale set by NIS consistency"};
+  }
+  if (truth && nis) {
+    return {kRmseAnis, "truth and no scale group: RMSE + |ln(NIS mean / dof)|"};
+  }
+  if (truth) return {"rmse", "truth and no innovations: RMSE"};
+  return {"nll", "no truth: the mean innovation NLL over all channels"};
 }
 
 }  // namespace kfw

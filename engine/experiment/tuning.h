@@ -31,19 +31,21 @@ enum class Aggregate { kMean, kWorst };
 Expected<Aggregate> parse_aggregate(std::string_view name);
 const char* aggregate_name(Aggregate a);
 
-// The name of the combined objective: RMSE, with the noise scale set by NIS consistency.
-inline constexpr const char* kRmseNis = "rmse+nis";
-
+// The combined objectives (rmse+nis, rmse+anis) are declared in core/metrics.h.
 struct TuneObjective {
-  std::string name;  // "rmse", "nis_mean", "rmse+nis"
-  MetricSpec spec;   // the metric ranked (rmse+nis: rmse)
-  bool with_nis = false;
+  std::string name;           // "rmse", "nis_mean", "rmse+nis", "rmse+anis"
+  MetricSpec spec;            // the metric ranked (rmse+nis, rmse+anis: rmse)
+  bool with_nis = false;      // rmse+nis
+  bool with_log_nis = false;  // rmse+anis
   // Smaller is better (metrics.h badness); NaN when the run cannot be judged. rmse+nis without a
-  // scale group to set: RMSE · (1 + (ln NIS mean)²), the penalty of an inconsistent NIS.
+  // scale group to set: RMSE · (1 + (ln NIS mean)²), the penalty of an inconsistent NIS;
+  // rmse+anis: RMSE + |ln NIS mean| (NIS mean is NIS / dof).
   double badness(const Metrics& m) const;
+  bool combined() const { return with_nis || with_log_nis; }
 };
 
-// Any metric key of the scenario with a direction ("nis" is short for nis_mean), or rmse+nis.
+// Any metric key of the scenario with a direction ("nis" is short for nis_mean), or a combined
+// objective (rmse+nis, rmse+anis).
 Expected<TuneObjective> make_objective(const Scenario& s, const std::string& name,
                                        const RunResult* probe = nullptr);
 // The names make_objective accepts (for "did you mean" and the dialog).
@@ -113,11 +115,24 @@ struct TuneResult {
 // log10 space for a log scale, its scale group. Unknown, non-tunable or non-continuous keys are
 // errors naming the key and the tunable ones.
 Expected<SearchParam> search_param(const Preset& preset, const std::string& key);
-// The preset's tunable keys (the default selection of Tune and `kfw-cli tune`).
+// The preset's tunable keys (the default selection of Tune and `kfw-cli tune`). A model file
+// that marks none is tuned over the parameters of its Q and R (engine/model/model_scenario.h).
 std::vector<SearchParam> default_search(const Preset& preset);
-// The default objective for a run and a selection: rmse+nis with truth, NIS and a scale group;
-// rmse with truth; else nll (no truth needed).
-std::string default_objective(const RunResult& probe, const std::vector<SearchParam>& params);
+// Why default_search is empty, and what to add to the file.
+std::string no_tunable_message(const Preset& preset);
+// The objective a tuning uses when none is asked for, and why (what `tune` reports):
+//   the preset's own `default_objective`, when it declares one; else
+//   rmse+nis   with truth, NIS and a scale group of two or more selected keys;
+//   rmse+anis  with truth and NIS but no such group: RMSE + |ln(NIS mean / dof)|, so that an
+//              RMSE-optimal but inconsistent filter (NIS mean / dof 0.4, say) is not chosen;
+//   rmse       with truth and no innovations;
+//   nll        without truth: the mean innovation NLL over all channels.
+struct DefaultObjective {
+  std::string name;
+  std::string why;  // "truth, no scale group: ..."
+};
+DefaultObjective default_objective(const Preset& preset, const RunResult& probe,
+                                   const std::vector<SearchParam>& params);
 
 // Searches `params` (others held at `start`) over every log. Errors: no parameter, unknown or
 // non-continuous keys, bad bounds (exit 2); no finite objective anywhere (exit 1).

@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -97,6 +98,45 @@ std::string unit_ratio(const std::string& num, const std::string& den) {
   if (num.rfind(den + "/", 0) == 0) return "1/" + ratio_side(num.substr(den.size() + 1));
   if (den.rfind(num + "/", 0) == 0) return den.substr(num.size() + 1);
   return ratio_side(num) + "/" + ratio_side(den);
+}
+
+// The identifiers an expression names (numbers, operators and functions' parentheses skipped).
+void collect_names(const std::string& text, std::set<std::string>& out) {
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (std::isalpha(c) || c == '_') {
+      std::size_t j = i + 1;
+      while (j < text.size() &&
+             (std::isalnum(static_cast<unsigned char>(text[j])) || text[j] == '_'))
+        ++j;
+      out.insert(text.substr(i, j - i));
+      i = j;
+    } else if (std::isdigit(c) || c == '.') {
+      // A number, exponent included ("1.5e-3" must not yield "e").
+      ++i;
+      while (i < text.size() &&
+             (std::isalnum(static_cast<unsigned char>(text[i])) || text[i] == '.'))
+        ++i;
+    } else {
+      ++i;
+    }
+  }
+}
+
+// The names the model's noise covariances use: Q (or Qc and G) and every channel's R.
+std::set<std::string> noise_names(const model::ModelSpec& s) {
+  std::set<std::string> names;
+  auto add = [&](const model::MatrixSpec& m) {
+    for (const auto& e : m.e)
+      collect_names(e.text, names);
+  };
+  add(s.process.Q);
+  add(s.process.Qc);
+  add(s.process.G);
+  for (const auto& c : s.channels)
+    add(c.R);
+  return names;
 }
 
 class ModelScenario final : public Scenario {
@@ -434,6 +474,22 @@ Expected<std::unique_ptr<Scenario>> make_model_scenario(const json& preset,
     }
   }
   std::vector<ParamSpec> specs = declared->specs();
+  // A file that marks no parameter tunable (no entry has "tunable") is tuned over the parameters
+  // its noise uses, Q (or Qc, G) and R: what an engineer tunes first. Log-scale ones are searched
+  // in log10 (experiment/tuning.h).
+  bool marks = false;
+  if (params.is_object()) {
+    for (const auto& e : params) {
+      marks = marks || (e.is_object() && e.contains("tunable"));
+    }
+  }
+  if (!marks) {
+    const auto noise = noise_names(*spec);
+    for (auto& p : specs) {
+      const bool continuous = p.scale == Scale::kLinear || p.scale == Scale::kLog;
+      if (continuous && p.min < p.max && noise.count(p.key)) p.tunable = true;
+    }
+  }
   std::vector<ParamSpec> all;
   for (auto& s : standard_params(filters, filter)) {
     if (s.key == "filter" || !declared->find(s.key)) all.push_back(s);

@@ -68,7 +68,7 @@ Jumps jumpsOf(QCPGraph* g) {
   return j;
 }
 
-TEST(ModelWorldPlots, AnAngleStateAndPredictionBreakAtTheWrap) {
+TEST(ModelWorldWindow, AnAngleStateAndPredictionBreakAtTheWrap) {
   QTemporaryDir dir;
   const QString path = dir.filePath("spin.json");
   {
@@ -119,7 +119,7 @@ TEST(ModelWorldPlots, AnAngleStateAndPredictionBreakAtTheWrap) {
   EXPECT_LE(est->data()->at(est->data()->size() - 1)->key, 10.0 + 1e-9);
 }
 
-TEST(ModelWorldPlots, EachGainEntryCarriesItsUnit) {
+TEST(ModelWorldWindow, EachGainEntryCarriesItsUnit) {
   MainWindow w;
   ASSERT_TRUE(w.loadPreset(modelPreset("cv1d"), {}, {"sim.duration=20"}).ok());
   ASSERT_TRUE(w.waitForRun(60000));
@@ -143,7 +143,7 @@ TEST(ModelWorldPlots, EachGainEntryCarriesItsUnit) {
   EXPECT_NE(graphNamed(g, "K[vy, range] (1/s)"), nullptr);
 }
 
-TEST(ModelWorldPlots, AVectorChannelShowsItsComponentsWhiteness) {
+TEST(ModelWorldWindow, AVectorChannelShowsItsComponentsWhiteness) {
   MainWindow w;
   ASSERT_TRUE(w.loadPreset(modelPreset("range_bearing")).ok());
   ASSERT_TRUE(w.waitForRun(60000));

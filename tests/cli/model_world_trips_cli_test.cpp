@@ -1,0 +1,38 @@
+// Issue 27, model files part 2 — the newcomer trips as `kfw-cli` shows them, in the order of the
+// engine's sections (tests/engine/model_world_trips_test.cpp): exit codes, messages and listings.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "common/bad_input.h"
+
+namespace kfw {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+class ModelTripsCli : public testing::BadInput {
+ protected:
+  // presets/models/NAME.json with one edit applied to its JSON, written as FILE.
+  std::string model(const std::string& file_name, const std::function<void(Json&)>& edit,
+                    const std::string& name = "cv1d") {
+    Json j = Json::parse(source("presets/models/" + name + ".json"));
+    edit(j);
+    return file(file_name, j.dump(2));
+  }
+};
+
+// ---- 1. A dimension message names the short row
+
+TEST_F(ModelTripsCli, AShortRowIsNamed) {
+  const auto f = model("short.json", [](Json& j) { j["model"]["process"]["F"][1] = {"1"}; });
+  expect_refused("run " + f, 2,
+                 {"short.json: model.process.F: wrong dimensions: expected 2×2, "
+                  "model.process.F[1] has 1 entry"});
+}
+
+}  // namespace
+}  // namespace kfw

@@ -1,0 +1,104 @@
+// Issue 27, model files part 2 — the newcomer trips of the engine, one section per trip; each
+// test fails on the engine before the fix of its section.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "common/time_scale.h"
+#include "core/scenario.h"
+#include "data/json_io.h"
+#include "document/preset.h"
+#include "model/model_scenario.h"
+
+namespace kfw::world_trips {
+namespace {
+
+using nlohmann::json;
+
+const std::string kFile = "models/trips.json";
+
+// Position and velocity, one linear channel `pos` reading column z, sim.dt = 0.1 s.
+json base() {
+  return json::parse(R"json({
+    "format": "kfw-preset", "version": 1, "scenario": "model", "title": "trips",
+    "parameters": {
+      "q": {"value": 1, "min": 1e-6, "max": 1e6, "unit": "", "scale": "log", "label": "q"},
+      "r": {"value": 1, "min": -10, "max": 10, "unit": "m²", "scale": "linear", "label": "r"},
+      "sim.dt": {"value": 0.1, "min": 1e-3, "max": 1, "unit": "s", "scale": "log", "label": "dt"}
+    },
+    "model": {
+      "version": 1,
+      "states": [{"name": "px", "unit": "m"}, {"name": "vx", "unit": "m/s"}],
+      "x0": ["0", "0"],
+      "P0": ["1", "1"],
+      "process": {"F": [["1", "dt"], ["0", "1"]],
+                  "Q": [["q*dt^3/3", "q*dt^2/2"], ["q*dt^2/2", "q*dt"]]},
+      "measurements": {"pos": {"roles": ["z"], "H": [["1", "0"]], "R": ["r"]}},
+      "truth": {"px": "px_true"}
+    }
+  })json");
+}
+
+// A four-state model, for matrices whose rows can be short in the middle.
+json four_states() {
+  json j = base();
+  j["model"]["states"] = {"px", "py", "vx", "vy"};
+  j["model"]["x0"] = {"0", "0", "0", "0"};
+  j["model"]["P0"] = {"1", "1", "1", "1"};
+  j["model"]["process"] = json::parse(R"({
+    "F": [["1", "0", "dt", "0"], ["0", "1", "0", "dt"], ["0", "0", "1", "0"], ["0", "0", "0", "1"]],
+    "Q": ["q*dt", "q*dt", "q*dt", "q*dt"]})");
+  j["model"]["measurements"]["pos"]["H"] = json::parse(R"([["1", "0", "0", "0"]])");
+  return j;
+}
+
+Expected<std::unique_ptr<Scenario>> load(const json& j) {
+  return make_model_scenario(j, kFile);
+}
+
+// Expects the model to be refused when it loads (exit 2), with every fragment in one line that
+// starts with the file.
+void expect_refused(const json& j, const std::vector<std::string>& fragments) {
+  auto s = load(j);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.exit_code(), kExitInvalid) << s.error();
+  EXPECT_EQ(s.error().rfind(kFile + ": ", 0), 0u) << s.error();
+  EXPECT_EQ(s.error().find('\n'), std::string::npos) << s.error();
+  for (const auto& f : fragments)
+    EXPECT_NE(s.error().find(f), std::string::npos) << "'" << f << "' not in: " << s.error();
+}
+
+// ---- 1. A dimension message names the short row ---------------------------------------------
+
+TEST(ModelWorldTrips, AShortRowIsNamedByItsIndex) {
+  json j = four_states();
+  j["model"]["process"]["F"][2] = {"0", "0", "1"};
+  expect_refused(j, {"model.process.F: wrong dimensions: expected 4×4, model.process.F[2] has "
+                     "3 entries"});
+  j = four_states();
+  j["model"]["process"]["F"][0] = {"1", "0", "dt", "0", "0"};
+  expect_refused(j, {"expected 4×4, model.process.F[0] has 5 entries"});
+  j = four_states();
+  j["model"]["process"]["F"][1] = "1";
+  expect_refused(j, {"expected 4×4, model.process.F[1] is not a row"});
+  j = four_states();
+  j["model"]["process"]["Q"] = json::parse(
+      R"([["q", "0", "0", "0"], ["0", "q", "0", "0"], ["0", "0", "q"], ["0", "0", "0", "q"]])");
+  expect_refused(j, {"model.process.Q: wrong dimensions: expected 4×4, model.process.Q[2] has 3"});
+  // Every row of the same wrong length, or the wrong count of rows: said as a whole.
+  j = four_states();
+  j["model"]["process"]["F"] = json::parse(R"([["1", "0", "dt"], ["0", "1", "0"],
+                                                ["0", "0", "1"], ["0", "0", "0"]])");
+  expect_refused(j, {"expected 4×4, got 4 rows of 3"});
+  j = four_states();
+  j["model"]["process"]["F"].erase(3);
+  expect_refused(j, {"expected 4×4, got 3 rows of 4"});
+}
+
+}  // namespace
+}  // namespace kfw::world_trips

@@ -33,6 +33,16 @@ std::string number_text(double v) {
   return buf;
 }
 
+// "unknown key (did you mean 'measurements'?)", or the known keys when none is near.
+std::string unknown_key(const std::string& word, std::initializer_list<const char*> known) {
+  const std::vector<std::string> keys(known.begin(), known.end());
+  if (auto near = nearest(word, keys)) return "unknown key (did you mean '" + *near + "'?)";
+  std::string list;
+  for (const auto& k : keys)
+    list += (list.empty() ? "" : ", ") + k;
+  return "unknown key (known: " + list + ")";
+}
+
 std::string size_text(int r, int c) {
   return std::to_string(r) + "×" + std::to_string(c);
 }
@@ -152,10 +162,7 @@ class Reader {
                    std::initializer_list<const char*> known) const {
     for (auto it = obj.begin(); it != obj.end(); ++it) {
       if (std::none_of(known.begin(), known.end(), [&](const char* k) { return it.key() == k; })) {
-        std::string list;
-        for (const char* k : known)
-          list += std::string(list.empty() ? "" : ", ") + k;
-        return error(key + "." + it.key(), "unknown key (known: " + list + ")");
+        return error(key + "." + truncate_token(it.key()), unknown_key(it.key(), known));
       }
     }
     return Ok{};
@@ -176,6 +183,13 @@ class Reader {
   std::string path_;
   Symbols& symbols_;
 };
+
+std::vector<std::string> state_names(const ModelSpec& m) {
+  std::vector<std::string> names;
+  for (const auto& s : m.states)
+    names.push_back(s.name);
+  return names;
+}
 
 // A new symbol name must be an identifier, not reserved, not yet taken.
 Status check_name(const Reader& p, const Symbols& symbols, const std::string& name,
@@ -360,7 +374,10 @@ Expected<ChannelSpec> parse_channel(const Reader& p, const std::string& name, co
     } else if (it->is_string()) {
       c.every_param = it->get<std::string>();
       if (!params.find(c.every_param)) {
-        return p.error(key + ".every", "unknown parameter " + quote_token(c.every_param));
+        std::vector<std::string> names;
+        for (const auto& spec : params.specs())
+          names.push_back(spec.key);
+        return p.error(key + ".every", unknown_message("parameter", c.every_param, names));
       }
     } else {
       return p.error(key + ".every", "expected an integer ≥ 1 or a parameter name");
@@ -567,7 +584,10 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
     if (!it->is_object()) return p.error("model.truth", "expected {\"state\": \"column\", ...}");
     for (auto t = it->begin(); t != it->end(); ++t) {
       const int s = m.state_index(t.key());
-      if (s < 0) return p.error("model.truth." + t.key(), "unknown state");
+      if (s < 0) {
+        return p.error("model.truth." + truncate_token(t.key()),
+                       "unknown state" + did_you_mean(t.key(), state_names(m)));
+      }
       if (!t->is_string() || t->get<std::string>().empty() || t->get<std::string>() == "t") {
         return p.error("model.truth." + t.key(), "expected a column name");
       }

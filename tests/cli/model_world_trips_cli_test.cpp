@@ -34,5 +34,19 @@ TEST_F(ModelTripsCli, AShortRowIsNamed) {
                   "model.process.F[1] has 1 entry"});
 }
 
+// ---- 2. "Did you mean"
+
+TEST_F(ModelTripsCli, AMisspeltKeySuggestsTheNearest) {
+  const auto f = model("key.json", [](Json& j) {
+    j["model"]["mesurements"] = j["model"]["measurements"];
+    j["model"].erase("measurements");
+  });
+  expect_refused("run " + f, 2,
+                 {"key.json: model.mesurements: unknown key (did you mean 'measurements'?)"});
+  const auto g = model("sym.json", [](Json& j) { j["model"]["process"]["F"][0][1] = "dtt"; });
+  expect_refused("run " + g, 2,
+                 {"sym.json: model.process.F[0][1]: unknown symbol 'dtt'", "(did you mean 'dt'?)"});
+}
+
 }  // namespace
 }  // namespace kfw

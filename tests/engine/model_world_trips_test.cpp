@@ -100,5 +100,52 @@ TEST(ModelWorldTrips, AShortRowIsNamedByItsIndex) {
   expect_refused(j, {"expected 4×4, got 3 rows of 4"});
 }
 
+// ---- 2. "Did you mean" for keys and symbols -------------------------------------------------
+
+TEST(ModelWorldTrips, AMisspeltKeySuggestsTheNearestOne) {
+  json j = base();
+  j["model"]["mesurements"] = j["model"]["measurements"];
+  j["model"].erase("measurements");
+  expect_refused(j, {"model.mesurements: unknown key (did you mean 'measurements'?)"});
+  j = base();
+  j["model"]["measurements"]["pos"]["gte"] = 0.99;
+  expect_refused(j, {"model.measurements.pos.gte: unknown key (did you mean 'gate'?)"});
+  j = base();
+  j["model"]["process"]["QQ"] = j["model"]["process"]["Q"];
+  expect_refused(j, {"model.process.QQ: unknown key (did you mean 'Q'?)"});
+  // Nothing near: the known keys are listed.
+  j = base();
+  j["model"]["colour"] = "red";
+  expect_refused(j, {"model.colour: unknown key (known: version, description, states"});
+  j = base();
+  j["model"]["truth"] = {{"pxx", "px_true"}};
+  expect_refused(j, {"model.truth.pxx: unknown state (did you mean 'px'?)"});
+}
+
+TEST(ModelWorldTrips, AnUnknownSymbolSuggestsTheNearestUsableOne) {
+  json j = base();
+  j["model"]["measurements"]["pos"].erase("H");
+  j["model"]["measurements"]["pos"]["h"] = {"sqrt(pz^2 + 1)"};
+  expect_refused(j, {"model.measurements.pos.h[0]: unknown symbol 'pz' at position 6",
+                     "(did you mean 'px'?)"});
+  // Where only parameters may stand, a parameter is suggested, not the state of the same spelling.
+  j = base();
+  j["model"]["x0"][0] = "rr";
+  expect_refused(j, {"model.x0[0]: unknown symbol 'rr'", "(did you mean 'r'?)"});
+  j = base();
+  j["model"]["process"]["F"][0][1] = "dtt";
+  expect_refused(j, {"model.process.F[0][1]: unknown symbol 'dtt'", "(did you mean 'dt'?)"});
+  // A function: the nearest function of the language.
+  j = base();
+  j["model"]["measurements"]["pos"]["R"][0] = "sqr(r^2)";
+  expect_refused(j, {"unknown function 'sqr'", "(did you mean 'sqrt'?)"});
+  // Nothing near: no suggestion.
+  j = base();
+  j["model"]["process"]["F"][0][1] = "zzzzzz";
+  auto s = load(j);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.error().find("did you mean"), std::string::npos) << s.error();
+}
+
 }  // namespace
 }  // namespace kfw::world_trips

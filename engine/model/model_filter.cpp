@@ -166,6 +166,8 @@ Expected<std::shared_ptr<ModelResult>> run_model_filter(const ModelSpec& spec, c
 
   auto ev = ModelEval::create(spec, values);
   if (!ev) return ev.err();
+  // A Q or R that depends on dt, at every interval of the data: refused before the run.
+  if (auto st = (*ev)->check_intervals(*data.t, d.source); !st) return st.err();
 
   auto r = std::make_shared<ModelResult>();
   const std::size_t rows = d.rows();

@@ -185,7 +185,9 @@ Expected<Metrics> ModelScenario::gain(const ParamValues& v, const Dataset* data)
   const double dt = data && data->rows() >= 2 ? data->median_dt() : param(v, "sim.dt");
   auto ev = model::ModelEval::create(s, v);
   if (!ev) return ev.err();
-  if (auto st = (*ev)->set_dt(dt); !st) return Error{s.path + ": " + st.error()};
+  const std::string where =
+      data && data->rows() >= 2 ? "the median interval of " + data->source : std::string("sim.dt");
+  if (auto st = (*ev)->check_dt(dt, where); !st) return st.err();
   // All channels at one rate m: the m-step model F^m, Σ_{i<m} F^i Q F^iᵀ between updates.
   const int every = (*ev)->channel(0).every;
   int rows = 0;
@@ -381,9 +383,12 @@ Expected<std::unique_ptr<Scenario>> make_model_scenario(const json& preset,
   specs.insert(specs.end(), all.begin(), all.end());
   ParamTable table(std::move(specs));
   auto shared = std::make_shared<const model::ModelSpec>(std::move(*spec));
-  // P0, Q, R and Qc that depend on parameters only must be PSD at the preset's values.
-  auto ev = model::ModelEval::create(*shared, table.defaults());
+  // P0, Q, R and Qc that depend on parameters only must be PSD at the preset's values, and a Q
+  // or R that depends on dt at sim.dt.
+  const ParamValues defaults = table.defaults();
+  auto ev = model::ModelEval::create(*shared, defaults);
   if (!ev) return ev.err();
+  if (auto st = (*ev)->check_dt(param(defaults, "sim.dt"), "sim.dt"); !st) return st.err();
   return std::unique_ptr<Scenario>(
       std::make_unique<ModelScenario>(std::move(shared), std::move(table), std::move(title)));
 }

@@ -48,5 +48,33 @@ TEST_F(ModelTripsCli, AMisspeltKeySuggestsTheNearest) {
                  {"sym.json: model.process.F[0][1]: unknown symbol 'dtt'", "(did you mean 'dt'?)"});
 }
 
+// ---- 3. A Q that depends on dt: exit 2
+
+TEST_F(ModelTripsCli, ADtDependentQNotPsdAtSimDtIsRefusedBeforeAnyWork) {
+  const auto f =
+      model("q.json", [](Json& j) { j["model"]["process"]["Q"][1][1] = "-dt^2*sigma_a^2"; });
+  expect_refused("run " + f, 2,
+                 {"q.json: model.process.Q: not positive semidefinite at dt = 0.1 s (sim.dt)"});
+  expect_refused("simulate " + f + " --out " + out, 2, {"q.json", "model.process.Q"}, false);
+}
+
+TEST_F(ModelTripsCli, ADtDependentQNotPsdAtAnIntervalOfTheDataIsRefusedBeforeTheRun) {
+  // PSD for dt ≥ 0.05 s or so: the preset's 0.1 s passes, the data's 0.02 s does not.
+  const auto f = model("qdt.json", [](Json& j) {
+    j["model"]["process"]["Q"][1][1] = "dt^2*sigma_a^2 + 0.1*(dt - 0.05)";
+  });
+  std::ostringstream csv;
+  csv << "t,z\n";
+  double t = 0.0;
+  for (int k = 0; k < 30; ++k) {
+    csv << t << "," << 0.1 * k << "\n";
+    t += k == 11 ? 0.02 : 0.1;
+  }
+  const auto data = file("log.csv", csv.str());
+  expect_refused("run " + f + " --data " + data, 2,
+                 {"qdt.json: model.process.Q: not positive semidefinite at dt = 0.02 s",
+                  "the interval into step 12 of", "log.csv"});
+}
+
 }  // namespace
 }  // namespace kfw

@@ -147,5 +147,91 @@ TEST(ModelWorldTrips, AnUnknownSymbolSuggestsTheNearestUsableOne) {
   EXPECT_EQ(s.error().find("did you mean"), std::string::npos) << s.error();
 }
 
+// ---- 3. A Q or R that depends on dt, checked at every dt a run meets -------------------------
+
+void expect_has(const std::string& text, const std::vector<std::string>& fragments) {
+  for (const auto& f : fragments)
+    EXPECT_NE(text.find(f), std::string::npos) << "'" << f << "' not in: " << text;
+}
+
+// n rows; t[k] from the intervals dt(k) (interval into row k), z = z(k), px_true = 0.
+Dataset data(std::size_t n, double (*z)(std::size_t), double (*dt)(std::size_t) = nullptr) {
+  Dataset d;
+  d.source = "test.csv";
+  auto& t = d.add("t", n);
+  t[0] = 0.0;
+  for (std::size_t k = 1; k < n; ++k)
+    t[k] = t[k - 1] + (dt ? dt(k) : 0.1);
+  auto& zc = d.add("z", n);
+  for (std::size_t k = 0; k < n; ++k)
+    zc[k] = z(k);
+  auto& truth = d.add("px_true", n);
+  std::fill(truth.begin(), truth.end(), 0.0);
+  return d;
+}
+
+double zero(std::size_t) {
+  return 0.0;
+}
+
+TEST(ModelWorldTrips, ADtDependentQNotPsdAtSimDtIsRefusedWhenTheFileLoads) {
+  json j = base();
+  j["model"]["process"]["Q"] = {"q*dt", "q*dt - 0.5"};
+  expect_refused(j, {"model.process.Q: not positive semidefinite at dt = 0.1 s (sim.dt)",
+                     "smallest eigenvalue -0.4"});
+  j = base();
+  j["model"]["measurements"]["pos"]["R"] = {"dt - 0.2"};
+  expect_refused(j, {"model.measurements.pos.R: not positive semidefinite at dt = 0.1 s (sim.dt)"});
+  // The continuous form's Q (Van Loan) from a PSD Qc stays accepted.
+  j = base();
+  j["model"]["process"] = json::parse(R"({"A": [["0", "1"], ["0", "0"]], "Qc": ["0", "q"]})");
+  EXPECT_TRUE(load(j).ok());
+}
+
+TEST(ModelWorldTrips, ADtDependentQIsCheckedAtSimDtBeforeASimulation) {
+  json j = base();
+  j["model"]["process"]["Q"] = {"q*dt", "q*dt - 0.05"};  // PSD for dt ≥ 0.05 s
+  auto s = load(j);
+  ASSERT_TRUE(s.ok()) << s.error();
+  ParamValues v = (*s)->params().defaults();
+  v["sim.dt"] = 0.02;
+  auto d = (*s)->simulate(v);
+  ASSERT_FALSE(d.ok());
+  EXPECT_EQ(d.exit_code(), kExitInvalid) << d.error();
+  expect_has(d.error(), {kFile + ": model.process.Q: not positive semidefinite at dt = 0.02 s "
+                                 "(sim.dt)"});
+}
+
+TEST(ModelWorldTrips, ADtDependentQIsCheckedAtEveryIntervalOfTheDataBeforeTheRun) {
+  json j = base();
+  j["model"]["process"]["Q"] = {"q*dt", "q*dt - 0.05"};
+  auto s = load(j);
+  ASSERT_TRUE(s.ok()) << s.error();
+  const auto v = (*s)->params().defaults();
+  // Intervals of 0.1 s, 0.2 s and, into row 7, 0.02 s.
+  const Dataset d = data(20, zero, [](std::size_t k) { return k == 7 ? 0.02 : k % 2 ? 0.1 : 0.2; });
+  auto r = (*s)->run(d, v);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.exit_code(), kExitInvalid) << r.error();
+  expect_has(r.error(), {kFile + ": model.process.Q: not positive semidefinite at dt = 0.02 s",
+                         "the interval into step 7 of test.csv"});
+  // Without the short interval the same data runs.
+  const Dataset ok = data(20, zero, [](std::size_t k) { return k % 2 ? 0.1 : 0.2; });
+  EXPECT_TRUE((*s)->run(ok, v).ok());
+}
+
+TEST(ModelWorldTrips, ADtDependentRIsCheckedAtEveryIntervalOfTheDataBeforeTheRun) {
+  json j = base();
+  j["model"]["measurements"]["pos"]["R"] = {"dt - 0.05"};
+  auto s = load(j);
+  ASSERT_TRUE(s.ok()) << s.error();
+  const Dataset d = data(20, zero, [](std::size_t k) { return k == 12 ? 0.03 : 0.1; });
+  auto r = (*s)->run(d, (*s)->params().defaults());
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.exit_code(), kExitInvalid) << r.error();
+  expect_has(r.error(), {kFile + ": model.measurements.pos.R: not positive semidefinite at dt = "
+                                 "0.03 s (the interval into step 12 of test.csv)"});
+}
+
 }  // namespace
 }  // namespace kfw::world_trips

@@ -76,5 +76,20 @@ TEST_F(ModelTripsCli, ADtDependentQNotPsdAtAnIntervalOfTheDataIsRefusedBeforeThe
                   "the interval into step 12 of", "log.csv"});
 }
 
+// ---- 4. An update that cannot happen: exit 1
+
+TEST_F(ModelTripsCli, AnUpdateThatCannotHappenAtTheFirstDueUpdateFailsTheRun) {
+  const auto f = model("s.json", [](Json& j) {
+    j["model"]["measurements"]["position"]["H"] = Json::parse(R"([["0", "0"]])");
+    j["model"]["measurements"]["position"]["R"] = {"0"};
+  });
+  for (const char* filter : {"kf", "ukf"}) {
+    SCOPED_TRACE(filter);
+    expect_refused("run " + f + " --set filter=" + filter, 1,
+                   {"step 0 (t = 0 s): channel 'position': its first due update cannot be applied",
+                    "model.measurements.position.H", "model.measurements.position.R"});
+  }
+}
+
 }  // namespace
 }  // namespace kfw

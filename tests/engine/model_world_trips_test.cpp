@@ -233,5 +233,105 @@ TEST(ModelWorldTrips, ADtDependentRIsCheckedAtEveryIntervalOfTheDataBeforeTheRun
                                  "0.03 s (the interval into step 12 of test.csv)"});
 }
 
+// ---- 4. An update that cannot happen ---------------------------------------------------------
+
+// The run of `j` on `d` with filter `filter`.
+Expected<std::shared_ptr<const RunResult>> run_with(const json& j, const Dataset& d,
+                                                    const std::string& filter) {
+  auto s = load(j);
+  if (!s) return s.err();
+  ParamValues v = (*s)->params().defaults();
+  if (auto st = (*s)->params().apply_assignment("filter=" + filter, v); !st) return st.err();
+  return (*s)->run(d, v);
+}
+
+TEST(ModelWorldTrips, AnSThatIsNotPositiveDefiniteAtTheFirstDueUpdateStopsTheRun) {
+  json j = base();
+  j["parameters"]["r"]["value"] = 0;
+  j["model"]["measurements"]["pos"]["H"] = json::parse(R"([["0", "0"]])");  // S = H P Hᵀ + R = 0
+  const Dataset d = data(20, zero);
+  for (const char* filter : {"kf", "ekf", "ukf"}) {
+    SCOPED_TRACE(filter);
+    auto r = run_with(j, d, filter);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.exit_code(), kExitFailed) << r.error();
+    expect_has(r.error(),
+               {"step 0 (t = 0 s): channel 'pos': its first due update cannot be "
+                "applied",
+                "not positive definite", "model.measurements.pos.H", "model.measurements.pos.R"});
+  }
+}
+
+TEST(ModelWorldTrips, AMeasurementFunctionThatIsNotFiniteAtTheFirstDueUpdateStopsTheRun) {
+  json j = base();
+  j["model"]["measurements"]["pos"].erase("H");
+  j["model"]["measurements"]["pos"]["h"] = {"sqrt(px - 5)"};  // NaN near px = 0
+  const Dataset d = data(20, zero);
+  for (const char* filter : {"ekf", "ukf"}) {
+    SCOPED_TRACE(filter);
+    auto r = run_with(j, d, filter);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.exit_code(), kExitFailed) << r.error();
+    expect_has(r.error(), {"step 0 (t = 0 s): channel 'pos'",
+                           "model.measurements.pos.h[0] = \"sqrt(px - 5)\" is not finite"});
+  }
+}
+
+// H = 0.25 and R = 0.01 until t = 0.35 s, then both 0: S = 0 from step 4 on.
+json fading_h() {
+  json j = base();
+  j["parameters"]["r"]["value"] = 0;
+  j["model"]["measurements"]["pos"]["H"] =
+      json::parse(R"j([["0.25*max(0, 0.35 - t)/(0.35 - t)", "0"]])j");
+  j["model"]["measurements"]["pos"]["R"] = {"r + 0.01*max(0, 0.35 - t)/(0.35 - t)"};
+  return j;
+}
+
+TEST(ModelWorldTrips, SkipsAfterASuccessfulFirstUpdateStayWarnings) {
+  const Dataset d = data(20, zero);
+  for (const char* filter : {"kf", "ukf"}) {
+    SCOPED_TRACE(filter);
+    auto r = run_with(fading_h(), d, filter);
+    ASSERT_TRUE(r.ok()) << r.error();
+    bool found = false;
+    for (const auto& w : (*r)->warnings) {
+      found =
+          found || w.find("channel 'pos': 16 updates skipped, the first at step 4 (t = 0.4 s)") !=
+                       std::string::npos;
+    }
+    EXPECT_TRUE(found) << ((*r)->warnings.empty() ? "no warning" : (*r)->warnings.front());
+  }
+}
+
+TEST(ModelWorldTrips, AChannelThatAppliesNoUpdateFailsTheRun) {
+  // The first due update is gated (z far off), every later one skipped: no update at all.
+  json j = fading_h();
+  j["model"]["measurements"]["pos"]["gate"] = 0.5;
+  j["model"]["measurements"]["pos"]["H"] =
+      json::parse(R"j([["max(0, 0.05 - t)/(0.05 - t)", "0"]])j");
+  j["model"]["measurements"]["pos"]["R"] = {"r"};
+  const Dataset d = data(20, [](std::size_t) { return 1e3; });
+  for (const char* filter : {"kf", "ukf"}) {
+    SCOPED_TRACE(filter);
+    auto r = run_with(j, d, filter);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.exit_code(), kExitFailed) << r.error();
+    expect_has(r.error(), {"channel 'pos' applied no update in the whole run: 19 skipped, 1 gated",
+                           "the first at step 1 (t = 0.1 s)", "model.measurements.pos.R"});
+  }
+}
+
+TEST(ModelWorldTrips, AChannelGatedEveryTimeIsADecisionNotABreakdown) {
+  json j = base();
+  j["model"]["measurements"]["pos"]["gate"] = 0.5;
+  const Dataset d = data(20, [](std::size_t) { return 1e6; });
+  for (const char* filter : {"kf", "ukf"}) {
+    SCOPED_TRACE(filter);
+    auto r = run_with(j, d, filter);
+    ASSERT_TRUE(r.ok()) << r.error();
+    EXPECT_EQ((*r)->metrics.at("gated.pos"), 20.0);
+  }
+}
+
 }  // namespace
 }  // namespace kfw::world_trips

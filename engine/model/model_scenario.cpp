@@ -20,6 +20,7 @@
 namespace kfw {
 
 using nlohmann::json;
+using OJson = nlohmann::ordered_json;
 
 namespace {
 
@@ -253,13 +254,13 @@ std::optional<ModelLayout> model_layout_of(const Scenario& s) {
   return l;
 }
 
-Expected<ParamTable> parse_param_table(const json& params, const std::string& path) {
+Expected<ParamTable> parse_param_table(const OJson& params, const std::string& path) {
   std::vector<ParamSpec> specs;
   if (params.is_null()) return ParamTable(specs);
   if (!params.is_object()) return Error{path + ": parameters: expected an object"};
   for (auto it = params.begin(); it != params.end(); ++it) {
     const std::string where = path + ": parameters." + it.key();
-    const json& e = it.value();
+    const OJson& e = it.value();
     if (!e.is_object()) return Error{where + ": expected {\"value\", \"min\", \"max\", ...}"};
     ParamSpec s;
     s.key = it.key();
@@ -313,7 +314,7 @@ Expected<ParamTable> parse_param_table(const json& params, const std::string& pa
       }
     }
     if (!e.contains("value")) return Error{where + ": missing 'value'"};
-    const json& v = e["value"];
+    const OJson& v = e["value"];
     if (v.is_string() && s.scale == Scale::kChoice) {
       auto c = std::find(s.choices.begin(), s.choices.end(), v.get<std::string>());
       if (c == s.choices.end()) {
@@ -333,7 +334,7 @@ Expected<ParamTable> parse_param_table(const json& params, const std::string& pa
   return ParamTable(std::move(specs));
 }
 
-Expected<std::unique_ptr<Scenario>> make_model_scenario(const json& preset,
+Expected<std::unique_ptr<Scenario>> make_model_scenario(const OJson& preset,
                                                         const std::string& path) {
   if (!preset.is_object()) return Error{path + ": a preset must be a JSON object"};
   if (preset.value("scenario", std::string()) != "model") {
@@ -342,22 +343,25 @@ Expected<std::unique_ptr<Scenario>> make_model_scenario(const json& preset,
   std::string title = "model";
   if (auto it = preset.find("title"); it != preset.end() && it->is_string()) title = *it;
   // `filter` is declared by the model's linearity (kf only for linear models): read apart.
-  json params = preset.value("parameters", json());
-  json filter_entry;
+  OJson params = preset.value("parameters", OJson());
+  OJson filter_entry;
+  std::size_t filter_place = 0;  // where the file declares it, among its parameters
   if (params.is_object() && params.contains("filter")) {
+    for (auto it = params.begin(); it != params.end() && it.key() != "filter"; ++it)
+      ++filter_place;
     filter_entry = params["filter"];
     params.erase("filter");
   }
   auto declared = parse_param_table(params, path);
   if (!declared) return declared.err();
   if (!preset.contains("model")) return Error{path + ": missing key 'model'"};
-  auto spec = model::parse_model(preset["model"], *declared, path);
+  auto spec = model::parse_model(json(preset["model"]), *declared, path);
   if (!spec) return spec.err();
 
   const auto filters = model::filter_choices(*spec);
   std::string filter = spec->filter;
   if (!filter_entry.is_null()) {
-    const json v = filter_entry.is_object() ? filter_entry.value("value", json()) : filter_entry;
+    const OJson v = filter_entry.is_object() ? filter_entry.value("value", OJson()) : filter_entry;
     if (v.is_string()) {
       filter = v.get<std::string>();
     } else if (v.is_number() && v.get<double>() >= 0.0 &&
@@ -377,9 +381,13 @@ Expected<std::unique_ptr<Scenario>> make_model_scenario(const json& preset,
   std::vector<ParamSpec> specs = declared->specs();
   std::vector<ParamSpec> all;
   for (auto& s : standard_params(filters, filter)) {
-    if (s.key == "filter" || !declared->find(s.key)) all.push_back(s);
+    if (s.key == "filter" && !filter_entry.is_null()) {
+      specs.insert(specs.begin() + static_cast<std::ptrdiff_t>(filter_place), s);
+    } else if (s.key == "filter" || !declared->find(s.key)) {
+      all.push_back(s);
+    }
   }
-  // Declared parameters first (the model's own), then the standard ones.
+  // Declared parameters first (the model's own, in the file's order), then the standard ones.
   specs.insert(specs.end(), all.begin(), all.end());
   ParamTable table(std::move(specs));
   auto shared = std::make_shared<const model::ModelSpec>(std::move(*spec));

@@ -91,5 +91,27 @@ TEST_F(ModelTripsCli, AnUpdateThatCannotHappenAtTheFirstDueUpdateFailsTheRun) {
   }
 }
 
+// ---- 5. Parameters in the file's order
+
+TEST_F(ModelTripsCli, ParamsAreListedInTheFilesOrder) {
+  for (const char* name : {"cv1d", "pendulum", "helicopter_indirect"}) {
+    SCOPED_TRACE(name);
+    const std::string path = std::string(KFW_SOURCE_DIR) + "/presets/models/" + name + ".json";
+    const auto c = testing::cli("params " + path, "2>/dev/null");
+    ASSERT_EQ(c.code, 0) << c.text;
+    std::vector<std::string> listed;
+    std::istringstream lines(c.text);
+    for (std::string line; std::getline(lines, line);)
+      listed.push_back(line.substr(0, line.find('\t')));
+    std::vector<std::string> declared;
+    const Json j = Json::parse(source("presets/models/" + std::string(name) + ".json"));
+    for (const auto& [key, value] : j.at("parameters").items())
+      declared.push_back(key);
+    ASSERT_GE(listed.size(), declared.size());
+    listed.resize(declared.size());
+    EXPECT_EQ(listed, declared);
+  }
+}
+
 }  // namespace
 }  // namespace kfw

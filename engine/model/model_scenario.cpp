@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -79,7 +80,10 @@ class ModelScenario final : public Scenario {
   std::string name() const override { return "model"; }
   std::string title() const override { return title_; }
   const ParamTable& params() const override { return table_; }
-  std::string primary_state() const override { return spec_->primary; }
+  // One primary state: finalize_run takes rmse from it; several: run_impl sets it.
+  std::string primary_state() const override {
+    return spec_->primary.size() == 1 ? spec_->primary.front() : std::string();
+  }
   const std::shared_ptr<const model::ModelSpec>& spec() const { return spec_; }
 
   std::vector<ColumnSpec> columns() const override {
@@ -161,6 +165,7 @@ class ModelScenario final : public Scenario {
         e[k] = wrap(res.x[i][k] - res.truth[i][k], a);
       m["rmse." + spec_->states[i].name] = rmse_finite(e, zero);
     }
+    if (spec_->primary.size() > 1) primary_rmse(res);
     for (const auto& c : res.chans) {
       for (const auto& cs : spec_->channels) {
         if (cs.name == c.name && cs.gate > 0.0) m["gated." + c.name] = static_cast<double>(c.gated);
@@ -171,6 +176,34 @@ class ModelScenario final : public Scenario {
   }
 
  private:
+  // `rmse` of several primary states: sqrt(mean over the steps of Σ err_i²), angles wrapped,
+  // over the steps where every one has an estimate and a truth value.
+  void primary_rmse(model::ModelResult& res) const {
+    std::vector<std::size_t> idx;
+    for (const auto& name : spec_->primary) {
+      const auto i = static_cast<std::size_t>(spec_->state_index(name));
+      if (res.truth[i].empty()) {
+        res.undefined.emplace("rmse", "no truth for the primary state '" + name + "' in the data");
+        return;
+      }
+      idx.push_back(i);
+    }
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (std::size_t k = 0; k < res.steps(); ++k) {
+      double e2 = 0.0;
+      for (std::size_t i : idx) {
+        const double e = wrap(res.x[i][k] - res.truth[i][k], spec_->states[i].angle);
+        e2 += e * e;
+      }
+      if (!std::isfinite(e2)) continue;
+      sum += e2;
+      ++count;
+    }
+    res.metrics["rmse"] = count ? std::sqrt(sum / static_cast<double>(count))
+                                : std::numeric_limits<double>::quiet_NaN();
+  }
+
   std::shared_ptr<const model::ModelSpec> spec_;
   ParamTable table_;
   std::string title_;

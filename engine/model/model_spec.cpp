@@ -392,6 +392,35 @@ Expected<ChannelSpec> parse_channel(const Reader& p, const std::string& name, co
   return c;
 }
 
+// "primary": a state, or a non-empty list of distinct states (default: the first state).
+Status parse_primary(const Reader& p, const json& j, ModelSpec& m) {
+  const std::string key = "model.primary";
+  auto it = j.find("primary");
+  if (it == j.end() || it->is_null()) {
+    m.primary = {m.states.front().name};
+    return Ok{};
+  }
+  const bool list = it->is_array() && !it->empty();
+  if (!it->is_string() && !list) {
+    return p.error(key, "expected a state or a non-empty list of states");
+  }
+  const json names = list ? *it : json::array({*it});
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string at = list ? idx(key, i) : key;
+    if (!names[i].is_string()) return p.error(at, "expected a state name");
+    const std::string name = names[i].get<std::string>();
+    if (m.state_index(name) < 0) {
+      return p.error(at,
+                     quote_token(name) + " is not a state" + did_you_mean(name, state_names(m)));
+    }
+    if (std::find(m.primary.begin(), m.primary.end(), name) != m.primary.end()) {
+      return p.error(at, quote_token(name) + " is named twice");
+    }
+    m.primary.push_back(name);
+  }
+  return Ok{};
+}
+
 }  // namespace
 
 Dep MatrixSpec::dep() const {
@@ -598,12 +627,7 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
       m.truth[static_cast<std::size_t>(s)] = t->get<std::string>();
     }
   }
-  auto primary = p.string(j, "primary", key, false, m.states.front().name);
-  if (!primary) return primary.err();
-  if (m.state_index(*primary) < 0) {
-    return p.error("model.primary", "'" + *primary + "' is not a state");
-  }
-  m.primary = *primary;
+  if (auto st = parse_primary(p, j, m); !st) return st.err();
   const auto choices = filter_choices(m);
   auto filter = p.string(j, "filter", key, false, choices.front());
   if (!filter) return filter.err();

@@ -113,5 +113,23 @@ TEST_F(ModelTripsCli, ParamsAreListedInTheFilesOrder) {
   }
 }
 
+// ---- 6. A primary of several states
+
+TEST_F(ModelTripsCli, APrimaryOfSeveralStatesGivesTheEuclideanRmse) {
+  const auto f = model(
+      "primary.json",
+      [](Json& j) {
+        j["model"]["primary"] = {"px", "py"};
+      },
+      "cv2d");
+  const auto c = testing::cli("run " + f + " --set sim.duration=20 --metrics " + metrics,
+                              "2>/dev/null >/dev/null");
+  ASSERT_EQ(c.code, 0) << c.text;
+  const auto m = nlohmann::json::parse(read(metrics));
+  const double px = m.at("rmse.px"), py = m.at("rmse.py"), rmse = m.at("rmse");
+  EXPECT_NEAR(rmse, std::sqrt(px * px + py * py), 1e-9 * rmse);
+  EXPECT_GT(rmse, std::max(px, py));
+}
+
 }  // namespace
 }  // namespace kfw

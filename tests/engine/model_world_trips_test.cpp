@@ -434,5 +434,79 @@ TEST(ModelWorldTrips, AnObjectOfManyKeysIsReadInOrderWithoutAQuadraticCost) {
             std::chrono::seconds(5) * testing::kTimeScale);
 }
 
+// ---- 6. A primary of several states -----------------------------------------------------------
+
+json cv2d() {
+  return json::parse(read(kModels + "cv2d.json"));
+}
+
+TEST(ModelWorldTrips, APrimaryOfSeveralStatesIsTheEuclideanRmse) {
+  json j = cv2d();
+  j["model"]["primary"] = {"px", "py"};
+  auto s = load(j);
+  ASSERT_TRUE(s.ok()) << s.error();
+  EXPECT_EQ((*s)->primary_state(), "");  // the scenario sets rmse itself
+  ParamValues v = (*s)->params().defaults();
+  v["sim.duration"] = 20;
+  auto d = (*s)->simulate(v);
+  ASSERT_TRUE(d.ok()) << d.error();
+  auto r = (*s)->run(*d, v);
+  ASSERT_TRUE(r.ok()) << r.error();
+  const Metrics& m = (*r)->metrics;
+  // sqrt(mean(ex² + ey²)), from the estimates and the truth.
+  const auto states = (*r)->states();
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < (*r)->steps(); ++k) {
+    double e2 = 0.0;
+    for (const auto& st : states) {
+      if (st.key != "px" && st.key != "py") continue;
+      const double e = (*st.estimate)[k] - (*st.truth)[k];
+      e2 += e * e;
+    }
+    sum += e2;
+    ++count;
+  }
+  const double expected = std::sqrt(sum / static_cast<double>(count));
+  EXPECT_NEAR(m.at("rmse"), expected, 1e-10 * expected);
+  const double px = m.at("rmse.px"), py = m.at("rmse.py");
+  EXPECT_NEAR(m.at("rmse"), std::sqrt(px * px + py * py), 1e-9 * expected);
+  // One state in a list, or as a name: the RMSE of that state, as before.
+  for (const json& one : {json("px"), json::array({"px"})}) {
+    j["model"]["primary"] = one;
+    auto s1 = load(j);
+    ASSERT_TRUE(s1.ok()) << s1.error();
+    EXPECT_EQ((*s1)->primary_state(), "px");
+    auto r1 = (*s1)->run(*d, v);
+    ASSERT_TRUE(r1.ok()) << r1.error();
+    EXPECT_EQ((*r1)->metrics.at("rmse"), (*r1)->metrics.at("rmse.px"));
+  }
+}
+
+TEST(ModelWorldTrips, APrimaryOfSeveralStatesWithoutTheirTruthIsUndefined) {
+  json j = base();
+  j["model"]["primary"] = {"px", "vx"};  // vx has no truth column
+  auto s = load(j);
+  ASSERT_TRUE(s.ok()) << s.error();
+  auto r = (*s)->run(data(20, zero), (*s)->params().defaults());
+  ASSERT_TRUE(r.ok()) << r.error();
+  EXPECT_EQ((*r)->metrics.count("rmse"), 0u);
+  ASSERT_EQ((*r)->undefined.count("rmse"), 1u);
+  EXPECT_NE((*r)->undefined.at("rmse").find("'vx'"), std::string::npos)
+      << (*r)->undefined.at("rmse");
+}
+
+TEST(ModelWorldTrips, ABadPrimaryIsRefused) {
+  json j = base();
+  j["model"]["primary"] = json::array();
+  expect_refused(j, {"model.primary: expected a state or a non-empty list of states"});
+  j["model"]["primary"] = {"px", "pxx"};
+  expect_refused(j, {"model.primary[1]: 'pxx' is not a state (did you mean 'px'?)"});
+  j["model"]["primary"] = {"px", "px"};
+  expect_refused(j, {"model.primary[1]: 'px' is named twice"});
+  j["model"]["primary"] = 3;
+  expect_refused(j, {"model.primary: expected a state or a non-empty list of states"});
+}
+
 }  // namespace
 }  // namespace kfw::world_trips

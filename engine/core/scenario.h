@@ -151,9 +151,9 @@ class ScenarioRegistry {
  public:
   using Factory = std::function<std::unique_ptr<Scenario>()>;
   // A scenario built from the preset file itself (a model file, "scenario": "model"): reads the
-  // whole preset; errors name the file (`path`) and the key.
+  // whole preset, its keys in the file's order; errors name the file (`path`) and the key.
   using PresetFactory = std::function<Expected<std::unique_ptr<Scenario>>(
-      const nlohmann::json& preset, const std::string& path)>;
+      const nlohmann::ordered_json& preset, const std::string& path)>;
   void add(std::string name, Factory factory);
   void add_from_preset(std::string name, PresetFactory factory);
   // The compiled scenarios' names (not those built from a preset).

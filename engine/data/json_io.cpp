@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <unordered_map>
 #include <vector>
 
 #include "core/suggest.h"
@@ -134,27 +135,91 @@ std::string json_type_name(const json& j) {
   return "a value";
 }
 
-Expected<json> parse_json_document(const std::string& text, const std::string& path) {
+namespace {
+
+// The checks before a DOM parse: the size limit, then a SAX pass that stops at the first problem
+// with the key path (the DOM parse after it cannot fail on anything the pass accepted).
+Status check_json_text(const std::string& text, const std::string& path) {
   if (text.size() > kMaxJsonBytes) {
     return Error{path + ": " + std::to_string(text.size()) + " bytes: larger than the " +
                  std::to_string(kMaxJsonBytes / (1024 * 1024)) + " MB limit for a JSON file"};
   }
-  // A SAX pass first: it stops at the first problem with the key path; the DOM parse after it
-  // cannot fail on anything the pass accepted.
   PathTracker tracker;
   if (!json::sax_parse(text, &tracker, json::input_format_t::json, true)) {
     std::string where = path;
     if (tracker.byte != std::string::npos) where += ":" + line_col_of(text, tracker.byte);
     return Error{where + ": " + (tracker.error.empty() ? "invalid JSON" : tracker.error)};
   }
-  try {
-    return json::parse(text);
-  } catch (const json::exception& e) {
-    return Error{path + ": invalid JSON: " + std::string(e.what())};
-  }
+  return Ok{};
 }
 
-Expected<json> read_json_document(const std::string& path, const char* what) {
+// Builds an ordered document from SAX events, each key found through a hash table: nlohmann's own
+// parser inserts a key of an ordered object after a linear search for it (a 10 MB object of short
+// keys took minutes). A repeated key keeps its first place and its last value, as there.
+class OrderedBuilder final : public nlohmann::json_sax<nlohmann::ordered_json> {
+ public:
+  using OJson = nlohmann::ordered_json;
+  OJson root;
+
+  bool null() override { return put(nullptr); }
+  bool boolean(bool v) override { return put(v); }
+  bool number_integer(number_integer_t v) override { return put(v); }
+  bool number_unsigned(number_unsigned_t v) override { return put(v); }
+  bool number_float(number_float_t v, const string_t&) override { return put(v); }
+  bool string(string_t& v) override { return put(std::move(v)); }
+  bool binary(binary_t& v) override { return put(OJson::binary(std::move(v))); }
+  bool start_object(std::size_t) override { return open(OJson::object()); }
+  bool key(string_t& k) override {
+    Level& l = stack_.back();
+    OJson::object_t::Container& items = l.value->get_ref<OJson::object_t&>();
+    const auto [at, fresh] = l.index.try_emplace(k, items.size());
+    if (fresh) items.emplace_back(k, nullptr);
+    l.slot = &items[at->second].second;
+    return true;
+  }
+  bool end_object() override { return close(); }
+  bool start_array(std::size_t) override { return open(OJson::array()); }
+  bool end_array() override { return close(); }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+    return false;
+  }
+
+ private:
+  struct Level {
+    OJson* value;
+    std::unordered_map<std::string, std::size_t> index;  // key -> place (objects)
+    OJson* slot;                                         // the value of the last key
+  };
+  std::vector<Level> stack_;  // a container's place is stable while it is open
+
+  OJson* place(OJson v) {
+    if (stack_.empty()) {
+      root = std::move(v);
+      return &root;
+    }
+    Level& l = stack_.back();
+    if (l.value->is_array()) {
+      l.value->push_back(std::move(v));
+      return &l.value->back();
+    }
+    *l.slot = std::move(v);
+    return l.slot;
+  }
+  bool put(OJson v) {
+    place(std::move(v));
+    return true;
+  }
+  bool open(OJson v) {
+    stack_.push_back({place(std::move(v)), {}, nullptr});
+    return true;
+  }
+  bool close() {
+    stack_.pop_back();
+    return true;
+  }
+};
+
+Expected<std::string> read_json_text(const std::string& path, const char* what) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
     return Error{path + ": is a directory, not a " + std::string(what) + " file"};
@@ -168,7 +233,39 @@ Expected<json> read_json_document(const std::string& path, const char* what) {
   }
   std::ostringstream os;
   os << in.rdbuf();
-  return parse_json_document(os.str(), path);
+  return os.str();
+}
+
+}  // namespace
+
+Expected<json> parse_json_document(const std::string& text, const std::string& path) {
+  if (auto st = check_json_text(text, path); !st) return st.err();
+  try {
+    return json::parse(text);
+  } catch (const json::exception& e) {
+    return Error{path + ": invalid JSON: " + std::string(e.what())};
+  }
+}
+
+Expected<nlohmann::ordered_json> parse_ordered_json_document(const std::string& text,
+                                                             const std::string& path) {
+  if (auto st = check_json_text(text, path); !st) return st.err();
+  OrderedBuilder builder;
+  if (!nlohmann::ordered_json::sax_parse(text, &builder)) return Error{path + ": invalid JSON"};
+  return std::move(builder.root);
+}
+
+Expected<json> read_json_document(const std::string& path, const char* what) {
+  auto text = read_json_text(path, what);
+  if (!text) return text.err();
+  return parse_json_document(*text, path);
+}
+
+Expected<nlohmann::ordered_json> read_ordered_json_document(const std::string& path,
+                                                            const char* what) {
+  auto text = read_json_text(path, what);
+  if (!text) return text.err();
+  return parse_ordered_json_document(*text, path);
 }
 
 }  // namespace kfw

@@ -20,6 +20,12 @@ inline constexpr std::size_t kMaxJsonDepth = 256;
 Expected<nlohmann::json> parse_json_document(const std::string& text, const std::string& path);
 // Reads a file (refusing directories and files over 10 MB) and parses it.
 Expected<nlohmann::json> read_json_document(const std::string& path, const char* what);
+// The same, every object's keys kept in the file's order (a model file's parameters are listed,
+// and its sliders laid out, in the order the file declares them).
+Expected<nlohmann::ordered_json> parse_ordered_json_document(const std::string& text,
+                                                             const std::string& path);
+Expected<nlohmann::ordered_json> read_ordered_json_document(const std::string& path,
+                                                            const char* what);
 
 // "parameters.Q.value", "model.h[0]": a child key appended to a dotted path.
 std::string key_path(std::string_view parent, std::string_view key);

@@ -19,6 +19,8 @@ namespace kfw {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+// Presets are read keeping the file's order of keys: a model file's parameters are its table.
+using OJson = nlohmann::ordered_json;
 
 namespace {
 
@@ -62,7 +64,7 @@ bool allowed(const std::string& key, const std::vector<std::string>& keys) {
 }
 
 // Reads one parameter entry into the preset. `where` is "FILE: parameters.KEY".
-Status read_parameter(Preset& p, const ParamTable& table, const std::string& key, const json& e,
+Status read_parameter(Preset& p, const ParamTable& table, const std::string& key, const OJson& e,
                       const std::string& file) {
   const std::string where = file + ": " + key_path("parameters", key);
   const ParamSpec* spec = table.find(key);
@@ -147,7 +149,7 @@ Status read_parameter(Preset& p, const ParamTable& table, const std::string& key
   return Ok{};
 }
 
-Expected<Preset> preset_from_json(const json& j, const std::string& path) {
+Expected<Preset> preset_from_json(const OJson& j, const std::string& path) {
   if (!j.is_object()) return Error{path + ": a preset must be a JSON object"};
   for (auto it = j.begin(); it != j.end(); ++it) {
     if (!allowed(it.key(), kTopKeys)) {
@@ -269,13 +271,13 @@ Expected<Preset> preset_from_json(const json& j, const std::string& path) {
 }  // namespace
 
 Expected<Preset> parse_preset(const std::string& text, const std::string& path) {
-  auto doc = parse_json_document(text, path);
+  auto doc = parse_ordered_json_document(text, path);
   if (!doc) return doc.err();
   return preset_from_json(*doc, path);
 }
 
 Expected<Preset> load_preset(const std::string& path) {
-  auto doc = read_json_document(path, "preset");
+  auto doc = read_ordered_json_document(path, "preset");
   if (!doc) return doc.err();
   return preset_from_json(*doc, path);
 }

@@ -39,9 +39,9 @@ struct Preset {
   // Slider ranges narrowed by the preset, within the table's hard limits.
   std::map<std::string, std::pair<double, double>, std::less<>> ranges;
   std::map<std::string, ParamMeta, std::less<>> meta;  // every key of the table
-  Mapping mapping;                  // role -> column, unit, scale/offset (import fills it)
-  nlohmann::json model;             // the user-model block ("scenario": "model"); null otherwise
-  nlohmann::json parameters_block;  // a model preset's own parameter declarations
+  Mapping mapping;       // role -> column, unit, scale/offset (import fills it)
+  nlohmann::json model;  // the user-model block ("scenario": "model"); null otherwise
+  nlohmann::ordered_json parameters_block;  // a model preset's own parameters, in file order
   // The simulator draws x0 from the filter's prior (the instance is swapped).
   bool sim_x0_from_prior = false;
   // The tune objective when none is asked for (a metric key or a combined objective such as

@@ -212,6 +212,23 @@ Error at(const std::string& key, const std::string& what, std::size_t pos0,
                quoted(text)};
 }
 
+// " (did you mean 'px'?)": the function, or the symbol usable here (or pi), nearest to a
+// misspelt name.
+std::string nearest_name(const std::string& name, bool call, const Symbols& symbols,
+                         KindMask allowed) {
+  std::vector<std::string> names;
+  if (call) {
+    for (const auto& f : language_functions())
+      names.emplace_back(f.name);
+  } else {
+    for (std::size_t i = 0; i < symbols.names.size(); ++i) {
+      if (symbols.kinds[i] & allowed) names.push_back(symbols.names[i]);
+    }
+    names.emplace_back("pi");
+  }
+  return did_you_mean(name, names);
+}
+
 // The position of the first use of identifier `name` in `text` (numbers skipped), or npos.
 std::size_t find_identifier(const std::string& text, const std::string& name) {
   return for_each_identifier(text, [&](std::size_t start, std::size_t len) {
@@ -224,6 +241,7 @@ std::size_t find_identifier(const std::string& text, const std::string& name) {
 using detail::at;
 using detail::find_identifier;
 using detail::first_line;
+using detail::nearest_name;
 using detail::quoted;
 
 int Symbols::add(const std::string& name, SymbolKind kind) {
@@ -355,8 +373,11 @@ Expected<Expr> compile_expr(const std::string& text, const std::string& key, con
       for (const auto& f : language_functions())
         is_fn = is_fn || f.name == tok;
       if (!is_fn && symbols.find(tok) < 0 && tok != "pi") {
-        return at(key, std::string(call ? "unknown function '" : "unknown symbol '") + tok + "'",
-                  pos, text);
+        Error err =
+            at(key, std::string(call ? "unknown function '" : "unknown symbol '") + tok + "'", pos,
+               text);
+        err.message += nearest_name(tok, call, symbols, allowed);
+        return err;
       }
     }
     static const std::regex kWhere(R"(\s*(found\s+)?at (expression )?position \d+\.?)");

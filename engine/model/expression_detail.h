@@ -18,6 +18,10 @@ std::string quoted(const std::string& text);
 // "<key>: <what> at position P: "<text>"", P counting characters from 1.
 Error at(const std::string& key, const std::string& what, std::size_t pos0,
          const std::string& text);
+// " (did you mean 'px'?)": the function (`call`), or the symbol of a kind in `allowed` (or pi),
+// nearest to a misspelt name; "" when none is near.
+std::string nearest_name(const std::string& name, bool call, const Symbols& symbols,
+                         KindMask allowed);
 // The position of the first use of identifier `name` in `text` (numbers skipped), or npos.
 std::size_t find_identifier(const std::string& text, const std::string& name);
 // GiNaC reads `expanded` (the user's `text` with its sub-expressions expanded) as muparser does,

@@ -218,8 +218,10 @@ Status check_symbolic(const std::string& text, const std::string& expanded, cons
     static const std::regex kNoFunction(R"(no function \"(\w+)\")");
     if (std::smatch m; std::regex_search(what, m, kNoFunction)) {
       const std::size_t pos = find_identifier(text, m[1].str());
-      return at(key, "unknown function '" + m[1].str() + "'", pos == std::string::npos ? 0 : pos,
-                text);
+      Error err = at(key, "unknown function '" + m[1].str() + "'",
+                     pos == std::string::npos ? 0 : pos, text);
+      err.message += nearest_name(m[1].str(), true, symbols, 0);
+      return err;
     }
     return Error{key + ": not accepted by the symbolic differentiator (" + what +
                  "); add parentheses: " + quoted(text)};

@@ -1,9 +1,13 @@
 #include "model/model_eval.h"
 
 #include <Eigen/Eigenvalues>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <sstream>
+#include <unordered_set>
 
 #include "core/statistics.h"
 #include "filter/discretize.h"
@@ -258,7 +262,61 @@ Status ModelEval::bind_continuous(ExprGroup& param) {
   return Ok{};
 }
 
-Status ModelEval::set_dt(double dt) {
+Status ModelEval::check_dt(double dt, const std::string& where) {
+  return check_at(dt, [&] { return where; });
+}
+
+Status ModelEval::check_intervals(const std::vector<double>& t, const std::string& source) {
+  // Each distinct interval once (a clock that jitters has about as many as rows: the set stops
+  // growing at 4096 and the rest are checked as they come).
+  constexpr std::size_t kSeen = 4096;
+  std::unordered_set<double> seen;
+  // Intervals met recently, direct-mapped by their bits: a clock of a few intervals (the
+  // helicopter log has 18, changing at 40 % of its rows) costs a multiply and a compare a row.
+  std::array<double, 64> recent;
+  recent.fill(std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t k = 1; k < t.size(); ++k) {
+    const double dt = t[k] - t[k - 1];
+    double& slot = recent[std::bit_cast<std::uint64_t>(dt) * 0x9E3779B97F4A7C15ull >> 58];
+    if (dt == slot || !std::isfinite(dt)) continue;
+    slot = dt;
+    if (seen.count(dt)) continue;
+    auto st = check_at(
+        dt, [&] { return "the interval into step " + std::to_string(k) + " of " + source; });
+    if (!st) return st;
+    if (seen.size() < kSeen) seen.insert(dt);
+  }
+  intervals_checked_ = true;
+  return Ok{};
+}
+
+Status ModelEval::check_at(double dt, const std::function<std::string()>& where) {
+  const auto at = [&] { return " at dt = " + number(dt) + " s (" + where() + ")"; };
+  if (auto st = eval_dt(dt, false); !st) return Error{st.error() + at()};
+  const MatX* M = nullptr;
+  if (const MatrixSpec* s = noise_not_psd(M)) {
+    return Error{spec_.path + ": " + s->key + ": not positive semidefinite" + at() +
+                 " (smallest eigenvalue " + number(min_eigenvalue(*M)) + ")"};
+  }
+  return Ok{};
+}
+
+const MatrixSpec* ModelEval::noise_not_psd(const MatX*& M) const {
+  const ProcessSpec& pr = spec_.process;
+  if ((pr.form == ProcessForm::kContinuous || pr.Q.dep() == Dep::kDt) && !is_psd(Q)) {
+    M = &Q;
+    return pr.form == ProcessForm::kContinuous ? &pr.Qc : &pr.Q;
+  }
+  for (std::size_t c = 0; c < channels_.size(); ++c) {
+    if (spec_.channels[c].R.dep() == Dep::kDt && !is_psd(channels_[c].R)) {
+      M = &channels_[c].R;
+      return &spec_.channels[c].R;
+    }
+  }
+  return nullptr;
+}
+
+Status ModelEval::eval_dt(double dt, bool check_q) {
   if (dt == dt_) return Ok{};
   dt_ = dt;
   vars_[static_cast<std::size_t>(spec_.dt_slot)] = dt;
@@ -285,7 +343,7 @@ Status ModelEval::set_dt(double dt) {
   } else {
     p_dt_.eval();
   }
-  if (pr.form == ProcessForm::kContinuous || pr.Q.dep() == Dep::kDt) {
+  if (check_q && (pr.form == ProcessForm::kContinuous || pr.Q.dep() == Dep::kDt)) {
     if (!is_psd(Q)) {
       return Error{"model.process.Q is not positive semidefinite at dt = " + number(dt) +
                    " (smallest eigenvalue " + number(min_eigenvalue(Q)) + ")"};

@@ -4,6 +4,7 @@
 // on t or inputs once per step; those that depend on states at each linearisation or sigma point.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,8 +38,18 @@ class ModelEval {
   void set_inputs(const double* u);
   void set_state(const double* x);
   // Makes dt current: re-evaluates what depends on it when it differs from the last value.
-  // Fails (message without the step) when the discretisation fails or Q is not PSD there.
-  Status set_dt(double dt);
+  // Fails (message without the step) when the discretisation fails or Q is not PSD there (not
+  // re-checked once check_intervals has passed).
+  Status set_dt(double dt) {
+    if (dt == dt_) return Ok{};
+    return eval_dt(dt, !intervals_checked_);
+  }
+  // A Q or R that depends on dt must be PSD at every interval a run meets. check_dt: at one dt
+  // (`where` names it, e.g. "sim.dt"); check_intervals: at each distinct interval of the times
+  // `t` of the data `source`. An Error (exit 2) names the file, the key and the dt. The process
+  // matrices evaluated join the cache.
+  Status check_dt(double dt, const std::string& where);
+  Status check_intervals(const std::vector<double>& t, const std::string& source);
 
   // The process at the current symbols. step: entries of t and inputs (once per step);
   // f / f_jacobian / noise: what depends on states, at the state set by set_state: fx = f(x) (or
@@ -107,6 +118,11 @@ class ModelEval {
   Status set_rk4_steps(double dt);
   void rk4(bool jacobian);
   void continuous_noise();
+  Status eval_dt(double dt, bool check_q);  // set_dt, Q checked on evaluation when asked
+  Status check_at(double dt, const std::function<std::string()>& where);  // check_dt
+  // The key of the first Q or R that depends on dt and is not PSD at the current dt, and the
+  // matrix; null when none.
+  const MatrixSpec* noise_not_psd(const MatX*& M) const;
 
   const ModelSpec& spec_;
   std::vector<double> vars_;  // sized once: the muparser groups hold pointers into it
@@ -119,7 +135,8 @@ class ModelEval {
   int rk4_steps_ = 1;
   bool rk4_ = false;  // the continuous nonlinear form
   bool q_varies_ = false;
-  bool process_dt_ = false;  // the process matrices depend on dt
+  bool process_dt_ = false;         // the process matrices depend on dt
+  bool intervals_checked_ = false;  // check_intervals passed: set_dt need not check Q
 
   struct DtEntry {
     double dt;

@@ -1,6 +1,7 @@
 #include "model/model_filter.h"
 
 #include <cmath>
+#include <sstream>
 
 #include "model/model_filter_detail.h"
 
@@ -101,6 +102,70 @@ double detail::Context::nees(const detail::Dims<Eigen::Dynamic>::Meas& err,
   return kNoSample;
 }
 
+namespace {
+
+std::string number(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+// "model.measurements.pos.H" (linear) or "model.measurements.pos.h".
+std::string h_key(const ChannelSpec& cs) {
+  return "model.measurements." + cs.name + (cs.linear ? ".H" : ".h");
+}
+
+}  // namespace
+
+Status detail::Context::skip(std::size_t c, std::size_t k, const std::string& why) {
+  ChannelSeries& ch = r.chans[c];
+  if (ch.updates + ch.gated + ch.skipped == 0) {
+    return fail(k, "channel '" + ch.name + "': its first due update cannot be applied: " + why +
+                       "; the run stops here");
+  }
+  ++ch.skipped;
+  if (first_skip[c] == data.rows) {
+    first_skip[c] = k;
+    first_why[c] = why;
+  }
+  return Ok{};
+}
+
+std::string detail::Context::zhat_not_finite(std::size_t c, Eigen::Index j, bool sigma) const {
+  const ChannelSpec& cs = spec.channels[c];
+  const std::string at = sigma ? " at a sigma point" : " at the prediction";
+  if (cs.linear) return "ẑ = H x is not finite" + at + " (" + h_key(cs) + ")";
+  const auto jj = static_cast<std::size_t>(j);
+  return "ẑ: " + h_key(cs) + "[" + std::to_string(jj) + "] = \"" + cs.h[jj].text +
+         "\" is not finite" + at;
+}
+
+std::string detail::Context::s_not_pd(std::size_t c, const MatX& S, bool sigma) const {
+  const ChannelSpec& cs = spec.channels[c];
+  const std::string what =
+      sigma ? "S (the sigma points through " + h_key(cs) + ", plus R)" : "S = H P Hᵀ + R";
+  const std::string keys = " (" + h_key(cs) + ", " + cs.R.key + ")";
+  if (!S.allFinite()) return what + " is not finite" + keys;
+  return what + " is not positive definite (smallest eigenvalue " + number(min_eigenvalue(S)) +
+         ")" + keys;
+}
+
+Status detail::Context::finish_skips() {
+  for (std::size_t c = 0; c < r.chans.size(); ++c) {
+    const ChannelSeries& ch = r.chans[c];
+    if (!ch.skipped) continue;
+    const std::string first = "the first at " + where(first_skip[c]) + ": " + first_why[c];
+    if (ch.updates == 0) {
+      return failure("channel '" + ch.name + "' applied no update in the whole run: " +
+                     std::to_string(ch.skipped) + " skipped, " + std::to_string(ch.gated) +
+                     " gated; " + first + " (a filter that skips every update is no success)");
+    }
+    r.warnings.push_back("channel '" + ch.name + "': " + std::to_string(ch.skipped) +
+                         " updates skipped, " + first);
+  }
+  return Ok{};
+}
+
 Expected<FilterKind> filter_kind(const std::string& name) {
   if (name == "kf") return FilterKind::kKf;
   if (name == "ekf") return FilterKind::kEkf;
@@ -177,6 +242,8 @@ Expected<std::shared_ptr<ModelResult>> run_model_filter(const ModelSpec& spec, c
 
   auto ev = ModelEval::create(spec, values);
   if (!ev) return ev.err();
+  // A Q or R that depends on dt, at every interval of the data: refused before the run.
+  if (auto st = (*ev)->check_intervals(*data.t, d.source); !st) return st.err();
 
   auto r = std::make_shared<ModelResult>();
   const std::size_t rows = d.rows();
@@ -222,6 +289,8 @@ Expected<std::shared_ptr<ModelResult>> run_model_filter(const ModelSpec& spec, c
     r->chans.push_back(std::move(s));
   }
   ctx.u_held.assign(spec.inputs.size(), 0.0);
+  ctx.first_skip.assign(spec.channels.size(), rows);
+  ctx.first_why.assign(spec.channels.size(), std::string());
   ctx.set_angles();
   ctx.z_buf.assign(static_cast<std::size_t>(kMaxChannelSize), 0.0);
 
@@ -275,12 +344,7 @@ Expected<std::shared_ptr<ModelResult>> run_model_filter(const ModelSpec& spec, c
                             "' missing: the previous value was held");
     }
   }
-  for (const auto& c : r->chans) {
-    if (c.skipped) {
-      r->warnings.push_back("channel '" + c.name + "': S not positive definite at " +
-                            std::to_string(c.skipped) + " updates (skipped)");
-    }
-  }
+  if (auto skips = ctx.finish_skips(); !skips) return skips.err();
   return r;
 }
 

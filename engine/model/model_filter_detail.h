@@ -49,6 +49,8 @@ struct Context {
   std::vector<Angle> state_angle;              // per state
   std::vector<std::vector<Angle>> role_angle;  // per channel, per component
   bool any_angle = false;                      // some state is an angle
+  std::vector<std::size_t> first_skip{};       // per channel: the first skipped step (or rows)
+  std::vector<std::string> first_why{};        // per channel: why it was skipped
 
   // The angles of the states and channel components, from the spec.
   void set_angles() {
@@ -144,14 +146,11 @@ struct Context {
                      const Dims<Eigen::Dynamic>::MeasCov& Ps);
 
   // Counts channel c's update at step k by its outcome and stores its innovation and S diagonal
-  // (updated or gated), NIS, log det S and gain (updated).
+  // (updated or gated), NIS, log det S and gain (updated). A skipped update is skip()'s.
   template <int N, int M, int MaxM>
   void record_update(std::size_t c, std::size_t k, const MeasurementUpdate<N, M, MaxM>& u) {
     ChannelSeries& ch = r.chans[c];
-    if (u.status == UpdateStatus::kSkipped) {
-      ++ch.skipped;
-      return;
-    }
+    if (u.status == UpdateStatus::kSkipped) return;
     ++(u.updated() ? ch.updates : ch.gated);
     const auto m = static_cast<std::size_t>(u.y.size());
     for (std::size_t j = 0; j < m; ++j) {
@@ -167,6 +166,18 @@ struct Context {
         ch.K[static_cast<std::size_t>(i) * m + static_cast<std::size_t>(j)][k] = u.K(i, j);
     }
   }
+
+  // Channel c's update at step k could not be applied (`why`: S, or ẑ with its expression).
+  // At the channel's first due update that ends the run (exit 1); later the update is counted as
+  // skipped (a warning after the run, a failure when the channel applied none).
+  Status skip(std::size_t c, std::size_t k, const std::string& why);
+  // Why: ẑ's component j is not finite (h[j] or H named); S is not positive definite or not
+  // finite (H or h, and R named). `sigma`: ẑ and S from the UKF's sigma points.
+  std::string zhat_not_finite(std::size_t c, Eigen::Index j, bool sigma) const;
+  std::string s_not_pd(std::size_t c, const MatX& S, bool sigma) const;
+  // After the run: a channel that applied no update and skipped some fails the run (exit 1);
+  // one that skipped some after its first update gets a warning.
+  Status finish_skips();
 
   // A state that stops being finite ends the run.
   template <class V>

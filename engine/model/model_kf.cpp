@@ -63,19 +63,20 @@ struct KalmanFilter {
     if (ch.R_varies) {
       if (auto st = ctx.check_channel_noise(c, k); !st) return st;
     }
-    if (cs.size() == 1) {
-      update_scalar(c, k, ch, cs.linear);
-    } else {
-      update_vector(c, k, ch, cs);
-    }
+    const bool applied =
+        cs.size() == 1 ? update_scalar(c, k, ch, cs.linear) : update_vector(c, k, ch, cs);
+    if (!applied) return ctx.skip(c, k, why);
     ctx.wrap_states(x);
     return ctx.check_finite(k, x);
   }
 
+  std::string why{};  // why the last update was skipped
+
   // A channel of several components. Not inlined: its fixed-capacity matrices would give the
   // step loop a 2 KiB frame, and the scalar path's run was 8 % slower for it
   // (BM_HelicopterModelRun).
-  [[gnu::noinline]] void update_vector(std::size_t c, std::size_t k, const ModelEval::Channel& ch,
+  // False when the update could not be applied (then `why` says why).
+  [[gnu::noinline]] bool update_vector(std::size_t c, std::size_t k, const ModelEval::Channel& ch,
                                        const ChannelSpec& cs) {
     const int m = cs.size();
     typename D::MeasJac H(m, n);
@@ -86,13 +87,17 @@ struct KalmanFilter {
     typename D::Meas y(m);
     for (int j = 0; j < m; ++j) {
       const double zhat = cs.linear ? H.row(j).dot(x.transpose()) : ch.hx(j);
+      if (!std::isfinite(zhat)) return zhat_skipped(c, j);
       y(j) = ctx.z_buf[static_cast<std::size_t>(j)] - zhat;
     }
-    ctx.record_update(c, k, kfw::update(x, P, y, S, PHt, ctx.rules(c), H, ch.R));
+    const auto u = kfw::update(x, P, y, S, PHt, ctx.rules(c), H, ch.R);
+    ctx.record_update(c, k, u);
+    if (u.status != UpdateStatus::kSkipped) return true;
+    return s_skipped(c, S);
   }
 
-  // A scalar channel: the update without factorisation.
-  void update_scalar(std::size_t c, std::size_t k, const ModelEval::Channel& ch, bool linear) {
+  // A scalar channel: the update without factorisation. False when it could not be applied.
+  bool update_scalar(std::size_t c, std::size_t k, const ModelEval::Channel& ch, bool linear) {
     Vec<N> h(n);
     for (Eigen::Index i = 0; i < n; ++i)
       h(i) = ch.H(0, i);
@@ -100,7 +105,23 @@ struct KalmanFilter {
     PHt.noalias() = P * h;
     const double S = h.dot(PHt) + ch.R(0, 0);
     const double zhat = linear ? h.dot(x) : ch.hx(0);
-    ctx.record_update(c, k, kfw::update(x, P, ctx.z_buf[0] - zhat, S, PHt, ctx.rules(c)));
+    if (!std::isfinite(zhat)) [[unlikely]]
+      return zhat_skipped(c, 0);
+    const auto u = kfw::update(x, P, ctx.z_buf[0] - zhat, S, PHt, ctx.rules(c));
+    ctx.record_update(c, k, u);
+    if (u.status != UpdateStatus::kSkipped) [[likely]]
+      return true;
+    return s_skipped(c, MatX::Constant(1, 1, S));
+  }
+
+  // An update not applied: why, kept out of the step loop. Both return false.
+  [[gnu::cold, gnu::noinline]] bool zhat_skipped(std::size_t c, Eigen::Index j) {
+    why = ctx.zhat_not_finite(c, j, false);
+    return false;
+  }
+  [[gnu::cold, gnu::noinline]] bool s_skipped(std::size_t c, const MatX& S) {
+    why = ctx.s_not_pd(c, S, false);
+    return false;
   }
 };
 

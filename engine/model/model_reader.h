@@ -39,6 +39,16 @@ inline std::string size_text(int r, int c) {
   return std::to_string(r) + "×" + std::to_string(c);
 }
 
+// "unknown key (did you mean 'measurements'?)", or the known keys when none is near.
+inline std::string unknown_key(const std::string& word, std::initializer_list<const char*> known) {
+  const std::vector<std::string> keys(known.begin(), known.end());
+  if (auto near = nearest(word, keys)) return "unknown key (did you mean '" + *near + "'?)";
+  std::string list;
+  for (const auto& k : keys)
+    list += (list.empty() ? "" : ", ") + k;
+  return "unknown key (known: " + list + ")";
+}
+
 class Reader {
  public:
   Reader(std::string path, Symbols& symbols) : path_(std::move(path)), symbols_(symbols) {}
@@ -88,17 +98,7 @@ class Reader {
       }
       return m;
     }
-    std::size_t got_cols = j.empty() || !j[0].is_array() ? 0 : j[0].size();
-    if (j.size() != n || std::any_of(j.begin(), j.end(), [&](const json& r) {
-          return !r.is_array() || r.size() != static_cast<std::size_t>(cols);
-        })) {
-      for (const auto& r : j) {
-        if (r.is_array() && r.size() != got_cols) got_cols = r.size();
-      }
-      return error(key, "wrong dimensions: expected " + size_text(rows, cols) + ", got " +
-                            std::to_string(j.size()) + " rows" +
-                            (flat ? " of single entries" : " of " + std::to_string(got_cols)));
-    }
+    if (auto st = dimensions(j, key, rows, cols, flat); !st) return st.err();
     for (std::size_t i = 0; i < n; ++i) {
       for (std::size_t c = 0; c < static_cast<std::size_t>(cols); ++c) {
         auto e = expr(j[i][c], idx(idx(key, i), c), allowed, what);
@@ -107,6 +107,31 @@ class Reader {
       }
     }
     return m;
+  }
+
+  // A list of rows has the shape rows × cols; else the message says how it differs: the count
+  // of rows (and their common length), or the first row (counted from 0, as in KEY[i][j]) that
+  // is not a list or has the wrong length.
+  Status dimensions(const json& j, const std::string& key, int rows, int cols, bool flat) const {
+    const auto n = static_cast<std::size_t>(rows), m = static_cast<std::size_t>(cols);
+    const auto wrong = [&](const json& r) { return !r.is_array() || r.size() != m; };
+    if (j.size() == n && std::none_of(j.begin(), j.end(), wrong)) return Ok{};
+    const std::string expected = "wrong dimensions: expected " + size_text(rows, cols) + ", ";
+    const bool same = !j.empty() && std::all_of(j.begin(), j.end(), [&](const json& r) {
+      return r.is_array() && r.size() == j[0].size();
+    });
+    const std::string got = "got " + std::to_string(j.size()) + " rows";
+    if (flat) return error(key, expected + got + " of single entries");
+    if (j.size() != n || same) {
+      return error(key, expected + got + (same ? " of " + std::to_string(j[0].size()) : ""));
+    }
+    const auto row = static_cast<std::size_t>(std::find_if(j.begin(), j.end(), wrong) - j.begin());
+    const json& r = j[row];
+    return error(
+        key, expected + idx(key, row) +
+                 (r.is_array()
+                      ? " has " + std::to_string(r.size()) + (r.size() == 1 ? " entry" : " entries")
+                      : " is not a row (a list of " + std::to_string(cols) + " entries)"));
   }
 
   // A covariance: square, symmetric (symbolically, by GiNaC).
@@ -139,10 +164,7 @@ class Reader {
                    std::initializer_list<const char*> known) const {
     for (auto it = obj.begin(); it != obj.end(); ++it) {
       if (std::none_of(known.begin(), known.end(), [&](const char* k) { return it.key() == k; })) {
-        std::string list;
-        for (const char* k : known)
-          list += std::string(list.empty() ? "" : ", ") + k;
-        return error(key + "." + it.key(), "unknown key (known: " + list + ")");
+        return error(key + "." + truncate_token(it.key()), unknown_key(it.key(), known));
       }
     }
     return Ok{};

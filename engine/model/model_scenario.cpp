@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <set>
@@ -23,6 +24,7 @@
 namespace kfw {
 
 using nlohmann::json;
+using OJson = nlohmann::ordered_json;
 
 namespace {
 
@@ -147,7 +149,10 @@ class ModelScenario final : public Scenario {
   std::string name() const override { return "model"; }
   std::string title() const override { return title_; }
   const ParamTable& params() const override { return table_; }
-  std::string primary_state() const override { return spec_->primary; }
+  // One primary state: finalize_run takes rmse from it; several: run_impl sets it.
+  std::string primary_state() const override {
+    return spec_->primary.size() == 1 ? spec_->primary.front() : std::string();
+  }
   const std::shared_ptr<const model::ModelSpec>& spec() const { return spec_; }
 
   std::vector<ColumnSpec> columns() const override {
@@ -256,6 +261,7 @@ class ModelScenario final : public Scenario {
         e[k] = wrap(res.x[i][k] - res.truth[i][k], a);
       m["rmse." + spec_->states[i].name] = rmse_finite(e, zero);
     }
+    if (spec_->primary.size() > 1) primary_rmse(res);
     for (const auto& c : res.chans) {
       for (const auto& cs : spec_->channels) {
         if (cs.name == c.name && cs.gate > 0.0) m["gated." + c.name] = static_cast<double>(c.gated);
@@ -267,6 +273,34 @@ class ModelScenario final : public Scenario {
   }
 
  private:
+  // `rmse` of several primary states: sqrt(mean over the steps of Σ err_i²), angles wrapped,
+  // over the steps where every one has an estimate and a truth value.
+  void primary_rmse(model::ModelResult& res) const {
+    std::vector<std::size_t> idx;
+    for (const auto& name : spec_->primary) {
+      const auto i = static_cast<std::size_t>(spec_->state_index(name));
+      if (res.truth[i].empty()) {
+        res.undefined.emplace("rmse", "no truth for the primary state '" + name + "' in the data");
+        return;
+      }
+      idx.push_back(i);
+    }
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (std::size_t k = 0; k < res.steps(); ++k) {
+      double e2 = 0.0;
+      for (std::size_t i : idx) {
+        const double e = wrap(res.x[i][k] - res.truth[i][k], spec_->states[i].angle);
+        e2 += e * e;
+      }
+      if (!std::isfinite(e2)) continue;
+      sum += e2;
+      ++count;
+    }
+    res.metrics["rmse"] = count ? std::sqrt(sum / static_cast<double>(count))
+                                : std::numeric_limits<double>::quiet_NaN();
+  }
+
   std::shared_ptr<const model::ModelSpec> spec_;
   ParamTable table_;
   std::string title_;
@@ -282,7 +316,9 @@ Expected<Metrics> ModelScenario::gain(const ParamValues& v, const Dataset* data)
   const double dt = data && data->rows() >= 2 ? data->median_dt() : param(v, "sim.dt");
   auto ev = model::ModelEval::create(s, v);
   if (!ev) return ev.err();
-  if (auto st = (*ev)->set_dt(dt); !st) return Error{s.path + ": " + st.error()};
+  const std::string where =
+      data && data->rows() >= 2 ? "the median interval of " + data->source : std::string("sim.dt");
+  if (auto st = (*ev)->check_dt(dt, where); !st) return st.err();
   // All channels at one rate m: the m-step model F^m, Σ_{i<m} F^i Q F^iᵀ between updates.
   const int every = (*ev)->channel(0).every;
   int rows = 0;
@@ -352,13 +388,13 @@ std::optional<ModelLayout> model_layout_of(const Scenario& s) {
   return l;
 }
 
-Expected<ParamTable> parse_param_table(const json& params, const std::string& path) {
+Expected<ParamTable> parse_param_table(const OJson& params, const std::string& path) {
   std::vector<ParamSpec> specs;
   if (params.is_null()) return ParamTable(specs);
   if (!params.is_object()) return Error{path + ": parameters: expected an object"};
   for (auto it = params.begin(); it != params.end(); ++it) {
     const std::string where = path + ": parameters." + it.key();
-    const json& e = it.value();
+    const OJson& e = it.value();
     if (!e.is_object()) return Error{where + ": expected {\"value\", \"min\", \"max\", ...}"};
     ParamSpec s;
     s.key = it.key();
@@ -412,7 +448,7 @@ Expected<ParamTable> parse_param_table(const json& params, const std::string& pa
       }
     }
     if (!e.contains("value")) return Error{where + ": missing 'value'"};
-    const json& v = e["value"];
+    const OJson& v = e["value"];
     if (v.is_string() && s.scale == Scale::kChoice) {
       auto c = std::find(s.choices.begin(), s.choices.end(), v.get<std::string>());
       if (c == s.choices.end()) {
@@ -432,7 +468,7 @@ Expected<ParamTable> parse_param_table(const json& params, const std::string& pa
   return ParamTable(std::move(specs));
 }
 
-Expected<std::unique_ptr<Scenario>> make_model_scenario(const json& preset,
+Expected<std::unique_ptr<Scenario>> make_model_scenario(const OJson& preset,
                                                         const std::string& path) {
   if (!preset.is_object()) return Error{path + ": a preset must be a JSON object"};
   if (preset.value("scenario", std::string()) != "model") {
@@ -441,22 +477,25 @@ Expected<std::unique_ptr<Scenario>> make_model_scenario(const json& preset,
   std::string title = "model";
   if (auto it = preset.find("title"); it != preset.end() && it->is_string()) title = *it;
   // `filter` is declared by the model's linearity (kf only for linear models): read apart.
-  json params = preset.value("parameters", json());
-  json filter_entry;
+  OJson params = preset.value("parameters", OJson());
+  OJson filter_entry;
+  std::size_t filter_place = 0;  // where the file declares it, among its parameters
   if (params.is_object() && params.contains("filter")) {
+    for (auto it = params.begin(); it != params.end() && it.key() != "filter"; ++it)
+      ++filter_place;
     filter_entry = params["filter"];
     params.erase("filter");
   }
   auto declared = parse_param_table(params, path);
   if (!declared) return declared.err();
   if (!preset.contains("model")) return Error{path + ": missing key 'model'"};
-  auto spec = model::parse_model(preset["model"], *declared, path);
+  auto spec = model::parse_model(json(preset["model"]), *declared, path);
   if (!spec) return spec.err();
 
   const auto filters = model::filter_choices(*spec);
   std::string filter = spec->filter;
   if (!filter_entry.is_null()) {
-    const json v = filter_entry.is_object() ? filter_entry.value("value", json()) : filter_entry;
+    const OJson v = filter_entry.is_object() ? filter_entry.value("value", OJson()) : filter_entry;
     if (v.is_string()) {
       filter = v.get<std::string>();
     } else if (v.is_number() && v.get<double>() >= 0.0 &&
@@ -492,19 +531,26 @@ Expected<std::unique_ptr<Scenario>> make_model_scenario(const json& preset,
   }
   std::vector<ParamSpec> all;
   for (auto& s : standard_params(filters, filter)) {
-    if (s.key == "filter" || !declared->find(s.key)) all.push_back(s);
+    if (s.key == "filter" && !filter_entry.is_null()) {
+      specs.insert(specs.begin() + static_cast<std::ptrdiff_t>(filter_place), s);
+    } else if (s.key == "filter" || !declared->find(s.key)) {
+      all.push_back(s);
+    }
   }
-  // Declared parameters first (the model's own), then the standard ones.
+  // Declared parameters first (the model's own, in the file's order), then the standard ones.
   specs.insert(specs.end(), all.begin(), all.end());
   ParamTable table(std::move(specs));
   auto shared = std::make_shared<const model::ModelSpec>(std::move(*spec));
-  // P0, Q, R and Qc that depend on parameters only must be PSD at the preset's values.
-  auto ev = model::ModelEval::create(*shared, table.defaults());
+  // P0, Q, R and Qc that depend on parameters only must be PSD at the preset's values, and a Q
+  // or R that depends on dt at sim.dt.
+  const ParamValues defaults = table.defaults();
+  auto ev = model::ModelEval::create(*shared, defaults);
   if (!ev) return ev.err();
   if (shared->world) {
     auto wev = model::ModelEval::create(*shared->world, table.defaults());
     if (!wev) return wev.err();
   }
+  if (auto st = (*ev)->check_dt(param(defaults, "sim.dt"), "sim.dt"); !st) return st.err();
   return std::unique_ptr<Scenario>(
       std::make_unique<ModelScenario>(std::move(shared), std::move(table), std::move(title)));
 }

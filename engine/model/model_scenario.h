@@ -38,9 +38,10 @@ struct ModelLayout {
 
 // Builds a Scenario from a whole preset JSON whose "scenario" is "model": the preset's
 // "parameters" block (full specs: value, min, max, unit, scale, label, optional group) becomes the
-// scenario's ParamTable, and its "model" block the model. `path` names the file in messages.
-// Errors (exit 2) read "PATH: KEY: what", with the position in an expression where there is one.
-Expected<std::unique_ptr<Scenario>> make_model_scenario(const nlohmann::json& preset,
+// scenario's ParamTable, in the block's order, and its "model" block the model. `path` names the
+// file in messages. Errors (exit 2) read "PATH: KEY: what", with the position in an expression
+// where there is one. (A nlohmann::json converts, its keys sorted.)
+Expected<std::unique_ptr<Scenario>> make_model_scenario(const nlohmann::ordered_json& preset,
                                                         const std::string& path);
 // Registers "model" as a scenario built from its preset (core/scenario.h); the generated scenario
 // list calls it.
@@ -50,7 +51,9 @@ void register_scenario_model(ScenarioRegistry& registry);
 std::optional<ModelLayout> model_layout_of(const Scenario& s);
 
 // The parameter table of a "parameters" block in full form (each entry an object with value,
-// min, max, and optionally unit, scale, label, group, description, decimals, choices).
-Expected<ParamTable> parse_param_table(const nlohmann::json& params, const std::string& path);
+// min, max, and optionally unit, scale, label, group, description, decimals, choices), in the
+// block's order.
+Expected<ParamTable> parse_param_table(const nlohmann::ordered_json& params,
+                                       const std::string& path);
 
 }  // namespace kfw

@@ -45,6 +45,7 @@ Expected<Dataset> simulate_model(const ModelSpec& spec, const ParamValues& value
   auto evr = ModelEval::create(spec, values);
   if (!evr) return evr.err();
   ModelEval& ev = **evr;
+  if (auto st = ev.check_dt(dt, "sim.dt"); !st) return st.err();
 
   // The inputs' simulation expressions, bound to a copy of the symbols (parameters set).
   std::vector<double> vars = ev.vars();

@@ -126,7 +126,10 @@ Expected<ChannelSpec> parse_channel(const Reader& p, const std::string& name, co
     } else if (it->is_string()) {
       c.every_param = it->get<std::string>();
       if (!params.find(c.every_param)) {
-        return p.error(key + ".every", "unknown parameter " + quote_token(c.every_param));
+        std::vector<std::string> names;
+        for (const auto& spec : params.specs())
+          names.push_back(spec.key);
+        return p.error(key + ".every", unknown_message("parameter", c.every_param, names));
       }
     } else {
       return p.error(key + ".every", "expected an integer ≥ 1 or a parameter name");
@@ -288,6 +291,45 @@ Status parse_initial(const Reader& p, const json& j, ModelSpec& m) {
   return Ok{};
 }
 
+std::vector<std::string> state_names(const ModelSpec& m) {
+  std::vector<std::string> names;
+  for (const auto& s : m.states)
+    names.push_back(s.name);
+  return names;
+}
+
+// "primary": a state, or (version 2) a non-empty list of distinct states (default: the first).
+Status parse_primary(const Reader& p, const json& j, ModelSpec& m) {
+  const std::string key = "model.primary";
+  auto it = j.find("primary");
+  if (it == j.end() || it->is_null()) {
+    m.primary = {m.states.front().name};
+    return Ok{};
+  }
+  const bool list = it->is_array() && !it->empty();
+  if (!it->is_string() && !list) {
+    return p.error(key, "expected a state or a non-empty list of states");
+  }
+  if (list && m.version < 2) {
+    return p.error(key, "a list of states is a version-2 form: set \"version\": 2");
+  }
+  const json names = list ? *it : json::array({*it});
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string at = list ? idx(key, i) : key;
+    if (!names[i].is_string()) return p.error(at, "expected a state name");
+    const std::string name = names[i].get<std::string>();
+    if (m.state_index(name) < 0) {
+      return p.error(at,
+                     quote_token(name) + " is not a state" + did_you_mean(name, state_names(m)));
+    }
+    if (std::find(m.primary.begin(), m.primary.end(), name) != m.primary.end()) {
+      return p.error(at, quote_token(name) + " is named twice");
+    }
+    m.primary.push_back(name);
+  }
+  return Ok{};
+}
+
 // The truth columns, the primary state and the default filter.
 Status parse_outputs(const Reader& p, const json& j, ModelSpec& m,
                      const std::set<std::string>& roles_seen) {
@@ -298,7 +340,10 @@ Status parse_outputs(const Reader& p, const json& j, ModelSpec& m,
     if (!it->is_object()) return p.error("model.truth", "expected {\"state\": \"column\", ...}");
     for (auto t = it->begin(); t != it->end(); ++t) {
       const int s = m.state_index(t.key());
-      if (s < 0) return p.error("model.truth." + t.key(), "unknown state");
+      if (s < 0) {
+        return p.error("model.truth." + truncate_token(t.key()),
+                       "unknown state" + did_you_mean(t.key(), state_names(m)));
+      }
       if (!t->is_string() || t->get<std::string>().empty() || t->get<std::string>() == "t") {
         return p.error("model.truth." + t.key(), "expected a column name");
       }
@@ -309,12 +354,7 @@ Status parse_outputs(const Reader& p, const json& j, ModelSpec& m,
       m.truth[static_cast<std::size_t>(s)] = t->get<std::string>();
     }
   }
-  auto primary = p.string(j, "primary", key, false, m.states.front().name);
-  if (!primary) return primary.err();
-  if (m.state_index(*primary) < 0) {
-    return p.error("model.primary", "'" + *primary + "' is not a state");
-  }
-  m.primary = *primary;
+  if (auto st = parse_primary(p, j, m); !st) return st.err();
   const auto choices = filter_choices(m);
   auto filter = p.string(j, "filter", key, false, choices.front());
   if (!filter) return filter.err();

@@ -106,7 +106,9 @@ struct ModelSpec {
   std::vector<InitialSpec> x0;
   MatrixSpec P0;
   std::vector<std::string> truth;  // per state: its truth column, or empty
-  std::string primary;
+  // The states whose RMSE is `rmse`: one, or several (then the Euclidean RMSE,
+  // sqrt(mean Σ err_i²)).
+  std::vector<std::string> primary;
   std::string filter;  // the default filter: kf, ekf or ukf
   // The world block (version 2): what generates the data in simulation, a model of its own whose
   // channels are the sensors writing the columns this model reads; null: the model simulates

@@ -87,10 +87,13 @@ struct UnscentedFilter {
     const auto um = unscented_measurement<N, Eigen::Dynamic, kM>(X, x, Zc, w, ctx.state_angle,
                                                                  ctx.role_angle[c], ch.R);
     typename D::Meas y(cs.size());
-    for (Eigen::Index j = 0; j < y.size(); ++j)
+    for (Eigen::Index j = 0; j < y.size(); ++j) {
+      if (!std::isfinite(um.zhat(j))) return ctx.skip(c, k, ctx.zhat_not_finite(c, j, true));
       y(j) = ctx.z_buf[static_cast<std::size_t>(j)] - um.zhat(j);
+    }
     const auto u = kfw::update(x, P, y, um.S, um.C, ctx.rules(c));
     ctx.record_update(c, k, u);
+    if (u.status == UpdateStatus::kSkipped) return ctx.skip(c, k, ctx.s_not_pd(c, um.S, true));
     if (!u.updated()) return Ok{};
     ctx.wrap_states(x);
     return ctx.check_finite(k, x);

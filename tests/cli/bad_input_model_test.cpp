@@ -79,9 +79,9 @@ TEST_F(BadModel, CovariancesThatAreNotPositive) {
   refused("r_neg.json",
           [](Json& j) { j["model"]["measurements"]["position"]["R"][0] = "-sigma_r^2"; },
           {"model.measurements.position.R"});
-  refused(
-      "q_neg.json", [](Json& j) { j["model"]["process"]["Q"][1][1] = "-dt^2*sigma_a^2"; },
-      {"model.process.Q", "(t = "}, 1);
+  // A Q of dt: checked at sim.dt when the file loads (issue 27), refused before the run.
+  refused("q_neg.json", [](Json& j) { j["model"]["process"]["Q"][1][1] = "-dt^2*sigma_a^2"; },
+          {"model.process.Q", "at dt = 0.1 s (sim.dt)"});
 }
 
 TEST_F(BadModel, ParametersOutOfTheirRange) {

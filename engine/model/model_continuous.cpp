@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include "filter/discretize.h"
 #include "model/model_eval.h"
@@ -17,17 +18,24 @@ namespace {
 // More sub-steps than this per interval is refused (a sub-step far below the data's dt).
 constexpr double kMaxSubsteps = 100'000;
 
+std::string number(double v) {
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str();
+}
+
 }  // namespace
 
 Status ModelEval::set_rk4_steps(double dt) {
   if (!(dt > 0.0) || !std::isfinite(dt)) {
-    return Error{"dt = " + std::to_string(dt) +
-                 ": the continuous process needs a positive interval"};
+    return Error{spec_.path + ": model.process.xdot: dt = " + number(dt) +
+                 " s: the continuous process needs a positive interval"};
   }
   const double steps = substep_ > 0.0 ? std::ceil(dt / substep_ - 1e-9) : 1.0;
   if (!(steps <= kMaxSubsteps)) {
-    return Error{"model.process.substep: dt = " + std::to_string(dt) + " s needs " +
-                 std::to_string(steps) + " RK4 sub-steps (at most 100000)"};
+    return Error{spec_.path + ": model.process.substep: needs " + number(steps) +
+                 " RK4 sub-steps per interval (at most 100000)"};
   }
   rk4_steps_ = std::max(1, static_cast<int>(steps));
   return Ok{};

@@ -119,6 +119,7 @@ TEST_F(ModelTripsCli, APrimaryOfSeveralStatesGivesTheEuclideanRmse) {
   const auto f = model(
       "primary.json",
       [](Json& j) {
+        j["model"]["version"] = 2;
         j["model"]["primary"] = {"px", "py"};
       },
       "cv2d");

@@ -442,6 +442,7 @@ json cv2d() {
 
 TEST(ModelWorldTrips, APrimaryOfSeveralStatesIsTheEuclideanRmse) {
   json j = cv2d();
+  j["model"]["version"] = 2;  // a list of states is a version-2 form
   j["model"]["primary"] = {"px", "py"};
   auto s = load(j);
   ASSERT_TRUE(s.ok()) << s.error();
@@ -485,6 +486,7 @@ TEST(ModelWorldTrips, APrimaryOfSeveralStatesIsTheEuclideanRmse) {
 
 TEST(ModelWorldTrips, APrimaryOfSeveralStatesWithoutTheirTruthIsUndefined) {
   json j = base();
+  j["model"]["version"] = 2;
   j["model"]["primary"] = {"px", "vx"};  // vx has no truth column
   auto s = load(j);
   ASSERT_TRUE(s.ok()) << s.error();
@@ -498,6 +500,9 @@ TEST(ModelWorldTrips, APrimaryOfSeveralStatesWithoutTheirTruthIsUndefined) {
 
 TEST(ModelWorldTrips, ABadPrimaryIsRefused) {
   json j = base();
+  j["model"]["primary"] = {"px", "py"};
+  expect_refused(j, {"model.primary: a list of states is a version-2 form: set \"version\": 2"});
+  j["model"]["version"] = 2;
   j["model"]["primary"] = json::array();
   expect_refused(j, {"model.primary: expected a state or a non-empty list of states"});
   j["model"]["primary"] = {"px", "pxx"};

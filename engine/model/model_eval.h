@@ -35,6 +35,8 @@ class ModelEval {
   int n() const { return spec_.n(); }
 
   void set_time(double t) { vars_[static_cast<std::size_t>(spec_.t_slot)] = t; }
+  // A symbol of its own (a world's noise source) by slot.
+  void set_symbol(int slot, double v) { vars_[static_cast<std::size_t>(slot)] = v; }
   void set_inputs(const double* u);
   void set_state(const double* x);
   // Makes dt current: re-evaluates what depends on it when it differs from the last value.

@@ -4,11 +4,14 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <optional>
 #include <sstream>
 
 #include "core/random.h"
 #include "filter/angle.h"
 #include "model/model_eval.h"
+#include "model/model_world_noise.h"
 
 namespace kfw::model {
 
@@ -29,6 +32,358 @@ bool psd_sqrt(const MatX& M, MatX& L) {
   return true;
 }
 
+namespace {
+
+constexpr std::size_t kMaxRows = 50'000'000;
+
+VecX draw(RandomStream& r, Eigen::Index m) {
+  VecX v(m);
+  for (Eigen::Index i = 0; i < m; ++i)
+    v(i) = r.normal();
+  return v;
+}
+
+// One simulation of a model (or a world): the process on the sim.dt grid, the sensors on the
+// grid (`every`) or on their clocks' ticks, a row wherever something is sampled.
+class Simulation {
+ public:
+  Simulation(const ModelSpec& spec, ModelEval& ev, double dt, std::uint64_t seed)
+      : spec_(spec),
+        ev_(ev),
+        dt_(dt),
+        seed_(seed),
+        vars_(ev.vars()),
+        x0_(seed, "x0"),
+        process_(seed, "process") {
+    for (const auto& c : spec.channels) {
+      channel_streams_.emplace_back(seed, "channel." + c.name);
+      dropout_streams_.emplace_back(seed, "dropout." + c.name);
+    }
+  }
+
+  Status prepare(double duration, std::size_t grid_rows);
+  Expected<Dataset> run(const std::string& source);
+
+ private:
+  Error fail(double t, const std::string& what) const {
+    std::ostringstream os;
+    os << "simulation, step " << j_ << " (t = " << t << " s): " << what;
+    return failure(os.str());
+  }
+  void inputs_at(double t);
+  void set_row(double t);     // the model's symbols at a row: t, inputs, noise, row_x_
+  Status grid_step();         // x_j → x_{j+1}, with process noise
+  Status state_at(double t);  // row_x_: x_j moved on to t by the mean process
+  Status sample(std::size_t c, std::size_t row, double t, Dataset& d);
+  Status add_outliers(Dataset& d);
+
+  const ModelSpec& spec_;
+  ModelEval& ev_;
+  const double dt_;
+  const std::uint64_t seed_;
+  std::vector<double> vars_;  // the inputs' simulation expressions read these
+  ExprGroup input_sim_;
+  std::vector<double> u_;
+  RandomStream x0_, process_;
+  std::vector<RandomStream> channel_streams_, dropout_streams_;
+  std::optional<detail::NoiseSources> noise_;
+  MatX Lq_;
+  bool lq_valid_ = false;
+  std::vector<MatX> Lr_;
+  std::vector<bool> lr_valid_;
+  std::vector<double> dropout_;
+
+  // Rows: their times, the grid step of each (or −1), and per clock the rows of its ticks.
+  std::vector<double> row_t_;
+  std::vector<long long> row_grid_;
+  std::vector<std::vector<bool>> clock_rows_;
+
+  std::size_t j_ = 0;  // the grid step of x_
+  VecX x_, row_x_;
+  std::vector<double> u_grid_;  // the inputs at t_j
+  std::vector<std::size_t> role_col_;
+  std::vector<std::vector<detail::Sample>> samples_;  // per channel: its samples kept
+};
+
+Status Simulation::prepare(double duration, std::size_t grid_rows) {
+  // Inputs: their simulation expressions of t, bound to a copy of the symbols.
+  u_.assign(spec_.inputs.size(), 0.0);
+  for (std::size_t i = 0; i < spec_.inputs.size(); ++i)
+    input_sim_.add(spec_.inputs[i].sim.text, &u_[i]);
+  if (auto st = input_sim_.bind(spec_.symbols, vars_.data()); !st) return st;
+  auto noise = detail::NoiseSources::create(spec_, vars_, seed_, dt_, duration, kMaxRows);
+  if (!noise) return noise.err();
+  noise_ = std::move(*noise);
+  for (const auto& c : spec_.channels) {
+    auto p = detail::param_value(c.sensor.dropout, spec_, vars_,
+                                 "model.world.measurements." + c.name + ".dropout");
+    if (!p) return p.err();
+    if (!(*p >= 0.0 && *p <= 1.0)) {
+      return Error{spec_.path + ": model.world.measurements." + c.name +
+                   ".dropout: expected a probability in [0, 1]"};
+    }
+    dropout_.push_back(*p);
+  }
+  // The grid's rows (when a sensor samples on it) and every clock's ticks, merged.
+  const bool grid =
+      spec_.clocks.empty() || std::any_of(spec_.channels.begin(), spec_.channels.end(),
+                                          [](const ChannelSpec& c) { return c.sensor.clock < 0; });
+  std::vector<std::pair<double, long long>> times;  // (t, clock or −1 for the grid)
+  if (grid) {
+    for (std::size_t j = 0; j < grid_rows; ++j)
+      times.emplace_back(static_cast<double>(j) * dt_, -1);
+  }
+  for (std::size_t c = 0; c < spec_.clocks.size(); ++c) {
+    auto ticks = detail::clock_ticks(spec_.clocks[c], spec_, vars_, seed_, duration, kMaxRows);
+    if (!ticks) return ticks.err();
+    for (double t : *ticks)
+      times.emplace_back(t, static_cast<long long>(c));
+  }
+  if (times.size() > kMaxRows) return Error{"sim.duration: more than 50 million rows"};
+  std::stable_sort(times.begin(), times.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  clock_rows_.assign(spec_.clocks.size(), {});
+  for (const auto& [t, clock] : times) {
+    // Instants closer than 1 ns are one row (a tick rounded to 1 ms meets the grid's k·dt).
+    if (row_t_.empty() || t - row_t_.back() > 1e-9) {
+      row_t_.push_back(t);
+      row_grid_.push_back(-1);
+      for (auto& rows : clock_rows_)
+        rows.push_back(false);
+    }
+    if (clock < 0) {
+      row_grid_.back() = std::llround(t / dt_);
+    } else {
+      clock_rows_[static_cast<std::size_t>(clock)].back() = true;
+    }
+  }
+  Lr_.resize(spec_.channels.size());
+  lr_valid_.assign(spec_.channels.size(), false);
+  samples_.assign(spec_.channels.size(), {});
+  return Ok{};
+}
+
+void Simulation::inputs_at(double t) {
+  noise_->at_time(t);
+  vars_[static_cast<std::size_t>(spec_.t_slot)] = t;
+  noise_->write(vars_.data());
+  for (const auto& n : spec_.noise)
+    ev_.set_symbol(n.slot, vars_[static_cast<std::size_t>(n.slot)]);
+  input_sim_.eval();
+}
+
+Status Simulation::grid_step() {
+  // x_{j+1} = F x_j + B u_j (or f) + w, w ~ N(0, Q), with the noise sources of step j.
+  const double tj = static_cast<double>(j_) * dt_;
+  inputs_at(tj);
+  u_grid_ = u_;
+  if (auto st = ev_.set_dt(dt_); !st) return fail(tj + dt_, st.error());
+  ev_.set_time(tj);
+  ev_.set_inputs(u_grid_.data());
+  ev_.process_step();
+  ev_.set_state(x_.data());
+  VecX next;
+  if (spec_.nonlinear_process()) {
+    ev_.process_f();
+    next = ev_.fx;
+  } else {
+    next = ev_.F * x_;
+    for (std::size_t i = 0; i < u_grid_.size(); ++i)
+      next += ev_.B.col(static_cast<Eigen::Index>(i)) * u_grid_[i];
+  }
+  ev_.process_noise();
+  if (!lq_valid_ || ev_.process_noise_varies()) {
+    if (!psd_sqrt(ev_.Q, Lq_))
+      return fail(tj + dt_, "model.process.Q is not positive semidefinite");
+    lq_valid_ = true;
+  }
+  x_ = next + Lq_ * draw(process_, spec_.n());
+  for (int i = 0; i < spec_.n(); ++i)
+    x_(i) = wrap(x_(i), spec_.states[static_cast<std::size_t>(i)].angle);
+  ++j_;
+  if (!x_.allFinite()) return fail(tj + dt_, "the simulated state is not finite");
+  noise_->step(j_);
+  return Ok{};
+}
+
+Status Simulation::state_at(double t) {
+  while (static_cast<double>(j_ + 1) * dt_ <= t) {
+    if (auto st = grid_step(); !st) return st;
+  }
+  const double tj = static_cast<double>(j_) * dt_;
+  row_x_ = x_;
+  if (t == tj) return Ok{};
+  // Between grid steps: the mean process from t_j over t − t_j, the inputs and white noise
+  // held at their values of step j.
+  inputs_at(tj);
+  if (auto st = ev_.set_dt(t - tj); !st) return fail(t, st.error());
+  ev_.set_time(tj);
+  ev_.set_inputs(u_.data());
+  ev_.process_step();
+  ev_.set_state(x_.data());
+  if (spec_.nonlinear_process()) {
+    ev_.process_f();
+    row_x_ = ev_.fx;
+  } else {
+    row_x_ = ev_.F * x_;
+    for (std::size_t i = 0; i < u_.size(); ++i)
+      row_x_ += ev_.B.col(static_cast<Eigen::Index>(i)) * u_[i];
+  }
+  for (int i = 0; i < spec_.n(); ++i)
+    row_x_(i) = wrap(row_x_(i), spec_.states[static_cast<std::size_t>(i)].angle);
+  return Ok{};
+}
+
+Status Simulation::sample(std::size_t c, std::size_t row, double t, Dataset& d) {
+  // z = h(x) + v (or H x + v), v ~ N(0, R); lost with the sensor's dropout probability.
+  const ChannelSpec& cs = spec_.channels[c];
+  auto& ch = ev_.channel(c);
+  ev_.channel_step(c);
+  ev_.channel_noise(c);
+  VecX z;
+  if (cs.linear) {
+    z = ch.H * row_x_;
+  } else {
+    ev_.channel_h(c);
+    z = ch.hx;
+  }
+  if (!lr_valid_[c] || ch.R_varies) {
+    if (!psd_sqrt(ch.R, Lr_[c])) return fail(t, cs.R.key + " is not positive semidefinite");
+    lr_valid_[c] = true;
+  }
+  z += Lr_[c] * draw(channel_streams_[c], cs.size());
+  // One uniform per sample from "dropout.NAME": below the probability, the sample is lost.
+  if (dropout_streams_[c].uniform() < dropout_[c]) return Ok{};
+  for (std::size_t i = 0; i < static_cast<std::size_t>(cs.size()); ++i) {
+    d.columns[role_col_[c] + i][row] = wrap(z(static_cast<Eigen::Index>(i)), cs.roles[i].angle);
+  }
+  samples_[c].push_back({row, c});
+  return Ok{};
+}
+
+void Simulation::set_row(double t) {
+  inputs_at(t);
+  ev_.set_time(t);
+  ev_.set_inputs(u_.data());
+  ev_.set_state(row_x_.data());
+  for (int i = 0; i < spec_.n(); ++i)
+    vars_[static_cast<std::size_t>(spec_.state_slots[static_cast<std::size_t>(i)])] = row_x_(i);
+  for (std::size_t i = 0; i < u_.size(); ++i)
+    vars_[static_cast<std::size_t>(spec_.input_slots[i])] = u_[i];
+}
+
+Status Simulation::add_outliers(Dataset& d) {
+  std::map<std::string, std::vector<std::size_t>> groups;  // group -> its channels
+  for (std::size_t c = 0; c < spec_.channels.size(); ++c) {
+    if (spec_.channels[c].sensor.outliers)
+      groups[spec_.channels[c].sensor.outlier_group].push_back(c);
+  }
+  for (const auto& [group, channels] : groups) {
+    const SensorSpec& s = spec_.channels[channels.front()].sensor;
+    const std::string key = "model.world.measurements." + spec_.channels[channels.front()].name;
+    auto amount = detail::param_value(s.outlier_amount, spec_, vars_, key + ".outliers");
+    if (!amount) return amount.err();
+    auto size = detail::param_value(s.outlier_size, spec_, vars_, key + ".outliers.size");
+    if (!size) return size.err();
+    const bool whole = *amount >= 0.0 && std::floor(*amount) == *amount;
+    if (s.outlier_count ? !whole : !(*amount >= 0.0 && *amount <= 1.0)) {
+      return Error{spec_.path + ": " + key + ".outliers: " +
+                   (s.outlier_count ? "count must be a whole number ≥ 0"
+                                    : "rate must be a probability in [0, 1]")};
+    }
+    std::vector<detail::Sample> samples;
+    for (std::size_t c : channels)
+      samples.insert(samples.end(), samples_[c].begin(), samples_[c].end());
+    std::sort(samples.begin(), samples.end(), [](const auto& a, const auto& b) {
+      return a.row != b.row ? a.row < b.row : a.channel < b.channel;
+    });
+    for (std::size_t c : channels) {
+      const std::string& col = spec_.channels[c].sensor.outlier_column;
+      if (col.empty()) continue;
+      auto& column = d.columns[static_cast<std::size_t>(d.index(col))];
+      for (const auto& smp : samples_[c])
+        column[smp.row] = 0.0;
+    }
+    for (const auto& o :
+         detail::draw_outliers(std::move(samples), s.outlier_count, *amount, *size, seed_, group)) {
+      const ChannelSpec& cs = spec_.channels[o.sample.channel];
+      for (std::size_t i = 0; i < cs.roles.size(); ++i) {
+        double& z = d.columns[role_col_[o.sample.channel] + i][o.sample.row];
+        z = wrap(z + o.offset, cs.roles[i].angle);
+      }
+      if (!cs.sensor.outlier_column.empty()) {
+        d.columns[static_cast<std::size_t>(d.index(cs.sensor.outlier_column))][o.sample.row] =
+            o.offset;
+      }
+    }
+  }
+  return Ok{};
+}
+
+Expected<Dataset> Simulation::run(const std::string& source) {
+  const std::size_t rows = row_t_.size();
+  Dataset d;
+  d.source = source;
+  d.add("t", rows);
+  for (const auto& in : spec_.inputs)
+    d.add(in.name, rows);
+  for (const auto& c : spec_.channels) {
+    role_col_.push_back(d.names.size());
+    for (const auto& r : c.roles)
+      d.add(r.name, rows);
+  }
+  std::vector<std::size_t> truth_col;
+  for (const auto& col : spec_.truth) {
+    truth_col.push_back(d.names.size());
+    if (!col.empty()) d.add(col, rows);
+  }
+  const std::size_t expr_col = d.names.size();
+  ExprGroup truth_exprs;
+  std::vector<double> truth_values(spec_.truth_exprs.size());
+  for (std::size_t i = 0; i < spec_.truth_exprs.size(); ++i) {
+    d.add(spec_.truth_exprs[i].first, rows);
+    truth_exprs.add(spec_.truth_exprs[i].second.text, &truth_values[i]);
+  }
+  if (auto st = truth_exprs.bind(spec_.symbols, vars_.data()); !st) return st.err();
+  for (const auto& c : spec_.channels) {
+    const std::string& col = c.sensor.outlier_column;
+    if (!col.empty() && !d.has(col)) d.add(col, rows);
+  }
+
+  if (auto st = ev_.set_dt(dt_); !st) return fail(0.0, st.error());
+  MatX L;
+  if (!psd_sqrt(ev_.P0, L)) return Error{spec_.path + ": model.P0: not positive semidefinite"};
+  x_ = ev_.x0 + L * draw(x0_, spec_.n());
+  noise_->step(0);
+  for (std::size_t r = 0; r < rows; ++r) {
+    const double t = row_t_[r];
+    if (auto st = state_at(t); !st) return st.err();
+    set_row(t);
+    d.columns[0][r] = t;
+    for (std::size_t i = 0; i < u_.size(); ++i)
+      d.columns[1 + i][r] = u_[i];
+    for (std::size_t c = 0; c < spec_.channels.size(); ++c) {
+      const int clock = spec_.channels[c].sensor.clock;
+      const bool due = clock >= 0 ? clock_rows_[static_cast<std::size_t>(clock)][r]
+                                  : row_grid_[r] >= 0 && row_grid_[r] % ev_.channel(c).every == 0;
+      if (!due) continue;
+      if (auto st = sample(c, r, t, d); !st) return st.err();
+    }
+    for (int i = 0; i < spec_.n(); ++i) {
+      if (!spec_.truth[static_cast<std::size_t>(i)].empty()) {
+        d.columns[truth_col[static_cast<std::size_t>(i)]][r] = row_x_(i);
+      }
+    }
+    truth_exprs.eval();
+    for (std::size_t i = 0; i < truth_values.size(); ++i)
+      d.columns[expr_col + i][r] = truth_values[i];
+  }
+  if (auto st = add_outliers(d); !st) return st.err();
+  return d;
+}
+
+}  // namespace
+
 Expected<Dataset> simulate_model(const ModelSpec& spec, const ParamValues& values,
                                  const std::string& name) {
   const double seed = param(values, "sim.seed");
@@ -41,137 +396,13 @@ Expected<Dataset> simulate_model(const ModelSpec& spec, const ParamValues& value
   // duration shorter than dt, both inside their ranges, still gives a run).
   const auto rows =
       std::max<std::size_t>(static_cast<std::size_t>(std::floor(duration / dt + 1e-9)) + 1, 2);
-  if (rows > 50'000'000) return Error{"sim.duration / sim.dt: more than 50 million rows"};
+  if (rows > kMaxRows) return Error{"sim.duration / sim.dt: more than 50 million rows"};
   auto evr = ModelEval::create(spec, values);
   if (!evr) return evr.err();
-  ModelEval& ev = **evr;
-  if (auto st = ev.check_dt(dt, "sim.dt"); !st) return st.err();
-
-  // The inputs' simulation expressions, bound to a copy of the symbols (parameters set).
-  std::vector<double> vars = ev.vars();
-  const auto t_slot = static_cast<std::size_t>(spec.t_slot);
-  const std::size_t nu = spec.inputs.size();
-  std::vector<double> u(nu, 0.0), u_prev(nu, 0.0);
-  ExprGroup input_sim;
-  for (std::size_t i = 0; i < nu; ++i)
-    input_sim.add(spec.inputs[i].sim.text, &u[i]);
-  if (auto st = input_sim.bind(spec.symbols, vars.data()); !st) return st.err();
-
-  Dataset d;
-  d.source = "simulated " + name + ", seed " + std::to_string(static_cast<long long>(seed));
-  d.add("t", rows);
-  for (const auto& in : spec.inputs)
-    d.add(in.name, rows);
-  for (const auto& c : spec.channels) {
-    for (const auto& r : c.roles)
-      d.add(r.name, rows);
-  }
-  const int n = spec.n();
-  for (int i = 0; i < n; ++i) {
-    if (!spec.truth[static_cast<std::size_t>(i)].empty()) {
-      d.add(spec.truth[static_cast<std::size_t>(i)], rows);
-    }
-  }
-
-  // One stream per noise source (core/random.h): x0, the process, each channel.
-  const auto seed_bits = static_cast<std::uint64_t>(seed);
-  RandomStream x0_stream(seed_bits, "x0"), process_stream(seed_bits, "process");
-  std::vector<RandomStream> channel_streams;
-  for (const auto& c : spec.channels)
-    channel_streams.emplace_back(seed_bits, "channel." + c.name);
-  auto draw = [](RandomStream& r, Eigen::Index m) {
-    VecX v(m);
-    for (Eigen::Index i = 0; i < m; ++i)
-      v(i) = r.normal();
-    return v;
-  };
-  auto fail = [&](std::size_t k, const std::string& what) -> Error {
-    std::ostringstream os;
-    os << "simulation, step " << k << " (t = " << static_cast<double>(k) * dt << " s): " << what;
-    return failure(os.str());
-  };
-
-  if (auto st = ev.set_dt(dt); !st) return fail(0, st.error());
-  MatX L;
-  if (!psd_sqrt(ev.P0, L)) return Error{spec.path + ": model.P0: not positive semidefinite"};
-  VecX x = ev.x0 + L * draw(x0_stream, n);
-  MatX Lq;
-  bool lq_valid = false;
-  const bool nonlinear = spec.nonlinear_process();
-  std::vector<MatX> Lr(spec.channels.size());
-  std::vector<bool> lr_valid(spec.channels.size(), false);
-
-  for (std::size_t k = 0; k < rows; ++k) {
-    const double tk = static_cast<double>(k) * dt;
-    vars[t_slot] = tk;
-    input_sim.eval();
-    d.columns[0][k] = tk;
-    for (std::size_t i = 0; i < nu; ++i)
-      d.columns[1 + i][k] = u[i];
-    if (k > 0) {
-      // x_k = F x_{k−1} + B u_{k−1} (or f) + w, w ~ N(0, Q).
-      if (auto st = ev.set_dt(dt); !st) return fail(k, st.error());
-      ev.set_time(tk - dt);
-      ev.set_inputs(u_prev.data());
-      ev.process_step();
-      ev.set_state(x.data());
-      VecX next;
-      if (nonlinear) {
-        ev.process_f();
-        next = ev.fx;
-      } else {
-        next = ev.F * x;
-        for (std::size_t i = 0; i < nu; ++i)
-          next += ev.B.col(static_cast<Eigen::Index>(i)) * u_prev[i];
-      }
-      ev.process_noise();
-      if (!lq_valid || ev.process_noise_varies()) {
-        if (!psd_sqrt(ev.Q, Lq)) return fail(k, "model.process.Q is not positive semidefinite");
-        lq_valid = true;
-      }
-      x = next + Lq * draw(process_stream, n);
-      for (int i = 0; i < n; ++i)
-        x(i) = wrap(x(i), spec.states[static_cast<std::size_t>(i)].angle);
-      if (!x.allFinite()) return fail(k, "the simulated state is not finite");
-    }
-    u_prev = u;
-    ev.set_time(tk);
-    ev.set_inputs(u.data());
-    ev.set_state(x.data());
-    std::size_t col = 1 + nu;
-    for (std::size_t c = 0; c < spec.channels.size(); ++c) {
-      const ChannelSpec& cs = spec.channels[c];
-      const auto m = static_cast<std::size_t>(cs.size());
-      auto& ch = ev.channel(c);
-      if (k % static_cast<std::size_t>(ch.every) == 0) {
-        // z = h(x) + v (or H x + v), v ~ N(0, R).
-        ev.channel_step(c);
-        ev.channel_noise(c);
-        VecX z;
-        if (cs.linear) {
-          z = ch.H * x;
-        } else {
-          ev.channel_h(c);
-          z = ch.hx;
-        }
-        if (!lr_valid[c] || ch.R_varies) {
-          if (!psd_sqrt(ch.R, Lr[c])) {
-            return fail(k, cs.R.key + " is not positive semidefinite");
-          }
-          lr_valid[c] = true;
-        }
-        z += Lr[c] * draw(channel_streams[c], cs.size());
-        for (std::size_t j = 0; j < m; ++j) {
-          d.columns[col + j][k] = wrap(z(static_cast<Eigen::Index>(j)), cs.roles[j].angle);
-        }
-      }
-      col += m;
-    }
-    for (int i = 0; i < n; ++i) {
-      if (!spec.truth[static_cast<std::size_t>(i)].empty()) d.columns[col++][k] = x(i);
-    }
-  }
-  return d;
+  if (auto st = (*evr)->check_dt(dt, "sim.dt"); !st) return st.err();
+  Simulation sim(spec, **evr, dt, static_cast<std::uint64_t>(seed));
+  if (auto st = sim.prepare(duration, rows); !st) return st.err();
+  return sim.run("simulated " + name + ", seed " + std::to_string(static_cast<long long>(seed)));
 }
 
 }  // namespace kfw::model

@@ -46,8 +46,18 @@ Expected<ChannelSpec> parse_channel(const Reader& p, const std::string& name, co
   ChannelSpec c;
   c.name = name;
   if (!j.is_object()) return p.error(key, "expected an object");
-  if (auto st = p.only_keys(j, key, {"roles", "label", "H", "h", "R", "every", "gate"}); !st) {
+  if (auto st = p.only_keys(
+          j, key,
+          {"roles", "label", "H", "h", "R", "every", "gate", "clock", "dropout", "outliers"});
+      !st) {
     return st.err();
+  }
+  for (const char* k : {"clock", "dropout", "outliers"}) {
+    if (j.contains(k) && !m.world_block) {
+      return p.error(key + "." + k,
+                     "a sensor's key: only a world's sensors (model.world."
+                     "measurements) have a clock, dropouts and outliers");
+    }
   }
   auto label = p.string(j, "label", key, false, name);
   if (!label) return label.err();
@@ -340,6 +350,16 @@ Status parse_outputs(const Reader& p, const json& j, ModelSpec& m,
     if (!it->is_object()) return p.error("model.truth", "expected {\"state\": \"column\", ...}");
     for (auto t = it->begin(); t != it->end(); ++t) {
       const int s = m.state_index(t.key());
+      if (s < 0 && m.world_block && t->is_string() && !roles_seen.count(t->get<std::string>())) {
+        // A world may write a sub-expression (a quantity not among its states) as truth.
+        const int slot = m.symbols.find(t.key());
+        if (slot >= 0 && m.symbols.kinds[static_cast<std::size_t>(slot)] == kSubSymbol) {
+          auto e = p.expr(json(t.key()), "model.truth." + t.key(), kAllSymbols, "");
+          if (!e) return e.err();
+          m.truth_exprs.emplace_back(t->get<std::string>(), *e);
+          continue;
+        }
+      }
       if (s < 0) {
         return p.error("model.truth." + truncate_token(t.key()),
                        "unknown state" + did_you_mean(t.key(), state_names(m)));
@@ -416,7 +436,7 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   if (auto st = p.only_keys(
           j, key,
           {"version", "description", "states", "inputs", "expressions", "x0", "P0", "process",
-           "measurements", "truth", "primary", "filter", "world", "derived"});
+           "measurements", "truth", "primary", "filter", "world", "derived", "noise", "clocks"});
       !st) {
     return st.err();
   }
@@ -443,6 +463,17 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   }
   m.dt_slot = m.symbols.add("dt", kDtSymbol);
   m.t_slot = m.symbols.add("t", kTimeSymbol);
+  m.world_block = world;
+  for (const char* k : {"noise", "clocks"}) {
+    if (j.contains(k) && !world) {
+      return p.error(std::string("model.") + k,
+                     std::string("a key of the world block: declare it as model.world.") + k);
+    }
+  }
+  if (world) {
+    if (auto st = detail::parse_noise_sources(p, j, m); !st) return st.err();
+    if (auto st = detail::parse_clocks(p, j, m); !st) return st.err();
+  }
 
   if (auto st = parse_states(p, j, m); !st) return st.err();
 
@@ -468,6 +499,12 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
     }
     auto c = parse_channel(p, it.key(), it.value(), m, params, roles_seen);
     if (!c) return c.err();
+    if (world) {
+      if (auto st = detail::parse_sensor(p, it.value(), "model.measurements." + it.key(), m, *c);
+          !st) {
+        return st.err();
+      }
+    }
     m.channels.push_back(std::move(*c));
   }
 

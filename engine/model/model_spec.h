@@ -6,6 +6,7 @@
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/expected.h"
@@ -47,6 +48,42 @@ struct RoleSpec {
   Angle angle = Angle::kNone;
 };
 
+// A world's named noise source (version 2, world only): a symbol whose value the simulation
+// draws from its own stream "noise.NAME" (model_world_noise.h).
+enum class NoiseKind {
+  kWhite,        // a new draw at every step of the sim.dt grid
+  kHeld,         // a new draw every `hold` seconds (windows [i·hold, (i+1)·hold)), or once
+  kRandomWalk,   // 0 at t = 0, then + sigma·√dt·n per step (sigma in unit/√s)
+  kGaussMarkov,  // first order, stationary: std sigma, correlation time tau
+};
+struct NoiseSourceSpec {
+  std::string name, unit, description;
+  NoiseKind kind = NoiseKind::kWhite;
+  bool uniform = false;           // white, held: uniform on [min, max) instead of N(0, sigma²)
+  Expr sigma, tau, hold, lo, hi;  // parameters only; hold 0: drawn once per run
+  bool held_once = false;         // held without a `hold`
+  int slot = -1;
+};
+
+// A world's sensor clock: ticks t₀ = offset, tᵢ₊₁ = tᵢ + max(period + jitter·n, period/10),
+// rounded to `resolution` (0: not rounded); jitter from the stream "clock.NAME". Sensors naming
+// the same clock sample at the same instants.
+struct ClockSpec {
+  std::string name;
+  Expr period, offset, jitter, resolution;  // parameters only
+};
+
+// What a world's sensor adds to a channel (world only).
+struct SensorSpec {
+  int clock = -1;  // an index into ModelSpec::clocks, or -1: the sim.dt grid (and `every`)
+  Expr dropout;    // the probability that a sample is lost (stream "dropout.NAME"); "0": none
+  // Outliers: ±size added to `count` samples drawn without replacement from the samples of the
+  // sensors of one group (stream "outliers.GROUP"), or to each sample with probability `rate`.
+  bool outliers = false, outlier_count = true;
+  Expr outlier_amount, outlier_size;
+  std::string outlier_group, outlier_column;  // the column of each sample's offset (optional)
+};
+
 struct ChannelSpec {
   std::string name, label;
   std::vector<RoleSpec> roles;
@@ -57,6 +94,7 @@ struct ChannelSpec {
   int every = 1;            // update on rows k with k % every == 0 ...
   std::string every_param;  // ... or every = this parameter's value
   double gate = 0.0;        // χ² gate probability; 0: no gate
+  SensorSpec sensor;        // a world's sensor: its clock, dropouts and outliers
   int size() const { return static_cast<int>(roles.size()); }
 };
 
@@ -116,6 +154,12 @@ struct ModelSpec {
   std::shared_ptr<const ModelSpec> world;
   std::vector<DerivedSpec> derived;  // in the order of their names
   std::vector<int> truth_slots;      // per state: its truth column's symbol, or -1
+  // World only: the named noise sources, the sensor clocks, and truth columns written from
+  // sub-expressions ({column, expression}).
+  bool world_block = false;  // this is a world (parsed with parse_model(..., world = true))
+  std::vector<NoiseSourceSpec> noise;
+  std::vector<ClockSpec> clocks;
+  std::vector<std::pair<std::string, Expr>> truth_exprs;
 
   int n() const { return static_cast<int>(states.size()); }
   // F or A and H in every channel: the KF applies, and a steady state may exist.

@@ -38,6 +38,25 @@ std::set<std::string> written(const ModelSpec& w) {
   return out;
 }
 
+// The sensors of one outlier group share its count (or rate) and size.
+Status check_outlier_groups(const ModelSpec& w, const std::string& path) {
+  for (std::size_t a = 0; a < w.channels.size(); ++a) {
+    const SensorSpec& s = w.channels[a].sensor;
+    if (!s.outliers) continue;
+    for (std::size_t b = 0; b < a; ++b) {
+      const SensorSpec& o = w.channels[b].sensor;
+      if (!o.outliers || o.outlier_group != s.outlier_group) continue;
+      if (o.outlier_count != s.outlier_count || o.outlier_amount.text != s.outlier_amount.text ||
+          o.outlier_size.text != s.outlier_size.text) {
+        return Error{path + ": model.world.measurements." + w.channels[a].name +
+                     ".outliers: the group '" + s.outlier_group + "' is declared by '" +
+                     w.channels[b].name + "' with another count, rate or size"};
+      }
+    }
+  }
+  return Ok{};
+}
+
 }  // namespace
 
 Expected<std::shared_ptr<const ModelSpec>> parse_world(const json& model, const ParamTable& params,
@@ -60,6 +79,7 @@ Expected<std::shared_ptr<const ModelSpec>> parse_world(const json& model, const 
     return Error{path + ": model.world: writes no column '" + column + "', which " + reader +
                  " reads (declare a sensor role, an input or a truth column of that name)"};
   };
+  if (auto st = check_outlier_groups(*spec, path); !st) return st.err();
   for (std::size_t i = 0; i < filter.inputs.size(); ++i) {
     if (!made.count(filter.inputs[i].name)) {
       return missing(filter.inputs[i].name, "model.inputs[" + std::to_string(i) + "]");

@@ -103,7 +103,7 @@ Status add_derived(const ModelSpec& spec, const ParamValues& values, const Datas
   for (std::size_t i = 0; i < spec.param_slots.size(); ++i)
     vars[static_cast<std::size_t>(spec.param_slots[i])] = param(values, spec.param_keys[i]);
   vars[static_cast<std::size_t>(spec.dt_slot)] =
-      d.rows() >= 2 ? d.median_dt() : param(values, "sim.dt");
+      d.rows() >= 2 ? d.median_dt() : param(values, spec.sim_dt_key);
   std::vector<double> out(spec.derived.size(), 0.0);
   ExprGroup scalars, series;
   for (std::size_t q = 0; q < spec.derived.size(); ++q)

@@ -313,11 +313,11 @@ Expected<Metrics> ModelScenario::gain(const ParamValues& v, const Dataset* data)
     return Error{s.path + ": no steady-state gain: the model is not linear time-invariant (F, B, " +
                  "Q, H and R must depend on parameters and dt only)"};
   }
-  const double dt = data && data->rows() >= 2 ? data->median_dt() : param(v, "sim.dt");
+  const double dt = data && data->rows() >= 2 ? data->median_dt() : param(v, s.sim_dt_key);
   auto ev = model::ModelEval::create(s, v);
   if (!ev) return ev.err();
   const std::string where =
-      data && data->rows() >= 2 ? "the median interval of " + data->source : std::string("sim.dt");
+      data && data->rows() >= 2 ? "the median interval of " + data->source : s.sim_dt_key;
   if (auto st = (*ev)->check_dt(dt, where); !st) return st.err();
   // All channels at one rate m: the m-step model F^m, Σ_{i<m} F^i Q F^iᵀ between updates.
   const int every = (*ev)->channel(0).every;
@@ -533,6 +533,8 @@ Expected<std::unique_ptr<Scenario>> make_model_scenario(const OJson& preset,
   for (auto& s : standard_params(filters, filter)) {
     if (s.key == "filter" && !filter_entry.is_null()) {
       specs.insert(specs.begin() + static_cast<std::ptrdiff_t>(filter_place), s);
+    } else if (s.key == "sim.dt" && spec->sim_dt_key != "sim.dt") {
+      continue;  // the file names its own simulation step
     } else if (s.key == "filter" || !declared->find(s.key)) {
       all.push_back(s);
     }
@@ -550,7 +552,9 @@ Expected<std::unique_ptr<Scenario>> make_model_scenario(const OJson& preset,
     auto wev = model::ModelEval::create(*shared->world, table.defaults());
     if (!wev) return wev.err();
   }
-  if (auto st = (*ev)->check_dt(param(defaults, "sim.dt"), "sim.dt"); !st) return st.err();
+  if (auto st = (*ev)->check_dt(param(defaults, shared->sim_dt_key), shared->sim_dt_key); !st) {
+    return st.err();
+  }
   return std::unique_ptr<Scenario>(
       std::make_unique<ModelScenario>(std::move(shared), std::move(table), std::move(title)));
 }

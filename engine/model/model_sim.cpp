@@ -388,18 +388,19 @@ Expected<Dataset> simulate_model(const ModelSpec& spec, const ParamValues& value
                                  const std::string& name) {
   const double seed = param(values, "sim.seed");
   const double duration = param(values, "sim.duration");
-  const double dt = param(values, "sim.dt");
+  const std::string& dt_key = spec.sim_dt_key;
+  const double dt = param(values, dt_key);
   if (!(dt > 0.0) || !(duration >= 0.0)) {
-    return Error{"sim.dt must be positive and sim.duration not negative"};
+    return Error{dt_key + " must be positive and sim.duration not negative"};
   }
   // Samples at 0, dt, ... up to the duration, and at least two: a filter needs one step (a
   // duration shorter than dt, both inside their ranges, still gives a run).
   const auto rows =
       std::max<std::size_t>(static_cast<std::size_t>(std::floor(duration / dt + 1e-9)) + 1, 2);
-  if (rows > kMaxRows) return Error{"sim.duration / sim.dt: more than 50 million rows"};
+  if (rows > kMaxRows) return Error{"sim.duration / " + dt_key + ": more than 50 million rows"};
   auto evr = ModelEval::create(spec, values);
   if (!evr) return evr.err();
-  if (auto st = (*evr)->check_dt(dt, "sim.dt"); !st) return st.err();
+  if (auto st = (*evr)->check_dt(dt, dt_key); !st) return st.err();
   Simulation sim(spec, **evr, dt, static_cast<std::uint64_t>(seed));
   if (auto st = sim.prepare(duration, rows); !st) return st.err();
   return sim.run("simulated " + name + ", seed " + std::to_string(static_cast<long long>(seed)));

@@ -174,13 +174,31 @@ Status add_sim_symbols(const Reader& p, const ParamTable& params, ModelSpec& m) 
 // lowest version that holds the file, so a version-1 file never needs them).
 Status check_version_keys(const Reader& p, const json& j, int version) {
   if (version >= 2) return Ok{};
-  for (const char* k : {"expressions", "world", "derived"}) {
+  for (const char* k : {"expressions", "world", "derived", "sim"}) {
     if (j.contains(k))
       return p.error(std::string("model.") + k, "a version-2 key: set \"version\": 2");
   }
   if (j.contains("process") && j["process"].is_object() && j["process"].contains("xdot")) {
     return p.error("model.process.xdot", "a version-2 key: set \"version\": 2");
   }
+  return Ok{};
+}
+
+// "sim": {"dt": "sim.Ts"}: the declared parameter that is the simulation's step.
+Status parse_sim_keys(const Reader& p, const json& j, const ParamTable& params, ModelSpec& m) {
+  auto it = j.find("sim");
+  if (it == j.end()) return Ok{};
+  if (!it->is_object()) return p.error("model.sim", "expected {\"dt\": \"PARAMETER\"}");
+  if (auto st = p.only_keys(*it, "model.sim", {"dt"}); !st) return st;
+  auto dt = p.string(*it, "dt", "model.sim", false, "sim.dt");
+  if (!dt) return dt.err();
+  if (!params.find(*dt)) {
+    std::vector<std::string> names;
+    for (const auto& spec : params.specs())
+      names.push_back(spec.key);
+    return p.error("model.sim.dt", unknown_message("parameter", *dt, names));
+  }
+  m.sim_dt_key = *dt;
   return Ok{};
 }
 
@@ -433,10 +451,10 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   Reader p(path, m.symbols);
   const std::string key = "model";
   if (!j.is_object()) return p.error(key, "expected an object");
-  if (auto st = p.only_keys(
-          j, key,
-          {"version", "description", "states", "inputs", "expressions", "x0", "P0", "process",
-           "measurements", "truth", "primary", "filter", "world", "derived", "noise", "clocks"});
+  if (auto st = p.only_keys(j, key,
+                            {"version", "description", "states", "inputs", "expressions", "x0",
+                             "P0", "process", "measurements", "truth", "primary", "filter", "world",
+                             "derived", "noise", "clocks", "sim"});
       !st) {
     return st.err();
   }
@@ -450,6 +468,7 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
                                         std::to_string(kModelVersion));
   }
   if (auto st = check_version_keys(p, j, m.version); !st) return st.err();
+  if (auto st = parse_sim_keys(p, j, params, m); !st) return st.err();
 
   // Symbols: the parameters whose keys are names, dt, t, the states, the inputs.
   for (const auto& spec : params.specs()) {

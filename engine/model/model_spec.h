@@ -148,6 +148,9 @@ struct ModelSpec {
   // sqrt(mean Σ err_i²)).
   std::vector<std::string> primary;
   std::string filter;  // the default filter: kf, ekf or ukf
+  // The parameter that is the simulation's step (version 2, "sim": {"dt": "sim.Ts"}): a seed
+  // preset keeps its own key, and no sim.dt is gained.
+  std::string sim_dt_key = "sim.dt";
   // The world block (version 2): what generates the data in simulation, a model of its own whose
   // channels are the sensors writing the columns this model reads; null: the model simulates
   // itself.

@@ -23,7 +23,8 @@ Error under_world(const Error& e, const std::string& path) {
   return Error{msg, e.exit_code};
 }
 
-// Every column the world writes: t, its inputs, its sensors' roles, its truth columns.
+// Every column the world writes: t, its inputs, its sensors' roles and outlier columns, its truth
+// columns (of states and of sub-expressions).
 std::set<std::string> written(const ModelSpec& w) {
   std::set<std::string> out{"t"};
   for (const auto& in : w.inputs)
@@ -34,6 +35,11 @@ std::set<std::string> written(const ModelSpec& w) {
   }
   for (const auto& col : w.truth) {
     if (!col.empty()) out.insert(col);
+  }
+  for (const auto& [col, e] : w.truth_exprs)
+    out.insert(col);
+  for (const auto& c : w.channels) {
+    if (!c.sensor.outlier_column.empty()) out.insert(c.sensor.outlier_column);
   }
   return out;
 }
@@ -74,6 +80,7 @@ Expected<std::shared_ptr<const ModelSpec>> parse_world(const json& model, const 
   w["version"] = filter.version;
   auto spec = parse_model(w, params, path, true);
   if (!spec) return under_world(spec.err(), path);
+  spec->sim_dt_key = filter.sim_dt_key;
   const auto made = written(*spec);
   auto missing = [&](const std::string& column, const std::string& reader) -> Error {
     return Error{path + ": model.world: writes no column '" + column + "', which " + reader +

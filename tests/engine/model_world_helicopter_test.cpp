@@ -1,0 +1,199 @@
+// Issue 27: seed 000 as one model file (presets/models/helicopter_world.json: the built-in's
+// parameter keys, sim.Ts as the simulation step, β and the closed forms as derived quantities,
+// a world that simulates the hover sway, the bias walk and the dropouts) against the built-in
+// `helicopter` scenario. Equality in the form of ../shared/STAGE.md: |a − b| ≤ 1e-9 (|b| + σ_b),
+// σ_b the built-in's posterior standard deviation of that state, or the column's largest
+// magnitude for other columns.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "common/model_files.h"
+#include "core/dataset.h"
+#include "core/scenario.h"
+#include "data/csv.h"
+#include "model/model_result.h"
+#include "scenarios/helicopter/indirect_kf.h"
+
+namespace kfw {
+namespace {
+
+const std::string kFile = KFW_SOURCE_DIR "/presets/models/helicopter_world.json";
+const std::string kLog = KFW_SHARED_DIR "/data/broad/10_undisturbed_slow_translation_A.csv";
+constexpr double kTol = 1e-9;
+
+// a (the model file) against b (the built-in), with the scale s per step (σ_b, or a constant).
+::testing::AssertionResult same(const std::vector<double>& a, const std::vector<double>& b,
+                                const std::vector<double>& s, const std::string& what) {
+  if (a.size() != b.size()) {
+    return ::testing::AssertionFailure() << what << ": sizes " << a.size() << " vs " << b.size();
+  }
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    if (std::isnan(a[k]) && std::isnan(b[k])) continue;
+    const double sk = s.size() == 1 ? s[0] : s[k];
+    if (!(std::fabs(a[k] - b[k]) <= kTol * (std::fabs(b[k]) + sk))) {
+      return ::testing::AssertionFailure()
+             << what << " differs at step " << k << ": " << a[k] << " vs " << b[k];
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+std::vector<double> largest(const std::vector<double>& v) {
+  double m = 0;
+  for (double x : v) {
+    if (std::isfinite(x)) m = std::max(m, std::fabs(x));
+  }
+  return {m};
+}
+
+std::vector<double> root(const std::vector<double>& v) {
+  std::vector<double> out(v.size());
+  std::transform(v.begin(), v.end(), out.begin(), [](double x) { return std::sqrt(x); });
+  return out;
+}
+
+void expect_same_run(const Scenario& builtin, const Scenario& model, const Dataset& d,
+                     const ParamValues& v, const std::string& label) {
+  SCOPED_TRACE(label);
+  ParamValues vb = builtin.params().defaults();  // the built-in's table: no filter, no ukf.*
+  for (auto& [key, value] : vb) {
+    if (v.count(key)) value = v.at(key);
+  }
+  auto rb = builtin.run(d, vb);
+  ASSERT_TRUE(rb.ok()) << rb.error();
+  auto rm = model.run(d, v);
+  ASSERT_TRUE(rm.ok()) << rm.error();
+  const auto& b = dynamic_cast<const helicopter::HelicopterResult&>(**rb);
+  const auto& m = dynamic_cast<const model::ModelResult&>(**rm);
+  EXPECT_TRUE(same(m.x[0], b.theta, root(b.P11), "theta"));
+  EXPECT_TRUE(same(m.x[1], b.bias, root(b.P22), "bias"));
+  EXPECT_TRUE(same(m.P[m.cov_index(0, 0)], b.P11, largest(b.P11), "P11"));
+  EXPECT_TRUE(same(m.P[m.cov_index(0, 1)], b.P12, largest(b.P12), "P12"));
+  EXPECT_TRUE(same(m.P[m.cov_index(1, 1)], b.P22, largest(b.P22), "P22"));
+  ASSERT_EQ(m.chans.size(), 1u);
+  EXPECT_TRUE(same(m.chans[0].y[0], b.innovation, largest(b.innovation), "innovation"));
+  EXPECT_TRUE(same(m.chans[0].S[0], b.S, largest(b.S), "S"));
+  EXPECT_EQ(m.chans[0].updates, b.updates);
+  for (const char* key : {"rmse", "nis_mean", "nees_mean"}) {
+    ASSERT_EQ((*rb)->metrics.count(key), (*rm)->metrics.count(key)) << key;
+    if (!(*rb)->metrics.count(key)) continue;
+    const double x = (*rb)->metrics.at(key);
+    EXPECT_NEAR((*rm)->metrics.at(key), x, kTol * std::fabs(x)) << key;
+  }
+}
+
+// Every parameter of presets/helicopter.json is a parameter of the file, with the same default.
+// (The built-in's view parameter `window`, the NIS/NEES moving average, is not one yet.)
+TEST(ModelWorldHelicopter, KeepsTheSeedPresetsParameterKeys) {
+  std::ifstream in(KFW_SOURCE_DIR "/presets/helicopter.json");
+  const auto preset = nlohmann::json::parse(in);
+  auto model = testing::load_model_file(kFile);
+  ASSERT_TRUE(model);
+  for (const auto& [key, entry] : preset.at("parameters").items()) {
+    const ParamSpec* p = model->params().find(key);
+    ASSERT_TRUE(p) << key;
+    EXPECT_EQ(p->def, entry.at("value").get<double>()) << key;
+  }
+  EXPECT_FALSE(model->params().find("sim.dt"));  // sim.Ts is the simulation step
+}
+
+TEST(ModelWorldHelicopter, SameEstimatesAsTheBuiltInOnTheRealLog) {
+  if (!std::filesystem::exists(kLog)) GTEST_SKIP() << "no shared data at " << kLog;
+  auto data = read_csv(kLog);
+  ASSERT_TRUE(data.ok()) << data.error();
+  auto builtin = make_scenario("helicopter");
+  ASSERT_TRUE(builtin.ok());
+  auto model = testing::load_model_file(kFile);
+  ASSERT_TRUE(model);
+  for (double m : {1.0, 5.0}) {
+    for (double gamma : {0.0, 0.003}) {
+      ParamValues v = model->params().defaults();
+      v["Q"] = 256;  // presets/broad_imu.json's tuning
+      v["R"] = 4096;
+      v["m"] = m;
+      v["gamma"] = gamma;
+      expect_same_run(**builtin, *model, *data, v,
+                      "m = " + std::to_string(m) + ", gamma = " + std::to_string(gamma));
+    }
+  }
+}
+
+TEST(ModelWorldHelicopter, SameEstimatesOnTheWorldsSimulation) {
+  auto builtin = make_scenario("helicopter");
+  ASSERT_TRUE(builtin.ok());
+  auto model = testing::load_model_file(kFile);
+  ASSERT_TRUE(model);
+  ParamValues v = model->params().defaults();
+  v["sim.duration"] = 60;
+  v["sim.angle_dropout"] = 0.1;
+  v["sim.bias_walk"] = 0.2;
+  auto d = model->simulate(v);
+  ASSERT_TRUE(d.ok()) << d.error();
+  for (double m : {1.0, 5.0}) {
+    for (double gamma : {0.0, 0.003}) {
+      v["m"] = m;
+      v["gamma"] = gamma;
+      expect_same_run(**builtin, *model, *d, v,
+                      "m = " + std::to_string(m) + ", gamma = " + std::to_string(gamma));
+    }
+  }
+}
+
+// β and the closed forms k1(β), p11⁻/N_θ as derived quantities equal the built-in's and the
+// DARE of the m-step model (γ = 0).
+TEST(ModelWorldHelicopter, ClosedFormsEqualTheBuiltInAndTheDare) {
+  auto builtin = make_scenario("helicopter");
+  ASSERT_TRUE(builtin.ok());
+  auto model = testing::load_model_file(kFile);
+  ASSERT_TRUE(model);
+  ParamValues v = model->params().defaults();
+  v["sim.duration"] = 5;
+  auto d = model->simulate(v);
+  ASSERT_TRUE(d.ok()) << d.error();
+  for (double m : {1.0, 5.0, 25.0}) {
+    for (double q : {1.0, 67.24, 5000.0}) {
+      v["m"] = m;
+      v["Q"] = q;
+      auto r = model->run(*d, v);
+      ASSERT_TRUE(r.ok()) << r.error();
+      ParamValues vb = (*builtin)->params().defaults();
+      vb["m"] = m;
+      vb["Q"] = q;
+      auto g = (*builtin)->gain(vb);
+      ASSERT_TRUE(g.ok()) << g.error();
+      const Metrics& mm = (*r)->metrics;
+      SCOPED_TRACE("m = " + std::to_string(m) + ", Q = " + std::to_string(q));
+      EXPECT_NEAR(mm.at("derived.beta"), g->at("beta"), kTol * g->at("beta"));
+      EXPECT_NEAR(mm.at("derived.k1"), g->at("k1"), kTol * g->at("k1"));
+      EXPECT_NEAR(mm.at("derived.p11_over_R"), g->at("p11_over_R"), kTol * g->at("p11_over_R"));
+      EXPECT_NEAR(mm.at("derived.k1"), g->at("k1_dare"), kTol * g->at("k1_dare"));
+      EXPECT_NEAR(mm.at("derived.p11_over_R"), g->at("p11_over_R_dare"),
+                  kTol * g->at("p11_over_R_dare"));
+    }
+  }
+}
+
+// "sim": {"dt": KEY} names a declared parameter, in a version-2 file.
+TEST(ModelWorldHelicopter, TheSimulationStepKeyIsChecked) {
+  std::ifstream in(kFile);
+  auto j = nlohmann::ordered_json::parse(in);
+  j["model"]["sim"]["dt"] = "sim.T";
+  auto s = make_model_scenario(j, "h.json");
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.error().find("h.json: model.sim.dt: unknown parameter 'sim.T' (did you mean"),
+            std::string::npos)
+      << s.error();
+  j["model"]["sim"]["dt"] = "sim.Ts";
+  j["model"]["version"] = 1;
+  s = make_model_scenario(j, "h.json");
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.error().find("a version-2 key"), std::string::npos) << s.error();
+}
+
+}  // namespace
+}  // namespace kfw

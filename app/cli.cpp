@@ -173,6 +173,9 @@ void declare_gain(CLI::App& app, GainArgs& a) {
       ->type_name("N")
       ->check(CLI::Range(2, 100000))
       ->capture_default_str();
+  add_path(c, "--x", a.x, "NAME",
+           "with --curve: also give the curve against this steady-state quantity (a derived "
+           "scalar such as beta, or another entry gain prints)");
 }
 
 // tune: the selection, the objective and the optimiser's settings.

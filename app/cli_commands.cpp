@@ -142,21 +142,30 @@ int cmd_run(const RunArgs& a, std::ostream& out, std::ostream& err) {
 
 namespace {
 
-// gain --curve KEY: {"parameter", "log", "x": [...], "gains": {"K.x.z": [...]}, "at": {...}}.
+// gain --curve KEY [--x NAME]: {"parameter", "log", "x": [...], ["x_quantity", "x_values"],
+// "gains": {"K.x.z": [...]}, "at": {...}}.
 int print_gain_curve(const Scenario& s, const ParamValues& values, const std::string& key,
-                     std::size_t points, const Dataset* data, std::ostream& out,
-                     std::ostream& err) {
+                     const std::string& x_key, std::size_t points, const Dataset* data,
+                     std::ostream& out, std::ostream& err) {
   const auto keys = gain_curve_parameters(s);
   if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
     return fail(err,
                 Error{"--curve: " + unknown_message("continuous filter parameter", key, keys)});
   }
-  auto c = gain_curve(s, values, key, points, data);
+  auto c = gain_curve(s, values, key, points, data, "K.", x_key);
   if (!c) return fail(err, c.err());
   nlohmann::ordered_json j;
   j["parameter"] = key;
   j["log"] = c->log;
   j["x"] = c->x;
+  if (!c->x_key.empty()) {
+    // The same points against the derived quantity (null where the steady state fails).
+    nlohmann::ordered_json v = nlohmann::ordered_json::array();
+    for (double y : c->x_metric)
+      v.push_back(std::isfinite(y) ? nlohmann::ordered_json(y) : nlohmann::ordered_json());
+    j["x_quantity"] = c->x_key;
+    j["x_values"] = v;
+  }
   nlohmann::ordered_json gains = nlohmann::ordered_json::object(), at = gains;
   for (std::size_t e = 0; e < c->entries.size(); ++e) {
     nlohmann::ordered_json v = nlohmann::ordered_json::array();
@@ -182,9 +191,10 @@ int cmd_gain(const GainArgs& a, std::ostream& out, std::ostream& err) {
     if (!d) return fail(err, d.err());
     data = std::move(*d);
   }
+  if (a.x && !a.curve) return fail(err, Error{"--x needs --curve KEY (the parameter swept)"});
   if (a.curve)
-    return print_gain_curve(*ws->scenario, ws->values, *a.curve, a.points, data ? &*data : nullptr,
-                            out, err);
+    return print_gain_curve(*ws->scenario, ws->values, *a.curve, a.x.value_or(""), a.points,
+                            data ? &*data : nullptr, out, err);
   auto g = ws->scenario->gain(ws->values, data ? &*data : nullptr);
   if (!g) return fail(err, g.err());
   out << metrics_to_json(*g, {}) << "\n";

@@ -77,6 +77,7 @@ struct GainArgs {
   DataArgs data;
   std::optional<std::string> curve;  // --curve KEY
   std::size_t points = 100;          // --points N of the curve
+  std::optional<std::string> x;      // --x NAME: a steady-state quantity as the curve's x too
 };
 
 struct TuneArgs {

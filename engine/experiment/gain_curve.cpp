@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/suggest.h"
+
 namespace kfw {
 
 namespace {
@@ -50,7 +52,8 @@ std::string default_gain_curve_parameter(const Scenario& s, const ParamValues& v
 }
 
 Expected<GainCurve> gain_curve(const Scenario& s, const ParamValues& values, const std::string& key,
-                               std::size_t points, const Dataset* data, const std::string& prefix) {
+                               std::size_t points, const Dataset* data, const std::string& prefix,
+                               const std::string& x_key) {
   const ParamSpec* spec = s.params().find(key);
   if (!spec || !curve_parameter(*spec)) {
     return Error{"gain curve: '" + key + "' is not a continuous filter parameter"};
@@ -73,6 +76,25 @@ Expected<GainCurve> gain_curve(const Scenario& s, const ParamValues& values, con
   }
   if (!declared) c.units.clear();
   if (c.entries.empty()) return Error{"gain curve: the scenario reports no '" + prefix + "' gains"};
+  std::string x = x_key;  // a model file's derived quantity by its own name: "beta"
+  if (!x.empty() && !here->count(x) && here->count("derived." + x)) x = "derived." + x;
+  if (!x.empty() && !here->count(x)) {
+    std::vector<std::string> others;
+    for (const auto& [k, v] : *here) {
+      if (k.rfind(prefix, 0) != 0) others.push_back(k);
+    }
+    std::string msg = unknown_message("quantity of the steady state", x_key, others);
+    if (msg.find("did you mean") == std::string::npos) {
+      std::string derived;  // what a model file declares for this axis
+      for (const auto& k : others) {
+        if (k.rfind("derived.", 0) == 0) derived += (derived.empty() ? "" : ", ") + k.substr(8);
+      }
+      msg += derived.empty() ? " (this model declares no derived scalar)"
+                             : " (derived scalars: " + derived + ")";
+    }
+    return Error{"gain curve: --x: " + msg};
+  }
+  c.x_key = x;
   points = std::max<std::size_t>(points, 2);
   c.x.resize(points);
   for (std::size_t i = 0; i < points; ++i) {
@@ -82,11 +104,13 @@ Expected<GainCurve> gain_curve(const Scenario& s, const ParamValues& values, con
   }
   c.values.assign(c.entries.size(),
                   std::vector<double>(points, std::numeric_limits<double>::quiet_NaN()));
+  if (!x.empty()) c.x_metric.assign(points, std::numeric_limits<double>::quiet_NaN());
   ParamValues v = values;
   for (std::size_t i = 0; i < points; ++i) {
     v[key] = c.x[i];
     auto g = s.gain(v, data);
     if (!g) continue;  // no steady state here: a gap in the curve
+    if (!x.empty() && g->count(x)) c.x_metric[i] = g->at(x);
     for (std::size_t e = 0; e < c.entries.size(); ++e) {
       if (auto it = g->find(c.entries[e]); it != g->end() && std::isfinite(it->second))
         c.values[e][i] = it->second;

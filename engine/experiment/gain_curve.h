@@ -20,18 +20,24 @@ struct GainCurve {
   // Each entry's declared unit ("" when dimensionless); empty when the scenario declares none.
   std::vector<std::string> units;
   std::vector<std::vector<double>> values;  // [entry][point]; NaN where there is no steady state
-  double at_x = 0.0;                        // the live operating point: the current value ...
-  std::vector<double> at;                   // ... and each entry's gain there
-  Metrics steady;                           // everything gain() reports at the current value
+  // With an x metric (gain --curve KEY --x DERIVED): gain()'s value of that metric at each point
+  // (NaN where gain() fails), e.g. seed 000's β against which k1 is drawn.
+  std::string x_key;
+  std::vector<double> x_metric;
+  double at_x = 0.0;       // the live operating point: the current value ...
+  std::vector<double> at;  // ... and each entry's gain there
+  Metrics steady;          // everything gain() reports at the current value
 };
 
 // The gain entries whose key starts with `prefix`, at `points` values of `key` over its declared
-// range (log-spaced for a log-scale parameter) plus the current value. Fails (with gain()'s
+// range (log-spaced for a log-scale parameter) plus the current value, and with `x_key` that
+// metric of gain() at each point (refused, naming the metrics gain() reports besides the gains,
+// when gain() has none of that name). Fails (with gain()'s
 // message) when the current values have no steady state, or when `key` is not a continuous
 // parameter of the scenario. A point without a steady state is NaN, not an error.
 Expected<GainCurve> gain_curve(const Scenario& s, const ParamValues& values, const std::string& key,
                                std::size_t points = 100, const Dataset* data = nullptr,
-                               const std::string& prefix = "K.");
+                               const std::string& prefix = "K.", const std::string& x_key = "");
 
 // The parameters a gain curve can follow: continuous (linear or log), not a simulator setting.
 std::vector<std::string> gain_curve_parameters(const Scenario& s);

@@ -96,6 +96,26 @@ std::vector<MetricSpec> derived_metric_specs(const ModelSpec& spec) {
   return out;
 }
 
+Metrics derived_scalars(const ModelSpec& spec, const ParamValues& values, double dt) {
+  Metrics out;
+  std::vector<double> vars(spec.symbols.names.size(), 0.0);
+  for (std::size_t i = 0; i < spec.param_slots.size(); ++i)
+    vars[static_cast<std::size_t>(spec.param_slots[i])] = param(values, spec.param_keys[i]);
+  vars[static_cast<std::size_t>(spec.dt_slot)] = dt;
+  std::vector<double> v(spec.derived.size(), 0.0);
+  ExprGroup scalars;
+  for (std::size_t q = 0; q < spec.derived.size(); ++q) {
+    if (!spec.derived[q].series()) scalars.add(spec.derived[q].e.text, &v[q]);
+  }
+  if (scalars.empty() || !scalars.bind(spec.symbols, vars.data())) return out;
+  scalars.eval();
+  for (std::size_t q = 0; q < spec.derived.size(); ++q) {
+    if (!spec.derived[q].series() && std::isfinite(v[q]))
+      out["derived." + spec.derived[q].name] = v[q];
+  }
+  return out;
+}
+
 Status add_derived(const ModelSpec& spec, const ParamValues& values, const Dataset& d,
                    ModelResult& r) {
   if (spec.derived.empty()) return Ok{};

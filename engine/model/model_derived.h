@@ -30,6 +30,10 @@ Status parse_derived(const detail::Reader& p, const nlohmann::json& block, Model
 // The metrics the derived quantities declare.
 std::vector<MetricSpec> derived_metric_specs(const ModelSpec& spec);
 
+// The scalar derived quantities (parameters and dt only) at `dt`, as metrics derived.NAME; one
+// that is not finite is left out.
+Metrics derived_scalars(const ModelSpec& spec, const ParamValues& values, double dt);
+
 // Evaluates every derived quantity on a finished run: series into r.derived, metrics into
 // r.metrics (a value that is not finite goes to r.undefined with the reason).
 Status add_derived(const ModelSpec& spec, const ParamValues& values, const Dataset& d,

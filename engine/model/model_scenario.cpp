@@ -348,7 +348,7 @@ Expected<Metrics> ModelScenario::gain(const ParamValues& v, const Dataset* data)
   }
   auto ss = solve_dare(Fm, H, Qm, R);
   if (!ss) return Error{s.path + ": " + ss.error()};
-  Metrics g;
+  Metrics g = model::derived_scalars(s, v, dt);  // β and the like: a gain curve's other axis
   g["dt"] = dt;
   g["every"] = every;
   g["dare_iterations"] = ss->iterations;

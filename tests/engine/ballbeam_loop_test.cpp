@@ -103,7 +103,13 @@ TEST(BallbeamScenario, DetectionOnIsCloseToNoiseFreeAndOffIsDegraded) {
   ASSERT_TRUE(r_off);
   EXPECT_EQ(r_off->metrics.at("rmse"), m.at("rmse_pos_detect_off"));
   EXPECT_EQ(r_off->metrics.at("skipped_fraction"), 0.0);
-  EXPECT_EQ(r_off->x_detect_off, r->x_detect_off);
+  // The same loop whichever variant is primary (NaN after the ball fell: on the default seed 3 it
+  // falls at 5.11 s with detection off).
+  ASSERT_EQ(r_off->x_detect_off.size(), r->x_detect_off.size());
+  for (std::size_t k = 0; k < r->x_detect_off.size(); ++k) {
+    const double a = r_off->x_detect_off[k], b = r->x_detect_off[k];
+    ASSERT_TRUE(a == b || (std::isnan(a) && std::isnan(b))) << "step " << k;
+  }
 }
 
 TEST(BallbeamScenario, SimulatedTruthEqualsTheClosedLoopRun) {
@@ -262,10 +268,12 @@ TEST(BallbeamLoop, SettledGainEndsTheLongestUnbrokenRunOfUpdates) {
 TEST(BallbeamScenario, KfFinalGainIsTheSettledGainNotThePostGapOne) {
   Fixture f;
   f.v["filter"] = 0;  // kf
+  f.v["sim.seed"] = 14;
   auto r = run(*f.s, Dataset{}, f.v);
   ASSERT_TRUE(r);
   const Metrics& m = r->metrics;
-  // The last update of the default run follows a contact loss: its gain is still well above α.
+  // The last update of seed 14's run follows a contact loss: its gain is still well above α
+  // (2.76 α; on the default seed 3 the last update is settled, 1.002 α).
   EXPECT_GT(last_finite(r->trace.K1), 1.2 * r->alpha);
   // Between contact losses the KF's gain settles on the steady-state (DARE, eq. 16) gain.
   EXPECT_NEAR(m.at("K1_final"), r->alpha, 1e-6);
@@ -288,7 +296,9 @@ bool has_warning(const RunResult& r, const std::string& a, const std::string& b)
 
 TEST(BallbeamScenario, BallLeavingTheBeamIsWarnedWithTimeAndVariant) {
   Fixture f;
-  auto calm = run(*f.s, Dataset{}, f.v);
+  ParamValues calm_values = f.v;
+  calm_values["sim.seed"] = 8;  // no variant leaves the beam (seed 3 drops it with detection off)
+  auto calm = run(*f.s, Dataset{}, calm_values);
   ASSERT_TRUE(calm);
   EXPECT_FALSE(has_warning(*calm, "off the beam", ""));
   // Without the circuit the beam swings to its stops, far outside the small-angle model.

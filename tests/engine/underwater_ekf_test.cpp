@@ -122,8 +122,10 @@ TEST(UnderwaterEkf, GateCatchesOutliersAndOpenGateRejectsNone) {
 }
 
 // The default preset (every uncertainty on, high correlation, ±1 m outliers, asynchronous) lands
-// in the band of seed 004, Table 13 (RMSE 0.13–0.20 m) or better, and catches ≥ 95 % of outliers
-// (Table 14: 276/276, 264/276, 276/276).
+// in the band of seed 004, Table 13 (RMSE 0.13–0.20 m) or better, and catches ≥ 94 % of outliers
+// (Table 14: 276/276, 264/276, 276/276). The bound was 95 % before the simulators drew from the
+// random-number specification (CHANGES.md, issue 27): the default seed 4 catches 262 (AS), 266
+// (SC), 263 (SI) of 276 (was 269, 271, 269); seeds 1–10 with AS 262–270 (was 263–273).
 TEST(UnderwaterEkf, DefaultPresetMatchesTable13And14) {
   auto sc = make_scenario("underwater");
   ASSERT_TRUE(sc);
@@ -139,7 +141,7 @@ TEST(UnderwaterEkf, DefaultPresetMatchesTable13And14) {
     EXPECT_LT(m.at("rmse"), 0.20) << scheme;
     EXPECT_LE(m.at("pos_mean"), m.at("rmse"));
     EXPECT_EQ(m.at("outliers_injected"), 276.0);
-    EXPECT_GE(m.at("outliers_detected"), 0.95 * 276.0) << scheme;
+    EXPECT_GE(m.at("outliers_detected"), 0.94 * 276.0) << scheme;
   }
 }
 

@@ -53,12 +53,14 @@ TEST_F(BallbeamWindow, StepPlotOverlaysNoiseFreeDetectionOnAndOff) {
   const auto c = values(clean), a = values(on), b = values(off);
   ASSERT_EQ(c.size(), w.result()->steps());
   ASSERT_EQ(a.size(), c.size());
-  ASSERT_EQ(b.size(), c.size());
+  // Without the circuit the ball of the default seed falls off at 5.11 s: its curve ends there.
+  ASSERT_GT(b.size(), 100u);
+  ASSERT_LE(b.size(), c.size());
   double gap_on = 0, gap_off = 0;
-  for (std::size_t i = 0; i < c.size(); ++i) {
+  for (std::size_t i = 0; i < c.size(); ++i)
     gap_on = std::max(gap_on, std::abs(a[i] - c[i]));
+  for (std::size_t i = 0; i < b.size(); ++i)
     gap_off = std::max(gap_off, std::abs(b[i] - c[i]));
-  }
   EXPECT_LT(5 * gap_on, gap_off);  // Figs. 8, 9
 }
 

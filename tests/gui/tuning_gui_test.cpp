@@ -21,7 +21,10 @@ using testing::waitDone;
 
 TEST(TuneDialog, ResultIsAnUndoableStepAndRevertRestoresTheStart) {
   MainWindow w;
-  ASSERT_TRUE(w.loadPreset("helicopter", {}, {"Q=1", "R=100", "sim.duration=30"}).ok());
+  // Seed 4: on 30 s of seed 1 the bias walk lets the start-up P0 tell the scale apart (RMSE
+  // 4.7 % off at ×10 against 31 % for Q alone), above the tuner's twentieth.
+  ASSERT_TRUE(
+      w.loadPreset("helicopter", {}, {"Q=1", "R=100", "sim.duration=30", "sim.seed=4"}).ok());
   ASSERT_TRUE(w.waitForRun());
   const ParamValues start = w.values();
   const double rmse0 = w.result()->metrics.at("rmse");

@@ -1,9 +1,19 @@
+// Random streams (core/random.h; presets/models/README.md, "Random numbers"), all seeded from
+// sim.seed, each drawn in time order over the whole run (make_disturbances):
+//   channel.position   one normal per sample: the position reading's noise while in contact
+//   dropout.position   one uniform per sample: outside a contact loss, u < contact_loss_rate
+//                      starts one at that sample (inside one, the uniform is drawn and unused)
+//   noise.burst        one uniform u per contact loss: it lasts 1 + ⌊ln u / ln(1 − 1/burst)⌋
+//                      samples (geometric, mean burst; 1 sample when burst = 1)
+//   noise.spike        one uniform u per lost sample: the spike reading at Vcc·u along the wire
 #include "scenarios/ballbeam/ballbeam_loop.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <random>
+#include <limits>
+
+#include "core/random.h"
 
 namespace kfw::ballbeam {
 
@@ -71,26 +81,23 @@ Disturbances make_disturbances(std::size_t n, const LoopParams& p) {
   d.noise_m.resize(n);
   d.lost.assign(n, 0);
   d.spike_m.assign(n, kNaN);
-  std::mt19937_64 noise_rng(p.seed);
-  std::mt19937_64 loss_rng(p.seed ^ 0x9E3779B97F4A7C15ULL);
-  std::normal_distribution<double> unit(0.0, 1.0);
-  std::uniform_real_distribution<double> uni(0.0, 1.0);
-  const double burst = std::max(1, p.burst);
-  std::geometric_distribution<int> extra(1.0 / burst);  // mean burst − 1 extra samples
+  RandomStream noise(p.seed, "channel.position"), loss(p.seed, "dropout.position");
+  RandomStream burst(p.seed, "noise.burst"), spike(p.seed, "noise.spike");
+  // Geometric number of extra lost samples, P(extra ≥ j) = (1 − 1/burst)^j: mean burst − 1.
+  const double log_stay = p.burst > 1 ? std::log(1.0 - 1.0 / p.burst) : 0.0;
   for (std::size_t k = 0; k < n; ++k)
-    d.noise_m[k] = p.sigma_pos_m * unit(noise_rng);
-  std::size_t k = 0;
-  while (k < n) {
-    if (uni(loss_rng) < p.contact_loss_rate) {
-      const std::size_t len = 1 + static_cast<std::size_t>(extra(loss_rng));
-      for (std::size_t j = k; j < std::min(n, k + len); ++j) {
-        d.lost[j] = 1;
-        // A floating wiper reads anything between the rails: a spike anywhere along the beam.
-        d.spike_m[j] = p.sensor.position(p.sensor.Vcc_V * uni(loss_rng));
-      }
-      k += len;
-    } else {
-      ++k;
+    d.noise_m[k] = p.sigma_pos_m * noise.normal();
+  std::size_t lost_until = 0;  // the first sample after the contact loss under way
+  for (std::size_t k = 0; k < n; ++k) {
+    const bool starts = loss.uniform() < p.contact_loss_rate;
+    if (k < lost_until || !starts) continue;
+    const double u = burst.uniform();
+    const double extra = log_stay < 0.0 ? std::floor(std::log(u) / log_stay) : 0.0;
+    lost_until = k + 1 + static_cast<std::size_t>(std::min(extra, static_cast<double>(n)));
+    for (std::size_t j = k; j < std::min(n, lost_until); ++j) {
+      d.lost[j] = 1;
+      // A floating wiper reads anything between the rails: a spike anywhere along the beam.
+      d.spike_m[j] = p.sensor.position(p.sensor.Vcc_V * spike.uniform());
     }
   }
   return d;

@@ -70,8 +70,8 @@ struct Disturbances {
   std::vector<double> spike_m;  // the raw (impulsive) reading while contact is lost
 };
 
-// Samples of the whole run: noise from one stream, the contact-loss bursts and spike readings
-// from another, so changing the loss rate keeps the Gaussian noise.
+// Samples of the whole run, one random stream per noise source (the table atop
+// ballbeam_loop.cpp): changing the loss rate keeps the Gaussian noise.
 Disturbances make_disturbances(std::size_t n, const LoopParams& p);
 std::size_t loop_steps(const LoopParams& p);
 

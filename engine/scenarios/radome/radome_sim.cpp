@@ -1,10 +1,15 @@
+// Random streams (core/random.h; presets/models/README.md, "Random numbers"), seeded from
+// sim.seed:
+//   channel.seeker  three normals per sample, in column order: the noise ν_R on range_m, ν_ψ on
+//                   psi_rad, ν_θ on theta_rad (seed 001, eq. 2)
+// The trajectory, the weave and the slopes are deterministic.
 #include "scenarios/radome/radome_sim.h"
 
 #include <cmath>
 #include <numbers>
-#include <random>
 #include <string>
 
+#include "core/random.h"
 #include "core/types.h"
 #include "scenarios/radome/radome_model.h"
 
@@ -55,8 +60,7 @@ Expected<Dataset> simulate(const SimParams& p) {
                          "psi_los_rad", "theta_los_rad", "R_psi_true", "R_theta_true"};
   for (const char* name : names)
     d.add(name, n);
-  std::mt19937_64 rng(p.seed);
-  std::normal_distribution<double> unit(0.0, 1.0);
+  RandomStream seeker(p.seed, "channel.seeker");
   const double sR = std::sqrt(p.var_range_m2), sA = std::sqrt(p.var_angle_rad2);
   for (std::size_t i = 0; i < n; ++i) {
     const double t = static_cast<double>(i) * p.Ts_s;
@@ -70,9 +74,9 @@ Expected<Dataset> simulate(const SimParams& p) {
     const double psi = los_psi(rel), theta = los_theta(rel);
     const double Rp = slope_psi_true(p.amplitude, t), Rt = slope_theta_true(p.amplitude, t);
     d.columns[0][i] = t;
-    d.columns[1][i] = rel.norm() + sR * unit(rng);
-    d.columns[2][i] = refract(psi, Rp, psi_a) + sA * unit(rng);
-    d.columns[3][i] = refract(theta, Rt, theta_a) + sA * unit(rng);
+    d.columns[1][i] = rel.norm() + sR * seeker.normal();
+    d.columns[2][i] = refract(psi, Rp, psi_a) + sA * seeker.normal();
+    d.columns[3][i] = refract(theta, Rt, theta_a) + sA * seeker.normal();
     d.columns[4][i] = psi_a;
     d.columns[5][i] = theta_a;
     d.columns[6][i] = 0.0;

@@ -178,6 +178,35 @@ TEST(ModelWorldHelicopter, ClosedFormsEqualTheBuiltInAndTheDare) {
   }
 }
 
+// The world draws the built-in simulator's streams in the same order (core/random.h): the same
+// data to 1e-12 of each column's largest magnitude, seeds 1..20, with dropouts and a bias walk.
+TEST(ModelWorldHelicopter, TheWorldSimulatesWhatTheBuiltInSimulates) {
+  auto builtin = make_scenario("helicopter");
+  ASSERT_TRUE(builtin.ok());
+  auto model = testing::load_model_file(kFile);
+  ASSERT_TRUE(model);
+  for (int seed = 1; seed <= 20; ++seed) {
+    ParamValues vb = (*builtin)->params().defaults(), vm = model->params().defaults();
+    for (auto* v : {&vb, &vm}) {
+      (*v)["sim.seed"] = seed;
+      (*v)["sim.duration"] = 60;
+      (*v)["sim.angle_dropout"] = 0.1;
+      (*v)["sim.bias_walk"] = 0.3;
+    }
+    auto db = (*builtin)->simulate(vb);
+    ASSERT_TRUE(db.ok()) << db.error();
+    auto dm = model->simulate(vm);
+    ASSERT_TRUE(dm.ok()) << dm.error();
+    ASSERT_EQ(dm->rows(), db->rows());
+    for (const char* col : {"t", "gyro", "angle", "truth", "bias_truth"}) {
+      ASSERT_TRUE(dm->has(col)) << col;
+      const auto& b = db->col(col);
+      EXPECT_TRUE(same(dm->col(col), b, {largest(b)[0] * 1e-3}, col))  // 1e-9 · 1e-3
+          << "seed " << seed;
+    }
+  }
+}
+
 // "sim": {"dt": KEY} names a declared parameter, in a version-2 file.
 TEST(ModelWorldHelicopter, TheSimulationStepKeyIsChecked) {
   std::ifstream in(kFile);

@@ -96,22 +96,24 @@ std::vector<MetricSpec> derived_metric_specs(const ModelSpec& spec) {
   return out;
 }
 
-Metrics derived_scalars(const ModelSpec& spec, const ParamValues& values, double dt) {
-  Metrics out;
-  std::vector<double> vars(spec.symbols.names.size(), 0.0);
-  for (std::size_t i = 0; i < spec.param_slots.size(); ++i)
-    vars[static_cast<std::size_t>(spec.param_slots[i])] = param(values, spec.param_keys[i]);
-  vars[static_cast<std::size_t>(spec.dt_slot)] = dt;
-  std::vector<double> v(spec.derived.size(), 0.0);
-  ExprGroup scalars;
+DerivedScalars::DerivedScalars(const ModelSpec& spec)
+    : spec_(spec), vars_(spec.symbols.names.size(), 0.0), out_(spec.derived.size(), 0.0) {
   for (std::size_t q = 0; q < spec.derived.size(); ++q) {
-    if (!spec.derived[q].series()) scalars.add(spec.derived[q].e.text, &v[q]);
+    if (!spec.derived[q].series()) group_.add(spec.derived[q].e.text, &out_[q]);
   }
-  if (scalars.empty() || !scalars.bind(spec.symbols, vars.data())) return out;
-  scalars.eval();
-  for (std::size_t q = 0; q < spec.derived.size(); ++q) {
-    if (!spec.derived[q].series() && std::isfinite(v[q]))
-      out["derived." + spec.derived[q].name] = v[q];
+  ok_ = !group_.empty() && group_.bind(spec.symbols, vars_.data()).ok();
+}
+
+Metrics DerivedScalars::eval(const ParamValues& values, double dt) {
+  Metrics out;
+  if (!ok_) return out;
+  for (std::size_t i = 0; i < spec_.param_slots.size(); ++i)
+    vars_[static_cast<std::size_t>(spec_.param_slots[i])] = param(values, spec_.param_keys[i]);
+  vars_[static_cast<std::size_t>(spec_.dt_slot)] = dt;
+  group_.eval();
+  for (std::size_t q = 0; q < spec_.derived.size(); ++q) {
+    const DerivedSpec& d = spec_.derived[q];
+    if (!d.series() && std::isfinite(out_[q])) out["derived." + d.name] = out_[q];
   }
   return out;
 }

@@ -30,9 +30,19 @@ Status parse_derived(const detail::Reader& p, const nlohmann::json& block, Model
 // The metrics the derived quantities declare.
 std::vector<MetricSpec> derived_metric_specs(const ModelSpec& spec);
 
-// The scalar derived quantities (parameters and dt only) at `dt`, as metrics derived.NAME; one
-// that is not finite is left out.
-Metrics derived_scalars(const ModelSpec& spec, const ParamValues& values, double dt);
+// The scalar derived quantities (parameters and dt only), compiled once: eval() gives them at
+// `dt` as metrics derived.NAME (one that is not finite is left out). One evaluator per thread.
+class DerivedScalars {
+ public:
+  explicit DerivedScalars(const ModelSpec& spec);
+  Metrics eval(const ParamValues& values, double dt);
+
+ private:
+  const ModelSpec& spec_;
+  std::vector<double> vars_, out_;
+  ExprGroup group_;
+  bool ok_ = false;
+};
 
 // Evaluates every derived quantity on a finished run: series into r.derived, metrics into
 // r.metrics (a value that is not finite goes to r.undefined with the reason).

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
 #include "filter/discretize.h"
 #include "model/model_eval.h"
@@ -17,13 +16,6 @@ namespace {
 
 // More sub-steps than this per interval is refused (a sub-step far below the data's dt).
 constexpr double kMaxSubsteps = 100'000;
-
-std::string number(double v) {
-  std::ostringstream os;
-  os.precision(10);
-  os << v;
-  return os.str();
-}
 
 }  // namespace
 

@@ -18,13 +18,6 @@ namespace {
 
 constexpr std::size_t kDtCacheSize = 64;
 
-std::string number(double v) {
-  std::ostringstream os;
-  os.precision(10);
-  os << v;
-  return os.str();
-}
-
 // Sizes a matrix to its spec (empty specs give empty matrices).
 void shape(MatX& M, const MatrixSpec& s) {
   M.setZero(s.rows, s.cols);
@@ -88,6 +81,13 @@ Status check_psd(const MatX& M, const MatrixSpec& s, const std::string& path, bo
 }
 
 }  // namespace
+
+std::string number(double v) {
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str();
+}
 
 double min_eigenvalue(const MatX& M) {
   if (M.size() == 0) return std::numeric_limits<double>::infinity();

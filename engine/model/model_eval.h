@@ -16,6 +16,9 @@
 
 namespace kfw::model {
 
+// A number in messages: 10 significant digits, no trailing zeros ("0.02", "1e+08").
+std::string number(double v);
+
 // Smallest eigenvalue of a symmetric matrix (NaN when it holds NaN).
 double min_eigenvalue(const MatX& M);
 // M is symmetric positive semidefinite to rounding (eigenvalues ≥ −1e-12 · scale).

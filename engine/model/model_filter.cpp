@@ -104,7 +104,8 @@ double detail::Context::nees(const detail::Dims<Eigen::Dynamic>::Meas& err,
 
 namespace {
 
-std::string number(double v) {
+// Six significant digits, as the run's messages have always printed them.
+std::string brief(double v) {
   std::ostringstream os;
   os << v;
   return os.str();
@@ -146,7 +147,7 @@ std::string detail::Context::s_not_pd(std::size_t c, const MatX& S, bool sigma) 
       sigma ? "S (the sigma points through " + h_key(cs) + ", plus R)" : "S = H P Hᵀ + R";
   const std::string keys = " (" + h_key(cs) + ", " + cs.R.key + ")";
   if (!S.allFinite()) return what + " is not finite" + keys;
-  return what + " is not positive definite (smallest eigenvalue " + number(min_eigenvalue(S)) +
+  return what + " is not positive definite (smallest eigenvalue " + brief(min_eigenvalue(S)) +
          ")" + keys;
 }
 

@@ -71,7 +71,11 @@ class Simulation {
     return failure(os.str());
   }
   void inputs_at(double t);
-  void set_row(double t);     // the model's symbols at a row: t, inputs, noise, row_x_
+  void set_row(double t);  // the model's symbols at a row: t, inputs, noise, row_x_
+  // The mean process from x_ at t_j over dt, with the inputs and sources of step j (the model's
+  // symbols left there, for process_noise); a failure names the time t_end.
+  Expected<VecX> mean_step(double dt, double t_end);
+  void wrap_angles(VecX& x) const;
   Status grid_step();         // x_j → x_{j+1}, with process noise
   Status state_at(double t);  // row_x_: x_j moved on to t by the mean process
   Status sample(std::size_t c, std::size_t row, double t, Dataset& d);
@@ -100,7 +104,6 @@ class Simulation {
 
   std::size_t j_ = 0;  // the grid step of x_
   VecX x_, row_x_;
-  std::vector<double> u_grid_;  // the inputs at t_j
   std::vector<std::size_t> role_col_;
   std::vector<std::vector<detail::Sample>> samples_;  // per channel: its samples kept
 };
@@ -152,6 +155,7 @@ Status Simulation::prepare(double duration, std::size_t grid_rows) {
         rows.push_back(false);
     }
     if (clock < 0) {
+      row_t_.back() = t;  // a grid row keeps the grid's time, where the process stepped
       row_grid_.back() = std::llround(t / dt_);
     } else {
       clock_rows_[static_cast<std::size_t>(clock)].back() = true;
@@ -172,36 +176,43 @@ void Simulation::inputs_at(double t) {
   input_sim_.eval();
 }
 
-Status Simulation::grid_step() {
-  // x_{j+1} = F x_j + B u_j (or f) + w, w ~ N(0, Q), with the noise sources of step j.
+Expected<VecX> Simulation::mean_step(double dt, double t_end) {
   const double tj = static_cast<double>(j_) * dt_;
   inputs_at(tj);
-  u_grid_ = u_;
-  if (auto st = ev_.set_dt(dt_); !st) return fail(tj + dt_, st.error());
+  if (auto st = ev_.set_dt(dt); !st) return fail(t_end, st.error());
   ev_.set_time(tj);
-  ev_.set_inputs(u_grid_.data());
+  ev_.set_inputs(u_.data());
   ev_.process_step();
   ev_.set_state(x_.data());
-  VecX next;
   if (spec_.nonlinear_process()) {
     ev_.process_f();
-    next = ev_.fx;
-  } else {
-    next = ev_.F * x_;
-    for (std::size_t i = 0; i < u_grid_.size(); ++i)
-      next += ev_.B.col(static_cast<Eigen::Index>(i)) * u_grid_[i];
+    return VecX(ev_.fx);
   }
+  VecX next = ev_.F * x_;
+  for (std::size_t i = 0; i < u_.size(); ++i)
+    next += ev_.B.col(static_cast<Eigen::Index>(i)) * u_[i];
+  return next;
+}
+
+void Simulation::wrap_angles(VecX& x) const {
+  for (int i = 0; i < spec_.n(); ++i)
+    x(i) = wrap(x(i), spec_.states[static_cast<std::size_t>(i)].angle);
+}
+
+Status Simulation::grid_step() {
+  // x_{j+1} = F x_j + B u_j (or f) + w, w ~ N(0, Q), with the noise sources of step j.
+  const double t_next = static_cast<double>(j_ + 1) * dt_;
+  auto next = mean_step(dt_, t_next);
+  if (!next) return next.err();
   ev_.process_noise();
   if (!lq_valid_ || ev_.process_noise_varies()) {
-    if (!psd_sqrt(ev_.Q, Lq_))
-      return fail(tj + dt_, "model.process.Q is not positive semidefinite");
+    if (!psd_sqrt(ev_.Q, Lq_)) return fail(t_next, "model.process.Q is not positive semidefinite");
     lq_valid_ = true;
   }
-  x_ = next + Lq_ * draw(process_, spec_.n());
-  for (int i = 0; i < spec_.n(); ++i)
-    x_(i) = wrap(x_(i), spec_.states[static_cast<std::size_t>(i)].angle);
+  x_ = *next + Lq_ * draw(process_, spec_.n());
+  wrap_angles(x_);
   ++j_;
-  if (!x_.allFinite()) return fail(tj + dt_, "the simulated state is not finite");
+  if (!x_.allFinite()) return fail(t_next, "the simulated state is not finite");
   noise_->step(j_);
   return Ok{};
 }
@@ -215,22 +226,10 @@ Status Simulation::state_at(double t) {
   if (t == tj) return Ok{};
   // Between grid steps: the mean process from t_j over t − t_j, the inputs and white noise
   // held at their values of step j.
-  inputs_at(tj);
-  if (auto st = ev_.set_dt(t - tj); !st) return fail(t, st.error());
-  ev_.set_time(tj);
-  ev_.set_inputs(u_.data());
-  ev_.process_step();
-  ev_.set_state(x_.data());
-  if (spec_.nonlinear_process()) {
-    ev_.process_f();
-    row_x_ = ev_.fx;
-  } else {
-    row_x_ = ev_.F * x_;
-    for (std::size_t i = 0; i < u_.size(); ++i)
-      row_x_ += ev_.B.col(static_cast<Eigen::Index>(i)) * u_[i];
-  }
-  for (int i = 0; i < spec_.n(); ++i)
-    row_x_(i) = wrap(row_x_(i), spec_.states[static_cast<std::size_t>(i)].angle);
+  auto x = mean_step(t - tj, t);
+  if (!x) return x.err();
+  row_x_ = std::move(*x);
+  wrap_angles(row_x_);
   return Ok{};
 }
 

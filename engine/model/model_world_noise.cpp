@@ -2,21 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <utility>
 
+#include "model/model_eval.h"
+
 namespace kfw::model::detail {
-
-namespace {
-
-std::string number(double v) {
-  std::ostringstream os;
-  os.precision(10);
-  os << v;
-  return os.str();
-}
-
-}  // namespace
 
 Expected<double> param_value(const Expr& e, const ModelSpec& spec, std::vector<double>& vars,
                              const std::string& key) {

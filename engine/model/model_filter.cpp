@@ -147,8 +147,8 @@ std::string detail::Context::s_not_pd(std::size_t c, const MatX& S, bool sigma) 
       sigma ? "S (the sigma points through " + h_key(cs) + ", plus R)" : "S = H P Hᵀ + R";
   const std::string keys = " (" + h_key(cs) + ", " + cs.R.key + ")";
   if (!S.allFinite()) return what + " is not finite" + keys;
-  return what + " is not positive definite (smallest eigenvalue " + brief(min_eigenvalue(S)) +
-         ")" + keys;
+  return what + " is not positive definite (smallest eigenvalue " + brief(min_eigenvalue(S)) + ")" +
+         keys;
 }
 
 Status detail::Context::finish_skips() {

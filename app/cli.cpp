@@ -51,6 +51,7 @@ struct Cli {
   PresetArgs preset;
   MetricsArgs metrics;
   InspectArgs inspect;
+  NoiseArgs noise;
   std::map<std::string, ScenarioCommandArgs> scenario;  // by command name
   std::string topic;                                    // help TOPIC
 };
@@ -299,6 +300,17 @@ void declare_inspect(CLI::App& app, InspectArgs& a) {
   c->add_flag("--json", a.json, "print JSON");
 }
 
+void declare_noise(CLI::App& app, NoiseArgs& a) {
+  CLI::App* c = app.add_subcommand(
+      "noise",
+      "the white-noise level of every column linked to a parameter, from the high-frequency "
+      "PSD (seed 000, eq. 3), and the parameter values it proposes (JSON)");
+  add_target_and_data(c, a.target, a.data);
+  c->footer(
+      "A model file links a column with \"noise_param\" on a channel or an input\n"
+      "(presets/models/README.md, \"Noise links\").");
+}
+
 const CLI::App* find_command(const CLI::App& app, const std::string& name) {
   for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
     if (sub->get_name() == name) return sub;
@@ -338,6 +350,7 @@ void declare(Cli& cli) {
   declare_metrics(app, cli.metrics);
   app.add_subcommand("list", "list the scenarios and presets");
   declare_inspect(app, cli.inspect);
+  declare_noise(app, cli.noise);
   declare_scenario_commands(app, cli);
 
   CLI::App* c = app.add_subcommand("help", "print the help of a command, or of a topic: grammar");
@@ -438,6 +451,7 @@ int dispatch(const Cli& cli, std::ostream& out, std::ostream& err) {
   if (cmd == "list") return cmd_list(out);
   if (cmd == "merge") return cmd_merge(cli.merge, out, err);
   if (cmd == "inspect") return cmd_inspect(cli.inspect, out, err);
+  if (cmd == "noise") return cmd_noise(cli.noise, out, err);
   return cmd_scenario(cmd, cli.scenario.at(cmd), out, err);
 }
 

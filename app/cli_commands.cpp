@@ -14,6 +14,7 @@
 #include "document/workspace.h"
 #include "experiment/gain_curve.h"
 #include "experiment/monte_carlo.h"
+#include "filter/noise_estimate.h"
 
 namespace kfw {
 
@@ -256,6 +257,20 @@ int cmd_metrics(const MetricsArgs& a, std::ostream& out, std::ostream& err) {
           << sense(s) << "\t" << s.description << "\n";
     }
   }
+  return kExitOk;
+}
+
+int cmd_noise(const NoiseArgs& a, std::ostream& out, std::ostream& err) {
+  auto ws = open_workspace_for_cli(a.target, a.data);
+  if (!ws) return fail(err, ws.err());
+  if (auto st = check_noise_links(*ws->scenario, ws->preset.path); !st) {
+    return fail(err, st.err());
+  }
+  auto d = load_dataset(*ws);
+  if (!d) return fail(err, d.err());
+  auto e = estimate_noise(*ws->scenario, *d, ws->values);
+  if (!e) return fail(err, e.err());
+  out << noise_to_json(*e) << "\n";
   return kExitOk;
 }
 

@@ -32,6 +32,8 @@ int cmd_run_seeds(const RunArgs& a, std::ostream& out, std::ostream& err);
 // merge PART...: parts of one kind ("montecarlo", ...) into one result.
 int cmd_merge(const MergeArgs& a, std::ostream& out, std::ostream& err);
 int cmd_inspect(const InspectArgs& a, std::ostream& out, std::ostream& err);
+// noise: every linked column's white-noise level and the parameter values it proposes.
+int cmd_noise(const NoiseArgs& a, std::ostream& out, std::ostream& err);
 // A command a scenario offers (Scenario::commands()), e.g. `stats`.
 int cmd_scenario(const std::string& cmd, ScenarioCommandArgs a, std::ostream& out,
                  std::ostream& err);

@@ -127,6 +127,12 @@ struct InspectArgs {
   bool json = false;  // --json
 };
 
+// noise PRESET [--data F]: the linked columns' noise and the parameter values it proposes.
+struct NoiseArgs {
+  TargetArgs target;
+  DataArgs data;
+};
+
 // A command a scenario offers (Scenario::commands()), e.g. `stats`.
 struct ScenarioCommandArgs {
   TargetArgs target;  // PRESET, or FILE.csv when one scenario offers the command

@@ -21,6 +21,16 @@ Expected<std::string> Scenario::command(const std::string& cmd, const Dataset&,
   return Error{"scenario '" + name() + "' has no command '" + cmd + "'"};
 }
 
+NoiseLink noise_variance_link(std::string column, std::string param) {
+  NoiseLink l;
+  l.columns = {std::move(column)};
+  l.param = std::move(param);
+  l.value = [](const std::vector<double>& v, const ParamValues&, double) -> Expected<double> {
+    return v.front();
+  };
+  return l;
+}
+
 Expected<std::shared_ptr<const RunResult>> Scenario::run(const Dataset& d, const ParamValues& p,
                                                          const RunControl& control) const {
   auto r = run_impl(d, p, control);

@@ -75,6 +75,24 @@ struct RunResult {
   virtual std::vector<StateSeries> states() const { return {}; }
 };
 
+// A column whose noise sets a parameter: the generic `kfw-cli noise` (filter/noise_estimate.h)
+// reads each column's white-noise variance v from the high-frequency part of its PSD (seed 000,
+// eq. 3) and proposes the parameter's value. A scenario declares its links once
+// (Scenario::noise_links; a model file with "noise_param") and every surface reads them.
+struct NoiseLink {
+  std::vector<std::string> columns;  // an input or a measurement role (several: one parameter
+                                     // for a channel's roles)
+  std::string param;                 // the parameter key the noise sets
+  std::string declared;              // where it is declared, for messages; empty: in code
+  // The parameter's value for the columns' variances v (one per column, in their order), the
+  // other parameters at `p`, `dt_s` the data's median interval. It may lie outside the
+  // parameter's range (the command clamps it and says so); an Error when no value gives v.
+  std::function<Expected<double>(const std::vector<double>& v, const ParamValues& p, double dt_s)>
+      value;
+};
+// The column's noise variance is the parameter itself (seed 000: Q = N_ω, R = N_θ).
+NoiseLink noise_variance_link(std::string column, std::string param);
+
 // Lets a long run be cancelled and report progress; both may be empty.
 struct RunControl {
   const std::atomic<bool>* cancel = nullptr;
@@ -118,6 +136,9 @@ class Scenario {
     std::string why, fix;
   };
   virtual std::optional<DataUnused> data_unused(const ParamValues&) const { return std::nullopt; }
+
+  // The columns whose noise sets a parameter, for `kfw-cli noise` (empty: none).
+  virtual std::vector<NoiseLink> noise_links() const { return {}; }
 
   // Scenario-specific analyses offered on the command line as
   // `kfw-cli NAME SCENARIO|PRESET [--data FILE] [--set k=v]...` (e.g. underwater "stats").

@@ -19,6 +19,7 @@
 #include "model/model_derived.h"
 #include "model/model_eval.h"
 #include "model/model_filter.h"
+#include "model/model_noise.h"
 #include "model/model_sim.h"
 #include "model/model_spec.h"
 
@@ -236,6 +237,9 @@ class ModelScenario final : public Scenario {
   }
 
   Expected<Metrics> gain(const ParamValues& v, const Dataset* data) const override;
+
+  // The file's noise_param keys (model_noise.h).
+  std::vector<NoiseLink> noise_links() const override { return model::noise_links(spec_, table_); }
 
  protected:
   Expected<std::shared_ptr<RunResult>> run_impl(const Dataset& d, const ParamValues& v,

@@ -8,6 +8,7 @@
 #include "core/suggest.h"
 #include "model/model_derived.h"
 #include "model/model_expressions.h"
+#include "model/model_noise.h"
 #include "model/model_reader.h"
 #include "model/model_world.h"
 
@@ -46,9 +47,9 @@ Expected<ChannelSpec> parse_channel(const Reader& p, const std::string& name, co
   ChannelSpec c;
   c.name = name;
   if (!j.is_object()) return p.error(key, "expected an object");
-  if (auto st = p.only_keys(
-          j, key,
-          {"roles", "label", "H", "h", "R", "every", "gate", "clock", "dropout", "outliers"});
+  if (auto st = p.only_keys(j, key,
+                            {"roles", "label", "H", "h", "R", "every", "gate", "noise_param",
+                             "clock", "dropout", "outliers"});
       !st) {
     return st.err();
   }
@@ -170,6 +171,27 @@ Status add_sim_symbols(const Reader& p, const ParamTable& params, ModelSpec& m) 
   return Ok{};
 }
 
+// noise_param on an input or a channel (version 2), refused in a version-1 file.
+Status check_noise_version(const Reader& p, const json& j) {
+  if (auto it = j.find("inputs"); it != j.end() && it->is_array()) {
+    for (std::size_t i = 0; i < it->size(); ++i) {
+      if ((*it)[i].is_object() && (*it)[i].contains("noise_param")) {
+        return p.error(idx("model.inputs", i) + ".noise_param",
+                       "a version-2 key: set \"version\": 2");
+      }
+    }
+  }
+  if (auto it = j.find("measurements"); it != j.end() && it->is_object()) {
+    for (auto c = it->begin(); c != it->end(); ++c) {
+      if (c->is_object() && c->contains("noise_param")) {
+        return p.error("model.measurements." + truncate_token(c.key()) + ".noise_param",
+                       "a version-2 key: set \"version\": 2");
+      }
+    }
+  }
+  return Ok{};
+}
+
 // The keys that version 2 added, refused in a file that says version 1 (the writer writes the
 // lowest version that holds the file, so a version-1 file never needs them).
 Status check_version_keys(const Reader& p, const json& j, int version) {
@@ -181,7 +203,7 @@ Status check_version_keys(const Reader& p, const json& j, int version) {
   if (j.contains("process") && j["process"].is_object() && j["process"].contains("xdot")) {
     return p.error("model.process.xdot", "a version-2 key: set \"version\": 2");
   }
-  return Ok{};
+  return check_noise_version(p, j);
 }
 
 // "sim": {"dt": "sim.Ts"}: the declared parameter that is the simulation's step.
@@ -251,7 +273,9 @@ Status parse_inputs(const Reader& p, const json& j, ModelSpec& m,
       if (u.is_string()) {
         in.name = u.get<std::string>();
       } else if (u.is_object()) {
-        if (auto ok = p.only_keys(u, ukey, {"name", "unit", "label", "sim"}); !ok) return ok.err();
+        if (auto ok = p.only_keys(u, ukey, {"name", "unit", "label", "sim", "noise_param"}); !ok) {
+          return ok.err();
+        }
         auto nm = p.string(u, "name", ukey, true);
         if (!nm) return nm.err();
         in.name = *nm;
@@ -527,6 +551,7 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
     m.channels.push_back(std::move(*c));
   }
 
+  if (auto st = parse_noise_params(j, m, params, world); !st) return st.err();
   if (auto st = parse_outputs(p, j, m, roles_seen); !st) return st.err();
   if (auto it = j.find("derived"); it != j.end()) {
     if (auto st = parse_derived(p, *it, m); !st) return st.err();

@@ -36,10 +36,18 @@ struct StateSpec {
   Angle angle = Angle::kNone;
 };
 
+// noise_param of an input (version 2, model_noise.h): the parameter its noise sets, the
+// variance v of the column's noise, or √v when `sigma` ("as": "sigma"). Empty: none.
+struct InputNoise {
+  std::string param;
+  bool sigma = false;
+};
+
 // A known signal u: its column (same name) in data; in simulation, the `sim` expression of t.
 struct InputSpec {
   std::string name, unit, label;
   Expr sim;
+  InputNoise noise;
 };
 
 // One component of a measurement channel: a role that binds to the column of the same name.
@@ -95,6 +103,10 @@ struct ChannelSpec {
   std::string every_param;  // ... or every = this parameter's value
   double gate = 0.0;        // χ² gate probability; 0: no gate
   SensorSpec sensor;        // a world's sensor: its clock, dropouts and outliers
+  // noise_param (version 2, model_noise.h): per role, the parameter its noise sets (empty:
+  // none); `noise_shared`: one parameter for every role. Empty: the channel links nothing.
+  std::vector<std::string> noise_params;
+  bool noise_shared = false;
   int size() const { return static_cast<int>(roles.size()); }
 };
 

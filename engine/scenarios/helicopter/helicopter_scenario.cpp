@@ -3,11 +3,9 @@
 #include <cmath>
 #include <memory>
 
-#include <nlohmann/json.hpp>
 #include "core/scenario.h"
 #include "core/statistics.h"
 #include "filter/consistency.h"
-#include "filter/spectrum.h"
 #include "scenarios/helicopter/helicopter_model.h"
 #include "scenarios/helicopter/helicopter_sim.h"
 #include "scenarios/helicopter/indirect_kf.h"
@@ -212,24 +210,10 @@ class HelicopterScenario final : public Scenario {
     return gain_at(v, m, Ts);
   }
 
-  // `kfw-cli noise helicopter --data F`: N_ω and N_θ read from the high-frequency part of each
-  // sensor's PSD (seed 000, eq. 3), as suggestions for Q and R.
-  std::vector<std::string> commands() const override { return {"noise"}; }
-  Expected<std::string> command(const std::string& name, const Dataset& d,
-                                const ParamValues& v) const override {
-    if (name != "noise") return Scenario::command(name, d, v);
-    if (auto st = require_columns(d, columns()); !st) return st.err();
-    const double fs = 1.0 / d.median_dt();
-    nlohmann::ordered_json j;
-    j["fs_hz"] = fs;
-    j["band"] = "above half of Nyquist";
-    for (const auto& [col, key] : {std::pair{"gyro", "Q"}, std::pair{"angle", "R"}}) {
-      auto var = white_noise_variance(d.col(col), fs, 0.5);
-      if (!var) return Error{d.source + ": column '" + col + "': " + var.error()};
-      j[std::string(key) + "_suggested"] = *var;
-      j[std::string("sigma_") + col] = std::sqrt(*var);
-    }
-    return j.dump(2);
+  // N_ω and N_θ are the white-noise variances of the gyro and the angle sensor (seed 000, eq. 3):
+  // `kfw-cli noise` reads them from the high-frequency part of each column's PSD.
+  std::vector<NoiseLink> noise_links() const override {
+    return {noise_variance_link("gyro", "Q"), noise_variance_link("angle", "R")};
   }
 
   static Expected<Metrics> gain_at(const ParamValues& v, int m, double Ts) {

@@ -20,6 +20,7 @@
 #include "scenarios/helicopter/indirect_kf.h"
 
 namespace kfw {
+namespace world_helicopter_test {
 namespace {
 
 const std::string kFile = KFW_SOURCE_DIR "/presets/models/helicopter_world.json";
@@ -225,4 +226,5 @@ TEST(ModelWorldHelicopter, TheSimulationStepKeyIsChecked) {
 }
 
 }  // namespace
+}  // namespace world_helicopter_test
 }  // namespace kfw

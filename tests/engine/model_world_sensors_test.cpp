@@ -15,6 +15,7 @@
 #include "model/model_scenario.h"
 
 namespace kfw {
+namespace world_sensors_test {
 namespace {
 
 using nlohmann::json;
@@ -368,4 +369,5 @@ TEST(ModelWorldSensor, TheReadmeExampleRuns) {
 }
 
 }  // namespace
+}  // namespace world_sensors_test
 }  // namespace kfw

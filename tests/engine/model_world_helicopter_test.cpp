@@ -16,6 +16,7 @@
 #include "core/dataset.h"
 #include "core/scenario.h"
 #include "data/csv.h"
+#include "filter/noise_estimate.h"
 #include "model/model_result.h"
 #include "scenarios/helicopter/indirect_kf.h"
 
@@ -206,6 +207,24 @@ TEST(ModelWorldHelicopter, TheWorldSimulatesWhatTheBuiltInSimulates) {
           << "seed " << seed;
     }
   }
+}
+
+// The noise command over the file's links (gyro -> Q, angle -> R) prints what the built-in's
+// declaration prints, on the world's own simulation.
+TEST(ModelWorldHelicopter, TheNoiseCommandGivesTheBuiltInsSuggestions) {
+  auto builtin = make_scenario("helicopter");
+  ASSERT_TRUE(builtin.ok());
+  auto model = testing::load_model_file(kFile);
+  ASSERT_TRUE(model);
+  ParamValues v = model->params().defaults();
+  v["sim.duration"] = 60;
+  auto d = model->simulate(v);
+  ASSERT_TRUE(d.ok()) << d.error();
+  auto eb = estimate_noise(**builtin, *d, (*builtin)->params().defaults());
+  ASSERT_TRUE(eb.ok()) << eb.error();
+  auto em = estimate_noise(*model, *d, v);
+  ASSERT_TRUE(em.ok()) << em.error();
+  EXPECT_EQ(noise_to_json(*em), noise_to_json(*eb));
 }
 
 // "sim": {"dt": KEY} names a declared parameter, in a version-2 file.

@@ -161,6 +161,12 @@ Status Simulation::prepare(double duration, std::size_t grid_rows) {
       clock_rows_[static_cast<std::size_t>(clock)].back() = true;
     }
   }
+  if (row_t_.size() < 2) {
+    return Error{spec_.path + ": model.world.clocks: the sensors' clocks tick " +
+                 std::to_string(row_t_.size()) +
+                 " time(s) within sim.duration; a run needs two rows (a shorter period, or a "
+                 "longer duration)"};
+  }
   Lr_.resize(spec_.channels.size());
   lr_valid_.assign(spec_.channels.size(), false);
   samples_.assign(spec_.channels.size(), {});

@@ -234,6 +234,14 @@ TEST(ModelWorldClock, ClockErrorsNameTheKey) {
   EXPECT_NE(refusal(preset(w)).find("model.world.clocks.fast.period: expected > 0 s"),
             std::string::npos)
       << refusal(preset(w));
+  // Fewer than two ticks in the run: no data a filter could run on.
+  w = clocked_world();
+  for (const char* s : {"z", "a", "b", "c"})
+    w["measurements"][s]["clock"] = "fast";
+  w["clocks"]["fast"]["period"] = "500";
+  EXPECT_NE(refusal(preset(w)).find("model.world.clocks: the sensors' clocks tick 1 time(s)"),
+            std::string::npos)
+      << refusal(preset(w));
   // A filter's channel has no clock.
   json p = preset(clocked_world());
   p["model"]["measurements"]["z"]["clock"] = "fast";

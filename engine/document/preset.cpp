@@ -177,6 +177,19 @@ Expected<Preset> retired_from_json(const OJson& j, const std::string& path,
   if (!doc->is_object() || m == doc->end() || doc->value("scenario", "") != "model") {
     return Error{what + ", but " + shipped + " is not a model file"};
   }
+  // The file's entries are checked as what it says it is (the built-in's table: unknown keys,
+  // units, ranges, types), then its values go onto the model file.
+  Preset check;  // the file read against the built-in's table: its narrowed ranges
+  if (auto builtin = make_scenario(std::string(r.scenario)); builtin) {
+    if (auto old = j.find("parameters"); old != j.end()) {
+      if (!old->is_object()) return Error{path + ": parameters: must be an object"};
+      check.scenario = r.scenario;
+      for (auto it = old->begin(); it != old->end(); ++it) {
+        auto st = read_parameter(check, (*builtin)->params(), it.key(), it.value(), path);
+        if (!st) return st.err();
+      }
+    }
+  }
   OJson merged = *doc;
   merged["version"] = j.at("version");
   for (const char* key : {"title", "description", "default_objective", "data", "mapping", "sim"}) {
@@ -205,6 +218,10 @@ Expected<Preset> retired_from_json(const OJson& j, const std::string& path,
   }
   auto p = preset_from_json(merged, path);
   if (!p) return p.err();
+  for (const auto& [key, range] : check.ranges) {
+    const ParamSpec* spec = p->instance->params().find(key);
+    if (spec && spec->min <= range.first && range.second <= spec->max) p->ranges[key] = range;
+  }
   p->retired_from = std::string(r.scenario);
   p->dropped_keys = dropped;
   std::string notice = what + ": loaded as the model file " + shipped + " with this file's values";
@@ -255,9 +272,8 @@ Expected<Preset> preset_from_json(const OJson& j, const std::string& path) {
                            : (ver->get<std::int64_t>() == 1 || ver->get<std::int64_t>() == 2);
     if (!known) {
       const bool newer = ver->is_number_unsigned() || ver->get<std::int64_t>() > 2;
-      return Error{path + ": version: " + ver->dump() +
-                   (newer ? ": written by a newer kfw (version " + ver->dump() + ")" : "") +
-                   "; this build reads versions 1 and 2"};
+      return Error{path + ": version: " + ver->dump() + "; this build reads versions 1 and 2" +
+                   (newer ? " (written by a newer kfw, version " + ver->dump() + ")" : "")};
     }
     p.version = static_cast<int>(ver->get<std::int64_t>());
   }
@@ -278,7 +294,7 @@ Expected<Preset> preset_from_json(const OJson& j, const std::string& path) {
   const ScenarioRegistry::PresetFactory* factory = scenarios().from_preset(p.scenario);
   if (auto m = j.find("model"); m != j.end()) {
     if (!factory && !scenarios().make(p.scenario)) {  // a misspelled "model", most likely
-      std::vector<std::string> known = scenarios().names();
+      std::vector<std::string> known = scenarios().listed_names();
       known.insert(known.begin(), "model");
       return Error{path + ": scenario: " + unknown_message("scenario", p.scenario, known)};
     }

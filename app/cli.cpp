@@ -31,7 +31,7 @@ constexpr const char* kExitCodes =
 // Commands offered by scenarios (Scenario::commands()): name -> the scenarios offering it.
 std::map<std::string, std::vector<std::string>> scenario_commands() {
   std::map<std::string, std::vector<std::string>> cmds;
-  for (const auto& name : scenarios().names()) {
+  for (const auto& name : scenarios().listed_names()) {
     for (const auto& c : scenarios().make(name)->commands())
       cmds[c].push_back(name);
   }
@@ -52,6 +52,7 @@ struct Cli {
   MetricsArgs metrics;
   InspectArgs inspect;
   NoiseArgs noise;
+  UpgradeArgs upgrade;
   std::map<std::string, ScenarioCommandArgs> scenario;  // by command name
   std::string topic;                                    // help TOPIC
 };
@@ -311,6 +312,19 @@ void declare_noise(CLI::App& app, NoiseArgs& a) {
       "(presets/models/README.md, \"Noise links\").");
 }
 
+void declare_upgrade(CLI::App& app, UpgradeArgs& a) {
+  CLI::App* c = app.add_subcommand(
+      "upgrade",
+      "rewrite an old preset or session (retired scenarios included) in the current form");
+  c->add_option("FILE", a.file, "the preset or session (JSON)")->type_name("")->required();
+  c->add_flag("--check", a.check,
+              "write nothing: exit 0 when current, 1 when an upgrade would change it (printed)");
+  add_path(c, "--out", a.out, "FILE.json", "write the upgraded file here (FILE is left as it is)");
+  c->footer(
+      "Without --out, FILE is rewritten atomically and the original is kept as FILE.bak\n"
+      "(refused when FILE.bak exists).");
+}
+
 const CLI::App* find_command(const CLI::App& app, const std::string& name) {
   for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
     if (sub->get_name() == name) return sub;
@@ -351,6 +365,7 @@ void declare(Cli& cli) {
   app.add_subcommand("list", "list the scenarios and presets");
   declare_inspect(app, cli.inspect);
   declare_noise(app, cli.noise);
+  declare_upgrade(app, cli.upgrade);
   declare_scenario_commands(app, cli);
 
   CLI::App* c = app.add_subcommand("help", "print the help of a command, or of a topic: grammar");
@@ -452,6 +467,7 @@ int dispatch(const Cli& cli, std::ostream& out, std::ostream& err) {
   if (cmd == "merge") return cmd_merge(cli.merge, out, err);
   if (cmd == "inspect") return cmd_inspect(cli.inspect, out, err);
   if (cmd == "noise") return cmd_noise(cli.noise, out, err);
+  if (cmd == "upgrade") return cmd_upgrade(cli.upgrade, out, err);
   return cmd_scenario(cmd, cli.scenario.at(cmd), out, err);
 }
 

@@ -8,6 +8,7 @@
 
 #include "core/dataset.h"
 #include "core/metrics.h"
+#include "core/retired.h"
 #include "core/suggest.h"
 #include "data/csv.h"
 #include "data/output.h"
@@ -24,7 +25,7 @@ using Json = nlohmann::ordered_json;
 
 // Scenario names and preset names, for "did you mean".
 std::vector<std::string> target_names() {
-  std::vector<std::string> names = scenarios().names();
+  std::vector<std::string> names = scenarios().listed_names();
   std::error_code ec;
   for (const auto& e : std::filesystem::directory_iterator(preset_dir(), ec)) {
     if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
@@ -48,13 +49,16 @@ OutputSet outputs_for(const Workspace& ws) {
   return o;
 }
 
-// A scenario name or a preset (path or name in presets/) both open a workspace.
+// A scenario name or a preset (path or name in presets/) both open a workspace; the preset's
+// notices (a retired scenario loaded as its model file) go to `err`.
 Expected<Workspace> open_any(const std::string& name, const std::optional<std::string>& data,
-                             const std::vector<std::string>& sets) {
+                             const std::vector<std::string>& sets, std::ostream& err) {
   std::error_code ec;
   const bool looks_like_file =
       name.find('/') != std::string::npos || std::filesystem::path(name).extension() == ".json";
-  if (!looks_like_file && !std::filesystem::is_regular_file(resolve_preset_path(name), ec)) {
+  // A retired built-in's name is its model file's (core/retired.h), never the built-in.
+  if (!looks_like_file && !find_retired(name) &&
+      !std::filesystem::is_regular_file(resolve_preset_path(name), ec)) {
     auto p = default_preset(name);
     if (!p) {
       return Error{"no preset or scenario " + quote_token(name) +
@@ -72,14 +76,22 @@ Expected<Workspace> open_any(const std::string& name, const std::optional<std::s
     ws.data_path = data;
     return ws;
   }
-  return open_workspace(name, data, sets);
+  auto ws = open_workspace(name, data, sets);
+  if (ws) print_notices(ws->preset.notices, err);
+  return ws;
 }
 
-Expected<Workspace> open_workspace_for_cli(const TargetArgs& target, const DataArgs& data) {
-  auto ws = open_any(target.preset, data.file, target.sets);
+Expected<Workspace> open_workspace_for_cli(const TargetArgs& target, const DataArgs& data,
+                                           std::ostream& err) {
+  auto ws = open_any(target.preset, data.file, target.sets, err);
   if (!ws) return ws;
   if (auto st = apply_import_args(data.import, *ws); !st) return st.err();
   return ws;
+}
+
+void print_notices(const std::vector<std::string>& notices, std::ostream& err) {
+  for (const auto& n : notices)
+    err << "kfw-cli: notice: " << one_line(n) << "\n";
 }
 
 int fail(std::ostream& err, const Error& e) {
@@ -90,7 +102,7 @@ int fail(std::ostream& err, const Error& e) {
 int cmd_simulate(const SimulateArgs& a, std::ostream& out, std::ostream& err) {
   std::vector<std::string> sets = a.target.sets;
   if (a.seed) sets.push_back("sim.seed=" + std::to_string(*a.seed));
-  auto ws = open_any(a.target.preset, std::nullopt, sets);
+  auto ws = open_any(a.target.preset, std::nullopt, sets, err);
   if (!ws) return fail(err, ws.err());
   OutputSet outs = outputs_for(*ws);
   if (auto st = outs.add(a.out, "--out"); !st) return fail(err, st.err());
@@ -111,7 +123,7 @@ int cmd_run(const RunArgs& a, std::ostream& out, std::ostream& err) {
     const char* opt = mc.shard ? "--shard" : mc.out_dir ? "--out-dir" : "--table";
     return fail(err, Error{std::string(opt) + ": needs --seeds"});
   }
-  auto ws = open_workspace_for_cli(a.target, a.data);
+  auto ws = open_workspace_for_cli(a.target, a.data, err);
   if (!ws) return fail(err, ws.err());
   OutputSet outs = outputs_for(*ws);
   const OutputArgs& o = a.output;
@@ -184,7 +196,7 @@ int print_gain_curve(const Scenario& s, const ParamValues& values, const std::st
 }  // namespace
 
 int cmd_gain(const GainArgs& a, std::ostream& out, std::ostream& err) {
-  auto ws = open_workspace_for_cli(a.target, a.data);
+  auto ws = open_workspace_for_cli(a.target, a.data, err);
   if (!ws) return fail(err, ws.err());
   std::optional<Dataset> data;
   if (ws->data_path) {
@@ -203,7 +215,7 @@ int cmd_gain(const GainArgs& a, std::ostream& out, std::ostream& err) {
 }
 
 int cmd_preset(const PresetArgs& a, std::ostream& out, std::ostream& err) {
-  auto ws = open_any(a.target.preset, std::nullopt, a.target.sets);
+  auto ws = open_any(a.target.preset, std::nullopt, a.target.sets, err);
   if (!ws) return fail(err, ws.err());
   OutputSet outs = outputs_for(*ws);
   if (auto st = outs.add(a.out, "--out"); !st) return fail(err, st.err());
@@ -216,7 +228,7 @@ int cmd_preset(const PresetArgs& a, std::ostream& out, std::ostream& err) {
 }
 
 int cmd_params(const ParamsArgs& a, std::ostream& out, std::ostream& err) {
-  auto ws = open_any(a.target.preset, std::nullopt, a.target.sets);
+  auto ws = open_any(a.target.preset, std::nullopt, a.target.sets, err);
   if (!ws) return fail(err, ws.err());
   const ParamTable& t = ws->scenario->params();
   for (const auto& s : t.specs()) {
@@ -228,7 +240,7 @@ int cmd_params(const ParamsArgs& a, std::ostream& out, std::ostream& err) {
 
 // The metric declarations (engine/core/metrics.h and the scenario's own), as the README shows them.
 int cmd_metrics(const MetricsArgs& a, std::ostream& out, std::ostream& err) {
-  auto ws = open_any(a.preset, std::nullopt, {});
+  auto ws = open_any(a.preset, std::nullopt, {}, err);
   if (!ws) return fail(err, ws.err());
   std::vector<MetricSpec> specs = shared_metric_specs();
   for (const auto& s : ws->scenario->metric_specs())
@@ -261,7 +273,7 @@ int cmd_metrics(const MetricsArgs& a, std::ostream& out, std::ostream& err) {
 }
 
 int cmd_noise(const NoiseArgs& a, std::ostream& out, std::ostream& err) {
-  auto ws = open_workspace_for_cli(a.target, a.data);
+  auto ws = open_workspace_for_cli(a.target, a.data, err);
   if (!ws) return fail(err, ws.err());
   if (auto st = check_noise_links(*ws->scenario, ws->preset.path); !st) {
     return fail(err, st.err());
@@ -282,7 +294,7 @@ int cmd_scenario(const std::string& cmd, ScenarioCommandArgs a, std::ostream& ou
   const bool csv = first.size() > 4 && (first.compare(first.size() - 4, 4, ".csv") == 0 ||
                                         first.compare(first.size() - 4, 4, ".CSV") == 0);
   std::vector<std::string> offering;
-  for (const auto& name : scenarios().names()) {
+  for (const auto& name : scenarios().listed_names()) {
     const auto cmds = scenarios().make(name)->commands();
     if (std::find(cmds.begin(), cmds.end(), cmd) != cmds.end()) offering.push_back(name);
   }
@@ -294,7 +306,7 @@ int cmd_scenario(const std::string& cmd, ScenarioCommandArgs a, std::ostream& ou
     a.data.file = first;
     a.target.preset = offering.front();
   }
-  auto ws = open_workspace_for_cli(a.target, a.data);
+  auto ws = open_workspace_for_cli(a.target, a.data, err);
   if (!ws) return fail(err, ws.err());
   const auto cmds = ws->scenario->commands();
   if (std::find(cmds.begin(), cmds.end(), cmd) == cmds.end()) {
@@ -314,7 +326,7 @@ int cmd_scenario(const std::string& cmd, ScenarioCommandArgs a, std::ostream& ou
 
 int cmd_list(std::ostream& out) {
   out << "scenarios:";
-  for (const auto& n : scenarios().names())
+  for (const auto& n : scenarios().listed_names())
     out << " " << n;
   out << "\npresets (" << preset_dir() << "):";
   std::error_code ec;

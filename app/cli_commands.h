@@ -38,11 +38,18 @@ int cmd_noise(const NoiseArgs& a, std::ostream& out, std::ostream& err);
 int cmd_scenario(const std::string& cmd, ScenarioCommandArgs a, std::ostream& out,
                  std::ostream& err);
 
-// A scenario name (its default preset) or a preset (a path or a name in presets/).
+// A scenario name (its default preset) or a preset (a path or a name in presets/). The preset's
+// notices (document/preset.h) are printed on `err`.
 Expected<Workspace> open_any(const std::string& name, const std::optional<std::string>& data,
-                             const std::vector<std::string>& sets);
+                             const std::vector<std::string>& sets, std::ostream& err);
 // The workspace of a command: its preset (or scenario), --data, --set and the import options.
-Expected<Workspace> open_workspace_for_cli(const TargetArgs& target, const DataArgs& data);
+Expected<Workspace> open_workspace_for_cli(const TargetArgs& target, const DataArgs& data,
+                                           std::ostream& err);
+// "kfw-cli: notice: ..." on `err`, one line each.
+void print_notices(const std::vector<std::string>& notices, std::ostream& err);
+// upgrade FILE [--check] [--out F] (app/cli_upgrade.cpp): an old preset or session rewritten in
+// the current form.
+int cmd_upgrade(const UpgradeArgs& a, std::ostream& out, std::ostream& err);
 // The files a command on this workspace reads: an output may not be one of them.
 OutputSet outputs_for(const Workspace& ws);
 // merge's handler for sweep parts ("kind": "sweep", app/cli_sweep.cpp).

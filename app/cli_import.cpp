@@ -348,7 +348,7 @@ int cmd_inspect(const InspectArgs& a, std::ostream& out, std::ostream& err) {
   Mapping given;
   Inspection in;
   if (a.preset) {
-    auto ws = open_workspace_for_cli(TargetArgs{*a.preset, {}}, DataArgs{a.file, a.import});
+    auto ws = open_workspace_for_cli(TargetArgs{*a.preset, {}}, DataArgs{a.file, a.import}, err);
     if (!ws) return fail(err, ws.err());
     roles = ws->scenario->columns();
     given = ws->mapping;

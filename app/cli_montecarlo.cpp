@@ -86,7 +86,7 @@ Expected<std::vector<long long>> seeds_for(const std::string& set,
 int cmd_run_seeds(const RunArgs& a, std::ostream& out, std::ostream& err) {
   const RunSeedsArgs& mc = a.seeds;
   const OutputArgs& o = a.output;
-  auto ws = open_any(a.target.preset, a.data.file, a.target.sets);
+  auto ws = open_any(a.target.preset, a.data.file, a.target.sets, err);
   if (!ws) return fail(err, ws.err());
   auto seeds = seeds_for(*mc.seeds, a.data.file, *ws);
   if (!seeds) return fail(err, seeds.err());

@@ -133,6 +133,13 @@ struct NoiseArgs {
   DataArgs data;
 };
 
+// upgrade FILE: an old preset or session in the current form (app/cli_upgrade.cpp).
+struct UpgradeArgs {
+  std::string file;
+  bool check = false;              // --check: write nothing; exit 0 current, 1 would change
+  std::optional<std::string> out;  // --out FILE: write there (FILE untouched, no .bak)
+};
+
 // A command a scenario offers (Scenario::commands()), e.g. `stats`.
 struct ScenarioCommandArgs {
   TargetArgs target;  // PRESET, or FILE.csv when one scenario offers the command

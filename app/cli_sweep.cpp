@@ -144,7 +144,7 @@ Status finish_sweep(const Doc& doc, const MetricSpec& spec, const std::optional<
 }  // namespace
 
 int cmd_sweep(const SweepArgs& a, std::ostream& out, std::ostream& err) {
-  auto ws = open_workspace_for_cli(a.target, a.data);
+  auto ws = open_workspace_for_cli(a.target, a.data, err);
   if (!ws) return fail(err, ws.err());
   std::optional<std::vector<long long>> seeds;
   if (a.seeds) {

@@ -303,7 +303,7 @@ int cmd_tune(const TuneArgs& a, std::ostream& out, std::ostream& err) {
   if (!files) return fail(err, files.err());
   const std::optional<std::string> first =
       files->empty() ? std::nullopt : std::optional<std::string>(files->front());
-  auto ws = open_any(a.target.preset, first, a.target.sets);
+  auto ws = open_any(a.target.preset, first, a.target.sets, err);
   if (!ws) return fail(err, ws.err());
   if (auto st = apply_import_args(a.import, *ws); !st) return fail(err, st.err());
   auto params = search_params(a, *ws);

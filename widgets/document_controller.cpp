@@ -34,7 +34,17 @@ Status DocumentController::loadPreset(const QString& preset,
   if (data_file) d = data_file->toStdString();
   auto doc = Document::open(preset.toStdString(), d, sets);
   if (!doc) return doc.err();
-  return adopt(std::move(*doc));
+  const std::vector<std::string> notices = doc->notices();
+  if (auto st = adopt(std::move(*doc)); !st) return st;
+  showNotices(notices);
+  return Ok{};
+}
+
+void DocumentController::showNotices(const std::vector<std::string>& notices) {
+  QStringList lines;
+  for (const auto& n : notices)
+    lines << q(n);
+  if (!lines.isEmpty()) emit problem(lines.join("\n"));
 }
 
 Status DocumentController::adopt(Document doc) {
@@ -235,10 +245,12 @@ Status DocumentController::loadSession(const QString& path) {
     }
   }
   doc->mark_saved();
+  const std::vector<std::string> notices = doc->notices();
   if (auto st = adopt(std::move(*doc)); !st) return st;
   runs_->waitSettled();
   refreshPins();
-  restoreViewState(q(s->window_state));
+  restoreViewState(q(doc_->view_state()));
+  showNotices(notices);
   if (!warning.isEmpty()) emit problem(warning);
   return Ok{};
 }

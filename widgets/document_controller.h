@@ -126,6 +126,9 @@ class DocumentController : public QObject {
  private:
   // After undo / redo / reset / a new mapping: keep the runs of pins still there, show, run.
   void sync();
+  // The document's notices (a retired scenario loaded as its model file, dropped keys and view
+  // state), shown as one problem.
+  void showNotices(const std::vector<std::string>& notices);
 
   RunController* runs_;
   QWidget* window_;

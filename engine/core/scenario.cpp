@@ -6,6 +6,7 @@
 #include <optional>
 #include <sstream>
 
+#include "core/retired.h"
 #include "core/statistics.h"
 
 namespace kfw {
@@ -255,6 +256,14 @@ std::vector<std::string> ScenarioRegistry::names() const {
   return out;
 }
 
+std::vector<std::string> ScenarioRegistry::listed_names() const {
+  std::vector<std::string> out;
+  for (const auto& [name, f] : factories_) {
+    if (!find_retired(name)) out.push_back(name);
+  }
+  return out;
+}
+
 std::unique_ptr<Scenario> ScenarioRegistry::make(const std::string& name) const {
   auto it = factories_.find(name);
   return it == factories_.end() ? nullptr : it->second();
@@ -283,7 +292,7 @@ Expected<std::unique_ptr<Scenario>> make_scenario(const std::string& name) {
   auto s = scenarios().make(name);
   if (!s) {
     std::string msg = "unknown scenario '" + name + "'; known:";
-    for (const auto& n : scenarios().names())
+    for (const auto& n : scenarios().listed_names())
       msg += " " + n;
     return Error{msg};
   }

@@ -179,6 +179,9 @@ class ScenarioRegistry {
   void add_from_preset(std::string name, PresetFactory factory);
   // The compiled scenarios' names (not those built from a preset).
   std::vector<std::string> names() const;
+  // The names users see (lists, help, "did you mean"): names() less the retired built-ins
+  // (core/retired.h), which make() still builds.
+  std::vector<std::string> listed_names() const;
   // A new scenario object, or nullptr for an unknown name.
   std::unique_ptr<Scenario> make(const std::string& name) const;
   // The factory of a scenario built from its preset, or nullptr.

@@ -1,11 +1,56 @@
 #include "document/document.h"
 
 #include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string_view>
 #include <utility>
 
+#include "core/retired.h"
+#include "core/suggest.h"
 #include "document/workspace.h"
 
 namespace kfw {
+
+namespace {
+
+// The one notice of a session that named a retired built-in.
+std::string retired_notice(const std::string& where, std::string_view scenario,
+                           const std::string& preset, const std::set<std::string>& dropped) {
+  std::string n = where + ": scenario '" + std::string(scenario) + "' is retired: loaded as " +
+                  "the model file " + retired_model_path(scenario);
+  std::error_code ec;
+  if (!std::filesystem::equivalent(preset, retired_model_path(scenario), ec)) {
+    n += " (through the preset " + preset + ")";
+  }
+  n += " with the session's values";
+  if (!dropped.empty()) {
+    n += " (dropped, not in the model file:";
+    for (const auto& k : dropped)
+      n += " " + truncate_token(k);
+    n += ")";
+  }
+  return n + "; kfw-cli upgrade " + where + " rewrites it in the current form";
+}
+
+// Drops the parts of a view state (a JSON object; the older ':'-separated form holds none) that
+// belonged to a scenario's own view: its plots' zoom and the plots chosen for presentation
+// (widgets/main_window.cpp, registerViewState). Returns the parts dropped, "" for none.
+std::string drop_view_parts(std::string& blob) {
+  if (blob.empty() || blob.front() != '{') return {};
+  nlohmann::json j = nlohmann::json::parse(blob, nullptr, false);
+  if (!j.is_object()) return {};
+  std::string parts;
+  if (j.erase("zoom")) parts = "zoom";
+  if (auto p = j.find("presentation"); p != j.end() && p->is_object() && p->erase("plots")) {
+    parts += std::string(parts.empty() ? "" : ", ") + "presentation.plots";
+  }
+  if (!parts.empty()) blob = j.dump();
+  return parts;
+}
+
+}  // namespace
 
 Expected<Document> Document::open(const std::string& preset, const std::optional<std::string>& data,
                                   const std::vector<std::string>& assignments) {
@@ -19,6 +64,7 @@ Expected<Document> Document::open(const std::string& preset, const std::optional
 
 Document Document::from_preset(Preset preset) {
   Document d;
+  d.notices_ = preset.notices;
   d.preset_ = std::move(preset);
   d.state_.values = d.preset_.values;
   if (d.preset_.data_path) d.state_.data = DataRef{*d.preset_.data_path, d.preset_.mapping};
@@ -146,28 +192,52 @@ Session Document::to_session() const {
 Expected<Document> Document::from_session(const Session& s, const std::string& where) {
   auto p = load_preset(resolve_preset_path(s.preset_path));
   if (!p) return Error{where + ": preset: " + p.error()};
-  if (p->scenario != s.scenario) {
+  const RetiredScenario* retired = find_retired(s.scenario);
+  if (p->scenario != s.scenario && !(retired && p->scenario == "model")) {
     return Error{where + ": scenario: '" + s.scenario + "' but the preset runs '" + p->scenario +
                  "'"};
   }
+  std::set<std::string> dropped(p->dropped_keys.begin(), p->dropped_keys.end());
   Document d = from_preset(std::move(*p));
+  if (retired) d.notices_.clear();  // the session's notice below says it once
   const ParamTable& table = d.scenario().params();
+  // A retired built-in's keys its model file lacks (`window`) are dropped, not refused.
+  auto kept = [&](const std::string& k) {
+    if (!retired || table.find(k)) return true;
+    dropped.insert(k);
+    return false;
+  };
   for (const auto& [k, v] : s.values) {
+    if (!kept(k)) continue;
     if (auto st = table.check(k, v); !st) return Error{where + ": values." + k + ": " + st.error()};
     d.state_.values[k] = v;
   }
+  std::vector<Snapshot> snapshots;
   for (const auto& snap : s.snapshots) {
+    Snapshot kept_snap{snap.name, {}};
     for (const auto& [k, v] : snap.values) {
+      if (!kept(k)) continue;
       if (auto st = table.check(k, v); !st) {
         return Error{where + ": snapshots." + snap.name + "." + k + ": " + st.error()};
       }
+      kept_snap.values[k] = v;
     }
+    snapshots.push_back(std::move(kept_snap));
   }
   d.state_.data.reset();
   if (s.data_path) d.state_.data = DataRef{*s.data_path, s.mapping};
   d.state_.tuning_set = s.tuning_set;
-  d.state_.snapshots = s.snapshots;
+  d.state_.snapshots = std::move(snapshots);
   d.view_state_ = s.window_state;
+  std::vector<std::string> notices = s.notices;
+  if (retired) {
+    notices.push_back(retired_notice(where, retired->scenario, d.preset_.path, dropped));
+    if (auto parts = drop_view_parts(d.view_state_); !parts.empty()) {
+      notices.push_back(where + ": view state of the retired '" + std::string(retired->scenario) +
+                        "' view dropped (" + parts + ")");
+    }
+  }
+  d.notices_.insert(d.notices_.end(), notices.begin(), notices.end());
   return d;
 }
 

@@ -40,6 +40,10 @@ class Document {
   const std::vector<Snapshot>& snapshots() const { return state_.snapshots; }
   const std::string& view_state() const { return view_state_; }
   bool dirty() const { return dirty_; }
+  // What opening changed that the user should know (a retired scenario loaded as its model file,
+  // keys dropped, a session's unknown keys, a deleted view's state): one line each, shown by the
+  // GUI and printed on stderr by the CLI. Empty for current files.
+  const std::vector<std::string>& notices() const { return notices_; }
 
   // Each of these is validated (nothing changes on an error) and is one undo step.
   Status set_value(const std::string& key, double value, UndoMerge merge = UndoMerge::kNewStep);
@@ -68,7 +72,9 @@ class Document {
   void mark_saved() { dirty_ = false; }
 
   // Sessions: the preset path, values, data (path, hash, mapping), tuning set, snapshots and
-  // view state. Loading re-opens the preset file and validates every value against it.
+  // view state. Loading re-opens the preset file and validates every value against it. A session
+  // of a retired built-in (core/retired.h) accepts its model file: keys the model lacks are
+  // dropped, and so is the view state of the built-in's deleted view, each with a notice.
   Session to_session() const;
   static Expected<Document> from_session(const Session& s, const std::string& where);
 
@@ -91,6 +97,7 @@ class Document {
   State state_;
   std::vector<Step> undo_, redo_;
   std::string view_state_;
+  std::vector<std::string> notices_;
   bool dirty_ = false;
 };
 

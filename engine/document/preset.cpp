@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/dataset.h"
+#include "core/retired.h"
 #include "core/scenario.h"
 #include "core/suggest.h"
 #include "data/csv.h"
@@ -149,6 +150,91 @@ Status read_parameter(Preset& p, const ParamTable& table, const std::string& key
   return Ok{};
 }
 
+Expected<Preset> preset_from_json(const OJson& j, const std::string& path);
+
+// A parameter entry's value, for the overlay onto a model file: a number, or an object's "value".
+const OJson* entry_value(const OJson& e) {
+  if (!e.is_object()) return &e;
+  auto v = e.find("value");
+  return v == e.end() ? nullptr : &*v;
+}
+
+// A preset that names a retired built-in (core/retired.h): the shipped model file with this
+// file's title, description, data, mapping, objective, sim flags and values (keys the model file
+// lacks dropped and named), read as if this file had been it; one notice says so.
+Expected<Preset> retired_from_json(const OJson& j, const std::string& path,
+                                   const RetiredScenario& r) {
+  const std::string shipped = retired_model_path(r.scenario);
+  const std::string what = path + ": scenario '" + std::string(r.scenario) + "' is retired";
+  std::error_code ec;
+  if (!fs::is_regular_file(shipped, ec)) {
+    return Error{what + " and its model file " + shipped +
+                 " cannot be found (KFW_PRESETS names the folder of kfw's presets)"};
+  }
+  auto doc = read_ordered_json_document(shipped, "preset");
+  if (!doc) return Error{what + ": " + doc.error()};
+  auto m = doc->find("model");
+  if (!doc->is_object() || m == doc->end() || doc->value("scenario", "") != "model") {
+    return Error{what + ", but " + shipped + " is not a model file"};
+  }
+  // The file's entries are checked as what it says it is (the built-in's table: unknown keys,
+  // units, ranges, types), then its values go onto the model file.
+  Preset check;  // the file read against the built-in's table: its narrowed ranges
+  if (auto builtin = make_scenario(std::string(r.scenario)); builtin) {
+    if (auto old = j.find("parameters"); old != j.end()) {
+      if (!old->is_object()) return Error{path + ": parameters: must be an object"};
+      check.scenario = r.scenario;
+      for (auto it = old->begin(); it != old->end(); ++it) {
+        auto st = read_parameter(check, (*builtin)->params(), it.key(), it.value(), path);
+        if (!st) return st.err();
+      }
+    }
+  }
+  OJson merged = *doc;
+  merged["version"] = j.at("version");
+  for (const char* key : {"title", "description", "default_objective", "data", "mapping", "sim"}) {
+    const bool own = std::string_view(key) == "data" || key == std::string_view("mapping") ||
+                     key == std::string_view("sim");  // the file's alone, never the model file's
+    if (auto it = j.find(key); it != j.end()) {
+      merged[key] = *it;
+    } else if (own) {
+      merged.erase(key);
+    }
+  }
+  std::vector<std::string> dropped;
+  OJson& params = merged["parameters"];
+  if (auto old = j.find("parameters"); old != j.end() && old->is_object() && params.is_object()) {
+    for (auto it = old->begin(); it != old->end(); ++it) {
+      const OJson* v = entry_value(it.value());
+      auto target = params.find(it.key());
+      if (target == params.end() || !v) {
+        dropped.push_back(it.key());
+      } else if (target->is_object()) {
+        (*target)["value"] = *v;
+      } else {
+        *target = *v;
+      }
+    }
+  }
+  auto p = preset_from_json(merged, path);
+  if (!p) return p.err();
+  for (const auto& [key, range] : check.ranges) {
+    const ParamSpec* spec = p->instance->params().find(key);
+    if (spec && spec->min <= range.first && range.second <= spec->max) p->ranges[key] = range;
+  }
+  p->retired_from = std::string(r.scenario);
+  p->dropped_keys = dropped;
+  std::string notice = what + ": loaded as the model file " + shipped + " with this file's values";
+  if (!dropped.empty()) {
+    notice += " (dropped, not in the model file:";
+    for (const auto& k : dropped)
+      notice += " " + truncate_token(k);
+    notice += ")";
+  }
+  p->notices.push_back(notice + "; kfw-cli upgrade " + path + " rewrites it in the current form");
+  return p;
+}
+
 Expected<Preset> preset_from_json(const OJson& j, const std::string& path) {
   if (!j.is_object()) return Error{path + ": a preset must be a JSON object"};
   for (auto it = j.begin(); it != j.end(); ++it) {
@@ -185,11 +271,16 @@ Expected<Preset> preset_from_json(const OJson& j, const std::string& path) {
                            ? (ver->get<std::uint64_t>() == 1 || ver->get<std::uint64_t>() == 2)
                            : (ver->get<std::int64_t>() == 1 || ver->get<std::int64_t>() == 2);
     if (!known) {
-      return Error{path + ": version: " + ver->dump() + "; this build reads versions 1 and 2"};
+      const bool newer = ver->is_number_unsigned() || ver->get<std::int64_t>() > 2;
+      return Error{path + ": version: " + ver->dump() + "; this build reads versions 1 and 2" +
+                   (newer ? " (written by a newer kfw, version " + ver->dump() + ")" : "")};
     }
     p.version = static_cast<int>(ver->get<std::int64_t>());
   }
   if (auto st = str("scenario", p.scenario, true); !st) return st.err();
+  if (const RetiredScenario* r = find_retired(p.scenario); r && !j.contains("model")) {
+    return retired_from_json(j, path, *r);
+  }
   if (auto st = str("title", p.title, false); !st) return st.err();
   if (auto st = str("description", p.description, false); !st) return st.err();
   std::string data;
@@ -203,7 +294,7 @@ Expected<Preset> preset_from_json(const OJson& j, const std::string& path) {
   const ScenarioRegistry::PresetFactory* factory = scenarios().from_preset(p.scenario);
   if (auto m = j.find("model"); m != j.end()) {
     if (!factory && !scenarios().make(p.scenario)) {  // a misspelled "model", most likely
-      std::vector<std::string> known = scenarios().names();
+      std::vector<std::string> known = scenarios().listed_names();
       known.insert(known.begin(), "model");
       return Error{path + ": scenario: " + unknown_message("scenario", p.scenario, known)};
     }
@@ -381,6 +472,12 @@ std::string resolve_preset_path(const std::string& name_or_path) {
   if (candidate.extension() != ".json") candidate += ".json";
   if (fs::is_regular_file(candidate, ec)) return candidate.string();
   return name_or_path;
+}
+
+std::string retired_model_path(std::string_view scenario) {
+  const RetiredScenario* r = find_retired(scenario);
+  if (!r) return {};
+  return (fs::path(preset_dir()) / std::string(r->preset)).string();
 }
 
 }  // namespace kfw

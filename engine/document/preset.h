@@ -8,7 +8,9 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
+#include <vector>
 
 #include "core/expected.h"
 #include "core/param_spec.h"
@@ -49,6 +51,13 @@ struct Preset {
   std::string default_objective;
   // The scenario this preset runs (built-in, or built from the model block).
   std::shared_ptr<const Scenario> instance;
+  // A file that named a retired built-in (core/retired.h) loads as the shipped model file: the
+  // name it named, and its parameter keys the model file lacks (dropped).
+  std::string retired_from;
+  std::vector<std::string> dropped_keys;
+  // What loading changed that the user should know (one line each): the GUI shows them, the CLI
+  // prints them on stderr. Empty for a current file.
+  std::vector<std::string> notices;
 };
 
 // Reads and validates a preset. Errors name the file and the line/column (JSON syntax) or the key.
@@ -64,5 +73,7 @@ Status save_preset(const std::string& path, const Preset& preset);
 std::string preset_dir();
 // Resolves "helicopter" or "helicopter.json" to presets/helicopter.json when not a readable path.
 std::string resolve_preset_path(const std::string& name_or_path);
+// The shipped model file that replaces a retired built-in (core/retired.h), in preset_dir().
+std::string retired_model_path(std::string_view scenario);
 
 }  // namespace kfw

@@ -1,5 +1,6 @@
 #include "document/session.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
@@ -62,15 +63,76 @@ std::string session_to_json(const Session& s) {
 
 namespace {
 
+// The keys of each object of a session: version 3 as written; versions 1 and 2 also "columns"
+// (version 1's name for the mapping).
+const std::vector<std::string> kSessionKeys = {"format",    "version", "preset",  "scenario",
+                                               "values",    "data",    "mapping", "tuning_set",
+                                               "snapshots", "window"};
+const std::vector<std::string> kDataKeys = {"path", "fnv1a64"};
+const std::vector<std::string> kTuningKeys = {"path", "mapping"};
+const std::vector<std::string> kSnapshotKeys = {"name", "values"};
+
+// Keys of `obj` (at dotted `where`, "" for the top) not among `keys`: refused in version 3, a
+// notice naming the key and `kfw-cli upgrade` in versions 1 and 2.
+Status check_keys(const json& obj, const std::vector<std::string>& keys, const std::string& where,
+                  const std::string& path, Session& s) {
+  if (!obj.is_object()) return Ok{};
+  for (auto it = obj.begin(); it != obj.end(); ++it) {
+    if (std::find(keys.begin(), keys.end(), it.key()) != keys.end()) continue;
+    if (where.empty() && it.key() == "columns" && s.version < 3) continue;
+    const std::string at = where.empty() ? truncate_token(it.key()) : key_path(where, it.key());
+    if (s.version >= 3) {
+      return Error{path + ": " + at + ": " + unknown_message("key", it.key(), keys)};
+    }
+    s.notices.push_back(path + ": " + at + ": unknown key in a version-" +
+                        std::to_string(s.version) + " session, ignored; kfw-cli upgrade " + path +
+                        " rewrites it in the current form");
+  }
+  return Ok{};
+}
+
+// The version: 1, 2 or 3; a higher one was written by a newer kfw.
+Expected<int> session_version(const json& j, const std::string& path) {
+  auto v = j.find("version");
+  if (v == j.end() || !v->is_number_integer()) {
+    return Error{path + ": version: must be a whole number (1, 2 or 3)"};
+  }
+  if (v->is_number_unsigned() && v->get<std::uint64_t>() > kSessionVersion) {
+    return Error{path + ": version: " + v->dump() + ": written by a newer kfw (version " +
+                 v->dump() + "); this build reads versions 1 to " +
+                 std::to_string(kSessionVersion)};
+  }
+  const std::int64_t n = v->get<std::int64_t>();
+  if (n < 1 || n > kSessionVersion) return Error{path + ": version: must be 1, 2 or 3"};
+  return static_cast<int>(n);
+}
+
+Status check_all_keys(const json& j, const std::string& path, Session& s) {
+  if (auto st = check_keys(j, kSessionKeys, "", path, s); !st) return st;
+  if (auto d = j.find("data"); d != j.end()) {
+    if (auto st = check_keys(*d, kDataKeys, "data", path, s); !st) return st;
+  }
+  for (const char* list : {"tuning_set", "snapshots"}) {
+    auto l = j.find(list);
+    if (l == j.end() || !l->is_array()) continue;
+    const auto& keys = std::string_view(list) == "tuning_set" ? kTuningKeys : kSnapshotKeys;
+    for (std::size_t i = 0; i < l->size(); ++i) {
+      if (auto st = check_keys((*l)[i], keys, index_path(list, i), path, s); !st) return st;
+    }
+  }
+  return Ok{};
+}
+
 Expected<Session> session_from_json(const json& j, const std::string& path) {
   if (!j.is_object()) return Error{path + ": a session must be a JSON object"};
   if (!j.contains("format") || j["format"] != kSessionFormat) {
     return Error{path + ": format: must be '" + std::string(kSessionFormat) + "'"};
   }
-  if (!j.contains("version") || !(j["version"] == 1 || j["version"] == 2)) {
-    return Error{path + ": version: must be 1 or 2"};
-  }
+  auto version = session_version(j, path);
+  if (!version) return version.err();
   Session s;
+  s.version = *version;
+  if (auto st = check_all_keys(j, path, s); !st) return st.err();
   for (const char* key : {"preset", "scenario"}) {
     if (!j.contains(key) || !j[key].is_string())
       return Error{path + ": key '" + key + "' must be a string"};

@@ -15,7 +15,7 @@
 namespace kfw {
 
 inline constexpr const char* kSessionFormat = "kfw-session";
-inline constexpr int kSessionVersion = 2;  // written; 1 and 2 are read
+inline constexpr int kSessionVersion = 3;  // written; 1, 2 and 3 are read
 
 // A pinned tuning, compared against the live one.
 struct Snapshot {
@@ -28,6 +28,7 @@ struct Snapshot {
 using ColumnMap = std::map<std::string, std::string>;
 
 struct Session {
+  int version = kSessionVersion;  // the version the file declared
   std::string preset_path;
   std::string scenario;
   ParamValues values;
@@ -37,6 +38,9 @@ struct Session {
   std::vector<DataRef> tuning_set;
   std::vector<Snapshot> snapshots;
   std::string window_state;  // opaque to the engine (the GUI's base64 geometry/state)
+  // Keys a session of version 1 or 2 holds that this build does not know (ignored; version 3
+  // refuses them), one line each naming the key and `kfw-cli upgrade`.
+  std::vector<std::string> notices;
 };
 
 std::string session_to_json(const Session& s);

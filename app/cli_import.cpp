@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iomanip>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -232,14 +233,14 @@ std::string num(double v) {
 }
 
 // What inspect found: the table, the mapping (the guess with the given one over it), the
-// required roles without a column and the time column's summary; `scenario` is empty without a
-// PRESET.
+// required roles without a column and the time column's summary; `scenario` and `preset` (the
+// PRESET as given: a shipped name or a file's stem) are empty without a PRESET.
 struct Inspection {
   Table table;
   Mapping mapping;
   std::vector<std::string> missing;
   TimeSummary time;
-  std::string scenario;
+  std::string scenario, preset;
 };
 
 void print_inspection_json(const std::string& file, const Inspection& in, std::ostream& out) {
@@ -282,6 +283,7 @@ void print_inspection_json(const std::string& file, const Inspection& in, std::o
   }
   j["time"] = time;
   if (!in.scenario.empty()) j["scenario"] = in.scenario;
+  if (!in.preset.empty()) j["preset"] = in.preset;
   j["mapping"] = mapping_to_json(in.mapping);
   j["missing"] = in.missing;
   out << j.dump(2) << "\n";
@@ -325,7 +327,7 @@ void print_inspection_text(const std::string& file, const Inspection& in, std::o
     out << "mapping: give a PRESET to guess its roles (kfw-cli inspect FILE PRESET)\n";
     return;
   }
-  out << "mapping for " << in.scenario << ": " << mapping_options(in.mapping) << "\n";
+  out << "mapping for " << in.preset << ": " << mapping_options(in.mapping) << "\n";
   out << "mapping block: " << mapping_to_json(in.mapping).dump() << "\n";
   if (in.missing.empty()) {
     out << "complete: every required role has a column\n";
@@ -351,6 +353,7 @@ int cmd_inspect(const InspectArgs& a, std::ostream& out, std::ostream& err) {
     roles = ws->scenario->columns();
     given = ws->mapping;
     in.scenario = ws->scenario->name();
+    in.preset = std::filesystem::path(*a.preset).stem().string();
   } else if (auto st = apply_format_args(a.import, given); !st) {
     return fail(err, st.err());
   }

@@ -202,6 +202,11 @@ Expected<Preset> preset_from_json(const OJson& j, const std::string& path) {
   // Scenarios built from the preset itself (a model file) registered as such (core/scenario.h).
   const ScenarioRegistry::PresetFactory* factory = scenarios().from_preset(p.scenario);
   if (auto m = j.find("model"); m != j.end()) {
+    if (!factory && !scenarios().make(p.scenario)) {  // a misspelled "model", most likely
+      std::vector<std::string> known = scenarios().names();
+      known.insert(known.begin(), "model");
+      return Error{path + ": scenario: " + unknown_message("scenario", p.scenario, known)};
+    }
     if (!factory) {
       return Error{path +
                    ": model: only a preset whose scenario is a model may carry a model "

@@ -21,6 +21,13 @@ bool psd_sqrt(const MatX& M, MatX& L) {
     return true;
   }
   if (!M.allFinite()) return false;
+  // A diagonal covariance: each component scales its own draw, a zero variance too (a singular
+  // diagonal R or Q would otherwise go to the eigen square root, which permutes the draws).
+  if (MatX(M.diagonal().asDiagonal()) == M) {
+    if ((M.diagonal().array() < 0.0).any()) return false;
+    L = M.diagonal().cwiseSqrt().asDiagonal();
+    return true;
+  }
   Eigen::LLT<MatX> llt(M);
   if (llt.info() == Eigen::Success) {
     L = llt.matrixL();
@@ -35,6 +42,9 @@ bool psd_sqrt(const MatX& M, MatX& L) {
 namespace {
 
 constexpr std::size_t kMaxRows = 50'000'000;
+// Instants closer than this are one: two rows, or a row and a grid step (a tick rounded to 1 µs
+// whose k·dt differs from it in the last bit).
+constexpr double kSameInstant = 1e-9;
 
 VecX draw(RandomStream& r, Eigen::Index m) {
   VecX v(m);
@@ -148,7 +158,7 @@ Status Simulation::prepare(double duration, std::size_t grid_rows) {
   clock_rows_.assign(spec_.clocks.size(), {});
   for (const auto& [t, clock] : times) {
     // Instants closer than 1 ns are one row (a tick rounded to 1 ms meets the grid's k·dt).
-    if (row_t_.empty() || t - row_t_.back() > 1e-9) {
+    if (row_t_.empty() || t - row_t_.back() > kSameInstant) {
       row_t_.push_back(t);
       row_grid_.push_back(-1);
       for (auto& rows : clock_rows_)
@@ -224,12 +234,12 @@ Status Simulation::grid_step() {
 }
 
 Status Simulation::state_at(double t) {
-  while (static_cast<double>(j_ + 1) * dt_ <= t) {
+  while (static_cast<double>(j_ + 1) * dt_ <= t + kSameInstant) {
     if (auto st = grid_step(); !st) return st;
   }
   const double tj = static_cast<double>(j_) * dt_;
   row_x_ = x_;
-  if (t == tj) return Ok{};
+  if (std::fabs(t - tj) <= kSameInstant) return Ok{};
   // Between grid steps: the mean process from t_j over t − t_j, the inputs and white noise
   // held at their values of step j.
   auto x = mean_step(t - tj, t);

@@ -155,15 +155,23 @@ Expected<ChannelSpec> parse_channel(const Reader& p, const std::string& name, co
   return c;
 }
 
-// A world's symbols for the simulator's parameters: the declared sim.X as X.
+// A world's symbols for the simulator's parameters: the declared sim.X as X. Where the filter has
+// a parameter X too (seed 004's sigma_range and sim.sigma_range), the world's X is sim.X: the
+// simulator's value shadows the filter's, which the world never reads.
 Status add_sim_symbols(const Reader& p, const ParamTable& params, ModelSpec& m) {
   for (const auto& spec : params.specs()) {
     if (spec.key.rfind("sim.", 0) != 0) continue;
     const std::string name = spec.key.substr(4);
     if (!is_identifier(name) || is_reserved_name(name)) continue;
-    if (m.symbols.find(name) >= 0) {
-      return p.error("model.world", "the parameters '" + spec.key + "' and '" + name +
-                                        "' would both be the world's symbol '" + name + "'");
+    if (const int slot = m.symbols.find(name); slot >= 0) {
+      const auto it = std::find(m.param_slots.begin(), m.param_slots.end(), slot);
+      if (it == m.param_slots.end()) {
+        return p.error("model.world", "the parameter '" + spec.key +
+                                          "' would be the world's symbol '" + name +
+                                          "', which the world already declares");
+      }
+      m.param_keys[static_cast<std::size_t>(it - m.param_slots.begin())] = spec.key;
+      continue;
     }
     m.param_slots.push_back(m.symbols.add(name, kParamSymbol));
     m.param_keys.push_back(spec.key);

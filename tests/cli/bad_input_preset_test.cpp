@@ -73,15 +73,17 @@ TEST_F(BadPreset, WrongTypesAndUnknownKeys) {
   refused("type_value.json", "\"value\": 67.24", "\"value\": \"abc\"", {"parameters.Q.value"});
   refused("type_min.json", "\"min\": 1e-06", "\"min\": [1]", {"parameters.Q.min"});
   refused("type_params.json", "\"parameters\": {", "\"parameters\": 3, \"x\": {", {"parameters"});
-  refused("type_scenario.json", "\"scenario\": \"helicopter\"", "\"scenario\": 7", {"scenario"});
+  refused("type_scenario.json", "\"scenario\": \"model\"", "\"scenario\": 7", {"scenario"});
   refused("type_tunable.json", "\"tunable\": true", "\"tunable\": \"yes\"",
           {"parameters.Q.tunable"});
   refused("unknown_key.json", "\"title\"", "\"titel\"", {"titel"});
-  refused("unknown_param.json", "\"Q\": {", "\"Qq\": {", {"Qq"});
-  refused("unknown_scenario.json", "\"scenario\": \"helicopter\"", "\"scenario\": \"helicoptr\"",
-          {"helicopter"});
+  // A model file (issue 27): its expressions name the parameter that the edit renamed.
+  refused("unknown_param.json", "\"Q\": {", "\"Qq\": {", {"model.expressions", "'Q'"});
+  refused("unknown_scenario.json", "\"scenario\": \"model\"", "\"scenario\": \"modle\"",
+          {"scenario", "did you mean 'model'"});
   refused("bad_format.json", "\"kfw-preset\"", "\"kfw-session\"", {"format"});
-  refused("bad_unit.json", "\"unit\": \"(deg/s)²\"", "\"unit\": \"rad\"", {"parameters.Q.unit"});
+  // A model file declares its parameters' units (issue 27): a unit that is not text is the error.
+  refused("bad_unit.json", "\"unit\": \"(deg/s)²\"", "\"unit\": 5", {"parameters.Q.unit"});
 }
 
 TEST_F(BadPreset, OutOfRangeZeroAndNegativeVariances) {
@@ -89,7 +91,8 @@ TEST_F(BadPreset, OutOfRangeZeroAndNegativeVariances) {
   refused("zero_var.json", "\"value\": 67.24", "\"value\": 0", {"parameters.Q"});
   refused("neg_var.json", "\"value\": 1.96", "\"value\": -1", {"parameters.R"});
   refused("min_gt_max.json", "\"min\": 1e-06", "\"min\": 1e7", {"parameters.Q"});
-  refused("min_outside.json", "\"min\": 1e-06", "\"min\": -5", {"parameters.Q", "range [-5"});
+  // A model file declares its own ranges (issue 27): a log scale below zero is the error.
+  refused("min_outside.json", "\"min\": 1e-06", "\"min\": -5", {"parameters.Q", "log scale"});
   refused("m_fraction.json", "\"value\": 1.0,\n      \"min\": 1.0",
           "\"value\": 1.5,\n      \"min\": 1.0", {"parameters.m"});
 }

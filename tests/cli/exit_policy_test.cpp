@@ -177,7 +177,7 @@ TEST_F(ExitPolicy, AHugeGridIsRefusedAtOnce) {
 TEST_F(ExitPolicy, MetricsAreDeclaredOnceAndListed) {
   auto r = cli("metrics helicopter --markdown");
   EXPECT_EQ(r.code, 0) << r.text;
-  for (const char* key : {"`rmse`", "`nis_mean`", "`whiteness_p.<channel>`", "`k1_steady`"})
+  for (const char* key : {"`rmse`", "`nis_mean`", "`whiteness_p.<channel>`", "`derived.k1`"})
     EXPECT_NE(r.text.find(key), std::string::npos) << key;
   auto bad = cli("metrics helicoptr");
   EXPECT_EQ(bad.code, 2);

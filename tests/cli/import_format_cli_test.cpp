@@ -177,7 +177,7 @@ TEST_F(ImportFormatCli, InspectTextForEachLayout) {
     ASSERT_EQ(o.code, 0) << o.text;
     for (const std::string& part :
          {w.separator, "rows: " + std::to_string(files.rows) + " (header on line ", w.time,
-          std::string("rate: 285.714 Hz"), std::string("mapping for helicopter: --time "),
+          std::string("rate: 285.714 Hz"), std::string("mapping for broad_imu: --time "),
           std::string("complete: every required role has a column")}) {
       EXPECT_NE(o.text.find(part), std::string::npos) << w.file << ": " << part << "\n" << o.text;
     }

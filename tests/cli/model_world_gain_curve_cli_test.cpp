@@ -1,6 +1,6 @@
 // Issue 27: the gain curve against a derived scalar, `kfw-cli gain FILE --curve KEY --x DERIVED`
 // (sweep KEY, give each point's derived value too): seed 000's k1 against β from the model file
-// presets/models/helicopter_world.json equals the closed form k1(β) (1e-9).
+// presets/helicopter.json equals the closed form k1(β) (1e-9).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,7 +14,7 @@ namespace {
 
 using testing::cli;
 
-const std::string kFile = KFW_SOURCE_DIR "/presets/models/helicopter_world.json";
+const std::string kFile = KFW_SOURCE_DIR "/presets/helicopter.json";
 
 double k1_closed_form(double b) {
   const double p = std::sqrt(b) * (std::sqrt(1 + 0.25 * b) + 0.5 * std::sqrt(b));

@@ -48,7 +48,7 @@ std::vector<json> readme_examples() {
 
 // The helicopter model file with the README's blocks and a derived series of its own.
 json helicopter_with_plots() {
-  json p = load("helicopter_world.json");
+  json p = load("../helicopter.json");
   p["model"]["derived"]["err_theta"] = {
       {"expression", "theta - truth"}, {"unit", "deg"}, {"label", "angle error"}};
   p["model"]["plots"] = json::array();

@@ -1,4 +1,4 @@
-// Issue 27: seed 000 as one model file (presets/models/helicopter_world.json: the built-in's
+// Issue 27: seed 000 as one model file (presets/helicopter.json: the built-in's
 // parameter keys, sim.Ts as the simulation step, β and the closed forms as derived quantities,
 // a world that simulates the hover sway, the bias walk and the dropouts) against the built-in
 // `helicopter` scenario. Equality in the form of ../shared/STAGE.md: |a − b| ≤ 1e-9 (|b| + σ_b),
@@ -16,6 +16,7 @@
 #include "core/dataset.h"
 #include "core/scenario.h"
 #include "data/csv.h"
+#include "document/workspace.h"
 #include "filter/noise_estimate.h"
 #include "model/model_result.h"
 #include "scenarios/helicopter/indirect_kf.h"
@@ -24,7 +25,7 @@ namespace kfw {
 namespace world_helicopter_test {
 namespace {
 
-const std::string kFile = KFW_SOURCE_DIR "/presets/models/helicopter_world.json";
+const std::string kFile = KFW_SOURCE_DIR "/presets/helicopter.json";
 const std::string kLog = KFW_SHARED_DIR "/data/broad/10_undisturbed_slow_translation_A.csv";
 constexpr double kTol = 1e-9;
 
@@ -102,33 +103,48 @@ void expect_same_runs(const Scenario& builtin, const Scenario& model, const Data
   }
 }
 
-// Every parameter of presets/helicopter.json is a parameter of the file, with the same default.
-// (The built-in's view parameter `window`, the NIS/NEES moving average, is not one yet.)
+// The seed presets keep their keys: every parameter of the version-2 presets saved at the fixtures'
+// commit (tests/fixtures/preset_v2, when they named the built-in) is a parameter of the model file
+// that replaced them, with the same value, range, unit and scale — all but `window`, the built-in
+// view's NIS/NEES moving average, which the generic view does not have (CHANGES.md).
 TEST(ModelWorldHelicopter, KeepsTheSeedPresetsParameterKeys) {
-  std::ifstream in(KFW_SOURCE_DIR "/presets/helicopter.json");
-  const auto preset = nlohmann::json::parse(in);
+  for (const std::string name : {"helicopter", "broad_imu"}) {
+    SCOPED_TRACE(name);
+    std::ifstream old_in(KFW_SOURCE_DIR "/tests/fixtures/preset_v2/" + name + ".json");
+    std::ifstream new_in(KFW_SOURCE_DIR "/presets/" + name + ".json");
+    const auto old_preset = nlohmann::json::parse(old_in);
+    const auto new_preset = nlohmann::json::parse(new_in);
+    EXPECT_EQ(old_preset.at("scenario"), "helicopter");
+    EXPECT_EQ(new_preset.at("scenario"), "model");
+    EXPECT_EQ(std::filesystem::path(old_preset.value("data", "")).filename(),
+              std::filesystem::path(new_preset.value("data", "")).filename());
+    const auto& now = new_preset.at("parameters");
+    for (const auto& [key, entry] : old_preset.at("parameters").items()) {
+      if (key == "window") continue;  // the built-in view's NIS/NEES average (CHANGES.md)
+      ASSERT_TRUE(now.contains(key)) << key;
+      for (const char* field : {"value", "min", "max", "unit", "scale"}) {
+        EXPECT_EQ(now.at(key).at(field), entry.at(field)) << key << "." << field;
+      }
+    }
+  }
   auto model = testing::load_model_file(kFile);
   ASSERT_TRUE(model);
-  for (const auto& [key, entry] : preset.at("parameters").items()) {
-    const ParamSpec* p = model->params().find(key);
-    ASSERT_TRUE(p) << key;
-    EXPECT_EQ(p->def, entry.at("value").get<double>()) << key;
-  }
   EXPECT_FALSE(model->params().find("sim.dt"));  // sim.Ts is the simulation step
 }
 
+// presets/broad_imu.json itself: its data file, its mapping and its tuning.
 TEST(ModelWorldHelicopter, SameEstimatesAsTheBuiltInOnTheRealLog) {
   if (!std::filesystem::exists(kLog)) GTEST_SKIP() << "no shared data at " << kLog;
-  auto data = read_csv(kLog);
+  auto ws = open_workspace(KFW_SOURCE_DIR "/presets/broad_imu.json", {}, {});
+  ASSERT_TRUE(ws.ok()) << ws.error();
+  ASSERT_TRUE(ws->data_from_preset);
+  auto data = load_dataset(*ws);
   ASSERT_TRUE(data.ok()) << data.error();
   auto builtin = make_scenario("helicopter");
   ASSERT_TRUE(builtin.ok());
-  auto model = testing::load_model_file(kFile);
-  ASSERT_TRUE(model);
-  ParamValues v = model->params().defaults();
-  v["Q"] = 256;  // presets/broad_imu.json's tuning
-  v["R"] = 4096;
-  expect_same_runs(**builtin, *model, *data, v);
+  EXPECT_EQ(ws->values.at("Q"), 256);  // the preset's tuning
+  EXPECT_EQ(ws->values.at("R"), 4096);
+  expect_same_runs(**builtin, *ws->scenario, *data, ws->values);
 }
 
 TEST(ModelWorldHelicopter, SameEstimatesOnTheWorldsSimulation) {

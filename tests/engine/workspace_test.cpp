@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <map>
 #include <string>
@@ -43,14 +45,22 @@ TEST_P(Committed, DatasetIsThePresetSimulation) {
   ASSERT_TRUE(sim.ok()) << sim.error();
   auto file = load_dataset_file(*ws->scenario, std::string(KFW_SOURCE_DIR) + "/data/" + c.file);
   ASSERT_TRUE(file.ok()) << file.error();
-  EXPECT_EQ(file->names, sim->names);
+  // The same columns by name (a model file reads them in its roles' order, simulates in the
+  // world's; issue 27 made presets/helicopter.json one).
+  auto sorted = [](std::vector<std::string> v) {
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  EXPECT_EQ(sorted(file->names), sorted(sim->names));
   ASSERT_EQ(file->rows(), sim->rows());
   // Shortest round-trip text: every number exact; an empty cell (no sample) reads back as NaN.
   ASSERT_EQ(file->columns.size(), sim->columns.size());
   std::size_t differ = 0;
   for (std::size_t col = 0; col < sim->columns.size(); ++col) {
+    const int fc = file->index(sim->names[col]);
+    ASSERT_GE(fc, 0) << sim->names[col];
     for (std::size_t row = 0; row < sim->rows(); ++row) {
-      const double a = file->columns[col][row], b = sim->columns[col][row];
+      const double a = file->columns[static_cast<std::size_t>(fc)][row], b = sim->columns[col][row];
       if (!(a == b || (std::isnan(a) && std::isnan(b)))) {
         if (differ++ < 5)
           ADD_FAILURE() << sim->names[col] << " row " << row << ": " << a << " vs " << b;

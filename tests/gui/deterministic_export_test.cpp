@@ -93,17 +93,17 @@ TEST(DeterministicExport, TwoProcessesWriteIdenticalFilesWithAnEmptyStderr) {
 TEST(DeterministicExport, PlotOptionListPlotsAndUnknownNames) {
   QTemporaryDir dir;
   auto r = testing::run_command(kfw("", "--export " + dir.path().toStdString() +
-                                            " helicopter --set sim.duration=5 --plot angle "
+                                            " helicopter --set sim.duration=5 --plot state.theta "
                                             "--format png,pdf 2>&1 >/dev/null"));
   EXPECT_EQ(r.code, 0) << r.text;
   EXPECT_EQ(r.text, "");
   EXPECT_EQ(QDir(dir.path()).entryList(QDir::Files),
-            (QStringList{"helicopter_angle.pdf", "helicopter_angle.png"}));
+            (QStringList{"helicopter_state.theta.pdf", "helicopter_state.theta.png"}));
 
   auto list = testing::run_command(kfw("", "--list-plots helicopter 2>/dev/null"));
   EXPECT_EQ(list.code, 0);
   const QStringList names = QString::fromStdString(list.text).split('\n', Qt::SkipEmptyParts);
-  EXPECT_TRUE(names.contains("angle")) << list.text;
+  EXPECT_TRUE(names.contains("state.theta")) << list.text;
   EXPECT_TRUE(names.contains("consistency_nees")) << list.text;
   // Every listed name is accepted by --plot (the same declaration).
   MainWindow w;
@@ -112,12 +112,12 @@ TEST(DeterministicExport, PlotOptionListPlotsAndUnknownNames) {
   EXPECT_EQ(names, w.plotNames());
 
   QTemporaryDir empty;
-  auto bad = testing::run_command(kfw(
-      "", "--export " + empty.path().toStdString() + " helicopter --plot angel 2>&1 >/dev/null"));
+  auto bad = testing::run_command(kfw("", "--export " + empty.path().toStdString() +
+                                              " helicopter --plot state.thet 2>&1 >/dev/null"));
   EXPECT_EQ(bad.code, 2);
-  EXPECT_NE(bad.text.find("did you mean 'angle'"), std::string::npos) << bad.text;
+  EXPECT_NE(bad.text.find("did you mean 'state.theta'"), std::string::npos) << bad.text;
   EXPECT_EQ(QDir(empty.path()).entryList(QDir::Files).size(), 0);
-  auto no_export = testing::run_command(kfw("", "helicopter --plot angle 2>&1"));
+  auto no_export = testing::run_command(kfw("", "helicopter --plot state.theta 2>&1"));
   EXPECT_EQ(no_export.code, 2) << no_export.text;
   auto theme = testing::run_command(kfw("", "--export x --theme blue 2>&1"));
   EXPECT_EQ(theme.code, 2);

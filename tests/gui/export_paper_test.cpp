@@ -190,21 +190,21 @@ TEST(ConsistencyExport, EveryChannelIsExported) {
 
 TEST_F(PaperExport, PlotSelectionAndUnknownNames) {
   QTemporaryDir dir;
-  auto files = w_.exportAll(dir.path(), {"png", "svg"}, {}, {"angle"});
+  auto files = w_.exportAll(dir.path(), {"png", "svg"}, {}, {"state.theta"});
   ASSERT_TRUE(files.ok()) << files.error();
-  EXPECT_EQ(*files, (QStringList{dir.filePath("helicopter_angle.png"),
-                                 dir.filePath("helicopter_angle.svg")}));
+  EXPECT_EQ(*files, (QStringList{dir.filePath("helicopter_state.theta.png"),
+                                 dir.filePath("helicopter_state.theta.svg")}));
   EXPECT_EQ(QDir(dir.path()).entryList(QDir::Files).size(), 2);
-  auto bad = w_.exportAll(dir.path(), {"png"}, {}, {"angel"});
+  auto bad = w_.exportAll(dir.path(), {"png"}, {}, {"state.thet"});
   ASSERT_FALSE(bad.ok());
   EXPECT_EQ(bad.err().exit_code, kExitInvalid);
-  EXPECT_NE(bad.error().find("did you mean 'angle'"), std::string::npos) << bad.error();
+  EXPECT_NE(bad.error().find("did you mean 'state.theta'"), std::string::npos) << bad.error();
 }
 
 TEST_F(PaperExport, AllOrNothing) {
   QTemporaryDir dir;
   // One target is a directory: refused before anything is drawn or written.
-  ASSERT_TRUE(QDir(dir.path()).mkpath("helicopter_innovation.pdf"));
+  ASSERT_TRUE(QDir(dir.path()).mkpath("helicopter_gain.pdf"));
   auto r = w_.exportAll(dir.path(), {"png", "pdf"});
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(QDir(dir.path()).entryList(QDir::Files | QDir::Hidden).size(), 0)
@@ -215,7 +215,7 @@ TEST_F(PaperExport, DarkThemeExportLeavesTheWindowLight) {
   QTemporaryDir dir;
   ExportSpec dark;
   dark.theme = Theme::kDark;
-  auto files = w_.exportAll(dir.path(), {"png"}, dark, {"angle"});
+  auto files = w_.exportAll(dir.path(), {"png"}, dark, {"state.theta"});
   ASSERT_TRUE(files.ok()) << files.error();
   const QImage img(files->front());
   EXPECT_LT(qGray(img.pixel(2, 2)), 80);
@@ -227,11 +227,11 @@ TEST_F(PaperExport, DarkThemeExportLeavesTheWindowLight) {
 
 TEST_F(PaperExport, PdfHasNoCreationDateUnlessSourceDateEpoch) {
   QTemporaryDir dir;
-  auto a = w_.exportAll(dir.path(), {"pdf"}, {}, {"angle"});
+  auto a = w_.exportAll(dir.path(), {"pdf"}, {}, {"state.theta"});
   ASSERT_TRUE(a.ok()) << a.error();
   EXPECT_FALSE(readAll(a->front()).contains("/CreationDate"));
   qputenv("SOURCE_DATE_EPOCH", "1700000000");
-  auto b = w_.exportAll(dir.path(), {"pdf"}, {}, {"angle"});
+  auto b = w_.exportAll(dir.path(), {"pdf"}, {}, {"state.theta"});
   qunsetenv("SOURCE_DATE_EPOCH");
   ASSERT_TRUE(b.ok()) << b.error();
   EXPECT_TRUE(readAll(b->front()).contains("/CreationDate (D:20231114221320Z)"));

@@ -27,9 +27,9 @@ using nlohmann::json;
 using testing::graphNamed;
 using testing::plotNamed;
 
-// helicopter_world.json with both kinds of block and a derived series to draw.
+// presets/helicopter.json with a gain curve and a series block and a derived series to draw.
 QString writePreset(const QTemporaryDir& dir) {
-  std::ifstream in(KFW_SOURCE_DIR "/presets/models/helicopter_world.json");
+  std::ifstream in(KFW_SOURCE_DIR "/presets/helicopter.json");
   json p = json::parse(in);
   p["model"]["derived"]["err_theta"] = {
       {"expression", "theta - truth"}, {"unit", "deg"}, {"label", "angle error"}};

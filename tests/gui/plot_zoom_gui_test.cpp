@@ -12,10 +12,10 @@
 
 #include "common/plot_probe.h"
 #include "main_window.h"
+#include "model/model_result.h"
 #include "plot_kit.h"
 #include "plot_readout.h"
 #include "plot_zoom.h"
-#include "scenarios/helicopter/indirect_kf.h"
 
 namespace kfw {
 namespace {
@@ -159,25 +159,25 @@ TEST_P(Readout, ReportsTheRunsValues) {
   std::string skip;
   if (!load(w, QString(KFW_SOURCE_DIR) + "/presets/" + GetParam() + ".json", skip))
     GTEST_SKIP() << skip;
-  auto r = std::dynamic_pointer_cast<const helicopter::HelicopterResult>(w.result());
+  auto r = std::dynamic_pointer_cast<const model::ModelResult>(w.result());
   ASSERT_TRUE(r);
-  QCustomPlot* angle = testing::plotNamed(w, "angle");
+  QCustomPlot* angle = testing::plotNamed(w, "state.theta");
   ASSERT_NE(angle, nullptr);
   const std::size_t n = r->t.size();
   for (std::size_t k : {n / 7, n / 3, n / 2, n - 1}) {
     const auto values = plot::curveValuesAt(angle, r->t[k]);
     bool found = false;
     for (const auto& [name, v] : values) {
-      if (name != "estimate of θ") continue;
+      if (name != "estimate of theta") continue;
       found = true;
-      EXPECT_DOUBLE_EQ(v, r->theta[k]) << "step " << k;
+      EXPECT_DOUBLE_EQ(v, r->x[0][k]) << "step " << k;
     }
     EXPECT_TRUE(found);
   }
   // The label shown for the mouse's time names the curve and the time.
   w.zoom()->readout()->showTime(r->t[n / 2], angle);
   const QString text = w.zoom()->readout()->text(angle);
-  EXPECT_TRUE(text.contains("estimate of θ")) << text.toStdString();
+  EXPECT_TRUE(text.contains("estimate of theta")) << text.toStdString();
   EXPECT_TRUE(text.startsWith("t = ")) << text.toStdString();
 }
 

@@ -14,10 +14,10 @@
 
 #include "common/plot_probe.h"
 #include "main_window.h"
+#include "model/model_result.h"
 #include "plot_kit.h"
 #include "plot_readout.h"
 #include "plot_zoom.h"
-#include "scenarios/helicopter/indirect_kf.h"
 #include "transport_bar.h"
 
 namespace kfw {
@@ -43,9 +43,9 @@ class ReadoutReplay : public ::testing::Test {
     w.resize(1366, 768);
     w.show();
     ASSERT_TRUE(w.waitForRun());
-    r = std::dynamic_pointer_cast<const helicopter::HelicopterResult>(w.result());
+    r = std::dynamic_pointer_cast<const model::ModelResult>(w.result());
     ASSERT_TRUE(r);
-    angle = testing::plotNamed(w, "angle");
+    angle = testing::plotNamed(w, "state.theta");
     ASSERT_NE(angle, nullptr);
     readout = w.zoom()->readout();
     ASSERT_NE(readout, nullptr);
@@ -64,7 +64,7 @@ class ReadoutReplay : public ::testing::Test {
     EXPECT_GE(plots, 3);
   }
   MainWindow w;
-  std::shared_ptr<const helicopter::HelicopterResult> r;
+  std::shared_ptr<const model::ModelResult> r;
   QCustomPlot* angle = nullptr;
   plot::PlotReadout* readout = nullptr;
 };
@@ -77,17 +77,18 @@ TEST_F(ReadoutReplay, ASeekShowsTheRunsValuesAtTheReplayTime) {
     w.transport()->seek(k);
     expectReplayAt(k);
     const QString text = readout->text(angle);
-    expectNear5(shown(text, "estimate of θ"), r->theta[k], "estimate at step " + std::to_string(k));
-    if (std::isfinite(r->truth[k])) expectNear5(shown(text, "truth"), r->truth[k], "truth");
+    expectNear5(shown(text, "estimate of theta"), r->x[0][k],
+                "estimate at step " + std::to_string(k));
+    if (std::isfinite(r->truth[0][k])) expectNear5(shown(text, "truth"), r->truth[0][k], "truth");
   }
   // A parameter change re-runs: the readout shows the new run's values at the same time.
   const std::size_t k = w.transport()->index();
   w.setParam("R", w.values().at("R") * 30.0);
   ASSERT_TRUE(w.waitForRun());
-  r = std::dynamic_pointer_cast<const helicopter::HelicopterResult>(w.result());
+  r = std::dynamic_pointer_cast<const model::ModelResult>(w.result());
   ASSERT_EQ(w.transport()->index(), k);
   expectReplayAt(k);
-  expectNear5(shown(readout->text(angle), "estimate of θ"), r->theta[k], "after the re-run");
+  expectNear5(shown(readout->text(angle), "estimate of theta"), r->x[0][k], "after the re-run");
   // To the end: nothing replayed, nothing shown.
   w.transport()->seek(static_cast<std::size_t>(-1));
   EXPECT_TRUE(std::isnan(readout->lineAt(angle)));
@@ -137,7 +138,7 @@ TEST_F(ReadoutReplay, FollowsWhilePlaying) {
     last = k;
     ++checked;
     EXPECT_DOUBLE_EQ(readout->lineAt(angle), r->t[k]) << "step " << k;
-    expectNear5(shown(readout->text(angle), "estimate of θ"), r->theta[k],
+    expectNear5(shown(readout->text(angle), "estimate of theta"), r->x[0][k],
                 "playing, step " + std::to_string(k));
   }
   w.transport()->pause();

@@ -65,12 +65,13 @@ TEST(ScreenshotSize, ExportCommandOfTheIssueWritesColumnSizedFiles) {
   }
   QTemporaryDir dir;
   const std::string out = dir.path().toStdString();
-  auto r = testing::run_command(std::string(KFW_GUI) + " --export " + out +
-                                " helicopter --set sim.duration=10 --plot angle --plot nis"
-                                " --format png,pdf --size 3.5inx2.5in --dpi 300 2>&1 >/dev/null");
+  auto r =
+      testing::run_command(std::string(KFW_GUI) + " --export " + out +
+                           " helicopter --set sim.duration=10 --plot state.theta --plot nis.angle"
+                           " --format png,pdf --size 3.5inx2.5in --dpi 300 2>&1 >/dev/null");
   ASSERT_EQ(r.code, 0) << r.text;
   EXPECT_EQ(r.text, "");
-  for (const char* plot : {"angle", "nis"}) {
+  for (const char* plot : {"state.theta", "nis.angle"}) {
     const QImage img(dir.filePath(QString("helicopter_%1.png").arg(plot)));
     ASSERT_FALSE(img.isNull()) << plot;
     EXPECT_EQ(img.size(), QSize(1050, 750)) << plot;

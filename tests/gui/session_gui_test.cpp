@@ -32,7 +32,7 @@ TEST(Snapshots, GhostAndMetricsColumnFollowThePinnedTuning) {
   w.setParam("R", 100.0);
   ASSERT_TRUE(w.waitForRun());
   EXPECT_EQ(w.snapshotCount(), 1);
-  QCPGraph* ghost = graphNamed(plotNamed(w, "angle"), "estimate of θ [pinned: loose]");
+  QCPGraph* ghost = graphNamed(plotNamed(w, "state.theta"), "theta [pinned: loose]");
   ASSERT_NE(ghost, nullptr);
   EXPECT_GT(ghost->data()->size(), 100);
   auto* table = w.findChild<QTableWidget*>("metrics");
@@ -46,7 +46,7 @@ TEST(Snapshots, GhostAndMetricsColumnFollowThePinnedTuning) {
     EXPECT_NE(table->item(r, 1)->text(), table->item(r, 2)->text());
   }
   w.clearSnapshots();
-  EXPECT_EQ(graphNamed(plotNamed(w, "angle"), "estimate of θ [pinned: loose]"), nullptr);
+  EXPECT_EQ(graphNamed(plotNamed(w, "state.theta"), "theta [pinned: loose]"), nullptr);
   EXPECT_EQ(table->columnCount(), 2);
 }
 
@@ -56,7 +56,11 @@ class Files : public ::testing::Test {
     // A log with other column names: the helicopter data renamed.
     auto d = read_csv(std::string(KFW_SOURCE_DIR) + "/data/helicopter.csv");
     ASSERT_TRUE(d.ok());
-    d->names = {"t", "gx", "acc_roll", "mocap", "bias_truth"};
+    for (auto& name : d->names) {
+      if (name == "gyro") name = "gx";
+      if (name == "angle") name = "acc_roll";
+      if (name == "truth") name = "mocap";
+    }
     csv = dir.filePath("renamed.csv");
     ASSERT_TRUE(write_csv_file(csv.toStdString(), *d).ok());
     QSettings("kfw", "kfw").remove("columnMaps");
@@ -101,7 +105,7 @@ TEST_F(Files, SessionRestoresValuesDataMappingAndSnapshots) {
   EXPECT_EQ(w.values().at("Q"), 10.0);
   EXPECT_EQ(w.dataset()->source, csv.toStdString());
   EXPECT_EQ(w.snapshotCount(), 1);
-  EXPECT_NE(graphNamed(plotNamed(w, "angle"), "estimate of θ [pinned: base]"), nullptr);
+  EXPECT_NE(graphNamed(plotNamed(w, "state.theta"), "theta [pinned: base]"), nullptr);
 
   QFile bad(dir.filePath("bad.json"));
   ASSERT_TRUE(bad.open(QIODevice::WriteOnly));

@@ -258,7 +258,7 @@ TEST_F(WindowGui, ReplayKeysWithAnyFocusButText) {
   EXPECT_TRUE(t->playing());
   // While playing, every time plot follows a window of the last seconds.
   QTest::qWait(150);
-  QCustomPlot* angle = plotNamed(w, "angle");
+  QCustomPlot* angle = plotNamed(w, "state.theta");
   ASSERT_NE(angle, nullptr);
   EXPECT_NEAR(angle->xAxis->range().size(), t->windowSeconds(), 1e-9);
   EXPECT_LE(angle->xAxis->range().lower, w.result()->t[t->index()]);

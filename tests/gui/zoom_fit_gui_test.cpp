@@ -9,8 +9,8 @@
 
 #include "common/plot_probe.h"
 #include "main_window.h"
+#include "model/model_result.h"
 #include "plot_kit.h"
-#include "scenarios/helicopter/indirect_kf.h"
 
 namespace kfw {
 namespace {
@@ -23,10 +23,10 @@ TEST(ZoomFit, TimeZoomedPlotFitsItsValuesInView) {
   w.show();
   ASSERT_TRUE(w.loadPreset(QString(KFW_SOURCE_DIR) + "/presets/helicopter.json").ok());
   ASSERT_TRUE(w.waitForRun());
-  QCustomPlot* angle = plotNamed(w, "angle");
+  QCustomPlot* angle = plotNamed(w, "state.theta");
   ASSERT_TRUE(angle);
   const QCPRange whole = angle->yAxis->range();
-  auto r = std::dynamic_pointer_cast<const helicopter::HelicopterResult>(w.result());
+  auto r = std::dynamic_pointer_cast<const model::ModelResult>(w.result());
   ASSERT_TRUE(r);
   // Zoom the time axis only, to 4 % of the run in its middle, then re-run with another R.
   const double t0 = r->t.front(), t1 = r->t.back();
@@ -35,14 +35,14 @@ TEST(ZoomFit, TimeZoomedPlotFitsItsValuesInView) {
   plot::setUserZoom(angle, true, false);
   w.setParam("R", w.values().at("R") * 4.0);
   ASSERT_TRUE(w.waitForRun());
-  r = std::dynamic_pointer_cast<const helicopter::HelicopterResult>(w.result());
+  r = std::dynamic_pointer_cast<const model::ModelResult>(w.result());
   EXPECT_DOUBLE_EQ(angle->xAxis->range().lower, lo);
   EXPECT_DOUBLE_EQ(angle->xAxis->range().upper, hi);
   // The estimate and the truth in view, from the run's arrays.
   double vmin = INFINITY, vmax = -INFINITY;
   for (std::size_t k = 0; k < r->t.size(); ++k) {
     if (r->t[k] < lo || r->t[k] > hi) continue;
-    for (double v : {r->theta[k], r->truth[k]}) {
+    for (double v : {r->x[0][k], r->truth[0][k]}) {
       if (!std::isfinite(v)) continue;
       vmin = std::min(vmin, v);
       vmax = std::max(vmax, v);

@@ -172,7 +172,9 @@ std::pair<std::vector<Vec<6>>, std::vector<Vec<6>>> simulate_motion(
   };
   draw_velocity();
   for (std::size_t k = 0; k < n; ++k) {
-    const auto jk = static_cast<std::size_t>(std::max(0.0, std::floor(row_t[k] / kMotionDt_s)));
+    // A row within 1 ns of a motion step is at that step (as a model file's world steps its grid).
+    const auto jk =
+        static_cast<std::size_t>(std::max(0.0, std::floor((row_t[k] + 1e-9) / kMotionDt_s)));
     while (j < jk) {
       pose = motion_model(pose, vel, kMotionDt_s);
       pose_cmd = motion_model(pose_cmd, p.command, kMotionDt_s);

@@ -39,6 +39,15 @@ Expected<GainCurve> gain_curve(const Scenario& s, const ParamValues& values, con
                                std::size_t points = 100, const Dataset* data = nullptr,
                                const std::string& prefix = "K.", const std::string& x_key = "");
 
+// The named quantities of gain() — gain entries ("K.theta.angle") or a model file's derived
+// scalars ("derived.k1") — at `points` values of `key` over [lo, hi] (lo = hi = 0: its declared
+// range), with `x_key` as gain_curve(): the data of a model file's gain_curve plot block. Each
+// entry must be reported by gain() at the current values (else an Error naming it).
+Expected<GainCurve> gain_curve_of(const Scenario& s, const ParamValues& values,
+                                  const std::string& key, const std::vector<std::string>& entries,
+                                  const std::string& x_key, std::size_t points = 100,
+                                  const Dataset* data = nullptr, double lo = 0.0, double hi = 0.0);
+
 // The parameters a gain curve can follow: continuous (linear or log), not a simulator setting.
 std::vector<std::string> gain_curve_parameters(const Scenario& s);
 

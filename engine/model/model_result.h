@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/scenario.h"
@@ -32,6 +33,14 @@ struct ModelResult final : RunResult {
   std::vector<ChannelSeries> chans;
   std::vector<std::string> derived_names;    // the series of model.derived, by name
   std::vector<std::vector<double>> derived;  // [quantity][step]
+  // The fixed points of the trajectory plot blocks at the run's values (model_plots.h).
+  struct PlotPoint {
+    std::string block, name;
+    double x = 0.0, y = 0.0;
+  };
+  std::vector<PlotPoint> plot_points;
+  // The design matrices of the covariance plot blocks at the run's values, by block id.
+  std::vector<std::pair<std::string, std::vector<double>>> plot_matrices;
   std::vector<double> nees;  // over the states with truth; NaN where a truth value is missing
   double nees_dof = 0.0;
 

@@ -274,6 +274,8 @@ class ModelScenario final : public Scenario {
     }
     add_consistency_metrics(res.channels(), res.nees_series(), m, res.undefined);
     if (auto st = model::add_derived(*spec_, v, d, res); !st) return st.err();
+    const double dt = d.rows() >= 2 ? d.median_dt() : param(v, spec_->sim_dt_key);
+    if (auto st = model::add_plot_points(*spec_, v, dt, res); !st) return st.err();
     return std::shared_ptr<RunResult>(std::move(*r));
   }
 
@@ -412,6 +414,7 @@ std::optional<ModelLayout> model_layout_of(const Scenario& s) {
     l.channels.push_back(std::move(ch));
   }
   l.time_invariant = m->spec()->time_invariant();
+  l.plots = m->spec()->plots;
   return l;
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/scenario.h"
+#include "model/model_plots.h"
 
 namespace kfw {
 
@@ -34,6 +35,7 @@ struct ModelLayout {
   std::vector<State> states;
   std::vector<Channel> channels;
   bool time_invariant = false;  // linear, F B Q H R of parameters and dt only: a steady state
+  std::vector<model::PlotBlockSpec> plots;  // the blocks the file asks for ("plots"), in order
 };
 
 // Builds a Scenario from a whole preset JSON whose "scenario" is "model": the preset's

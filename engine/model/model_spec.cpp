@@ -204,7 +204,7 @@ Status check_noise_version(const Reader& p, const json& j) {
 // lowest version that holds the file, so a version-1 file never needs them).
 Status check_version_keys(const Reader& p, const json& j, int version) {
   if (version >= 2) return Ok{};
-  for (const char* k : {"expressions", "world", "derived", "sim"}) {
+  for (const char* k : {"expressions", "world", "derived", "sim", "plots"}) {
     if (j.contains(k))
       return p.error(std::string("model.") + k, "a version-2 key: set \"version\": 2");
   }
@@ -486,7 +486,7 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   if (auto st = p.only_keys(j, key,
                             {"version", "description", "states", "inputs", "expressions", "x0",
                              "P0", "process", "measurements", "truth", "primary", "filter", "world",
-                             "derived", "noise", "clocks", "sim"});
+                             "derived", "noise", "clocks", "sim", "plots"});
       !st) {
     return st.err();
   }
@@ -563,6 +563,10 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   if (auto st = parse_outputs(p, j, m, roles_seen); !st) return st.err();
   if (auto it = j.find("derived"); it != j.end()) {
     if (auto st = parse_derived(p, *it, m); !st) return st.err();
+  }
+  if (auto it = j.find("plots"); it != j.end()) {
+    if (world) return p.error("model.plots", "a world draws no plots: declare them in the model");
+    if (auto st = parse_plots(p, *it, params, m); !st) return st.err();
   }
   if (auto it = j.find("world"); it != j.end()) {
     if (world) return p.error("model.world", "a world holds no world of its own");

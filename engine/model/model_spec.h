@@ -13,6 +13,7 @@
 #include "core/param_spec.h"
 #include "filter/angle.h"
 #include "model/expression.h"
+#include "model/model_plots.h"
 
 namespace kfw::model {
 
@@ -168,7 +169,9 @@ struct ModelSpec {
   // itself.
   std::shared_ptr<const ModelSpec> world;
   std::vector<DerivedSpec> derived;  // in the order of their names
-  std::vector<int> truth_slots;      // per state: its truth column's symbol, or -1
+  // The plot blocks the file asks for (version 2, model_plots.h), in the file's order.
+  std::vector<PlotBlockSpec> plots;
+  std::vector<int> truth_slots;  // per state: its truth column's symbol, or -1
   // World only: the named noise sources, the sensor clocks, and truth columns written from
   // sub-expressions ({column, expression}).
   bool world_block = false;  // this is a world (parsed with parse_model(..., world = true))

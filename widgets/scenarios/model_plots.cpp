@@ -1,8 +1,9 @@
 // Plots of any model declared in a preset file (scenario "model"), laid out from the model: per
 // state the estimate ± 2σ with truth; per measurement component the measured and predicted value
 // and the innovation ± 2√S; per channel the NIS with χ² bounds; the gains over time with the DARE
-// steady state; and the steady-state gains versus a parameter chosen under the sliders. Nothing
-// here knows a particular model.
+// steady state; the steady-state gains versus a parameter chosen under the sliders; and one panel
+// per plot block the file asks for ("plots", widgets/plots/). Nothing here knows a particular
+// model.
 #include <qcustomplot.h>
 
 #include <QComboBox>
@@ -21,6 +22,8 @@
 #include "model/model_scenario.h"
 #include "plot_blocks.h"
 #include "plot_kit.h"
+#include "plot_text.h"
+#include "plots/block_drawer.h"
 #include "scenario_view.h"
 
 namespace kfw {
@@ -33,9 +36,7 @@ QString q(const std::string& s) {
   return QString::fromStdString(s);
 }
 
-QString withUnit(const QString& name, const std::string& unit) {
-  return unit.empty() ? QString("%1 (–)").arg(name) : QString("%1 (%2)").arg(name, q(unit));
-}
+using plot::withUnit;
 
 class ModelView final : public ScenarioView {
  public:
@@ -124,6 +125,12 @@ class ModelView final : public ScenarioView {
       curve_ = std::make_unique<plot::GainCurvePlot>(parent);
       out.push_back({"gain_curve", "Gain curve", curve_->plot()});
     }
+    for (const auto& b : layout_->plots) {
+      if (auto d = plot::makeBlockDrawer(parent, b, *scenario_)) {
+        out.push_back({q(b.id), d->title(), d->plot()});
+        blocks_.push_back(std::move(d));
+      }
+    }
     return out;
   }
 
@@ -153,6 +160,9 @@ class ModelView final : public ScenarioView {
       nis_[c]->setData(&r->t, &ch.nis, static_cast<double>(ch.y.size()));
     }
     rebuildGainGraphs();
+    const plot::BlockInput in{*scenario_, *r, values_, data_.get()};
+    for (auto& b : blocks_)
+      b->setResult(in);
     if (curve_key_.empty() && !curve_keys_.empty()) {
       curve_key_ = default_gain_curve_parameter(*scenario_, values_, data_.get());
       if (curve_key_.empty()) curve_key_ = curve_keys_.front();
@@ -303,6 +313,8 @@ class ModelView final : public ScenarioView {
     plot::rescale(gain_, f.t0, f.t1, f.settle());
     plot::setCursorAt(gain_cursor_, f.tc, !f.all);
     plot::replot(gain_);
+    for (auto& b : blocks_)
+      b->draw(f);
   }
 
   std::shared_ptr<const Scenario> scenario_;
@@ -319,6 +331,7 @@ class ModelView final : public ScenarioView {
   QCPItemStraightLine* gain_cursor_ = nullptr;
   std::vector<GainGraph> gains_;
   std::unique_ptr<plot::GainCurvePlot> curve_;
+  std::vector<std::unique_ptr<plot::BlockDrawer>> blocks_;  // the file's plot blocks
   std::vector<std::string> curve_keys_;
   std::string curve_key_;
   QComboBox* combo_ = nullptr;

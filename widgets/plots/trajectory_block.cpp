@@ -1,0 +1,122 @@
+// The trajectory block: one state against another (a top view) — the true track, the estimated
+// track up to the replay cursor with a mark at the cursor, and labelled fixed points (beacons)
+// whose coordinates the engine evaluated at the run's values (model::trajectory_block_data).
+#include <qcustomplot.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "plot_kit.h"
+#include "plot_text.h"
+#include "plots/block_drawer.h"
+
+namespace kfw::plot {
+
+namespace {
+
+QCPCurve* addTrack(QCustomPlot* p, const QString& name, const QColor& c) {
+  auto* curve = new QCPCurve(p->xAxis, p->yAxis);
+  curve->setName(name);
+  curve->setPen(QPen(c));
+  return curve;
+}
+
+class TrajectoryBlock final : public BlockDrawer {
+ public:
+  TrajectoryBlock(QWidget* parent, const model::PlotBlockSpec& b) : block_(b) {
+    const QString x = QString::fromStdString(b.tx.label), y = QString::fromStdString(b.ty.label);
+    title_ = panelTitle(b.title, QString("%1 against %2: true and estimated track").arg(y, x));
+    plot_ = makePlot(parent, title_, withUnit(x, b.tx.unit), withUnit(y, b.ty.unit));
+    truth_ = addTrack(plot_, "truth", color::kTruth);
+    estimate_ = addTrack(plot_, "estimate", color::kEstimate);
+    here_ = plot_->addGraph();
+    here_->setName("estimate at cursor");
+    here_->setLineStyle(QCPGraph::lsNone);
+    here_->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCircle, QPen(color::kEstimate, 2),
+                                           QBrush(Qt::white), 8));
+    points_ = plot_->addGraph();
+    points_->setName("fixed points");
+    points_->setLineStyle(QCPGraph::lsNone);
+    points_->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssDiamond, QPen(color::kSecond, 2),
+                                             QBrush(color::kSecond), 9));
+    if (b.points.empty()) points_->removeFromLegend();
+  }
+
+  QCustomPlot* plot() const override { return plot_; }
+  QString title() const override { return title_; }
+
+  void setResult(const BlockInput& in) override {
+    data_ = model::trajectory_block_data(block_, in.result);
+    if (data_.x_true) {
+      setCurve(truth_, *data_.x_true, *data_.y_true, kAll);
+    } else {
+      truth_->data()->clear();
+    }
+    points_->data()->clear();
+    for (auto* l : labels_)
+      plot_->removeItem(l);
+    labels_.clear();
+    for (const auto& p : data_.points) {
+      points_->addData(p.x, p.y);
+      auto* label = new QCPItemText(plot_);
+      label->setText(QString::fromStdString(p.name));
+      label->setColor(color::kSecond);
+      label->setFont(QFont(plot_->font().family(), 8));
+      label->setPositionAlignment(Qt::AlignLeft | Qt::AlignBottom);
+      label->position->setCoords(p.x, p.y);
+      label->setPadding(QMargins(6, 0, 0, 4));
+      labels_.push_back(label);
+    }
+    fit();
+  }
+
+  void draw(const Frame& f) override {
+    if (!data_.x || !data_.y) return;
+    setCurve(estimate_, *data_.x, *data_.y, f.n);
+    here_->data()->clear();
+    const std::size_t n = std::min(f.n, data_.x->size());
+    if (!f.all && n > 0) here_->addData((*data_.x)[n - 1], (*data_.y)[n - 1]);
+    replot(plot_);
+  }
+
+ private:
+  // Both axes to every track and fixed point with a margin, unless the user zoomed.
+  void fit() {
+    double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
+    const auto take = [&](double x, double y) {
+      if (!std::isfinite(x) || !std::isfinite(y)) return;
+      x0 = std::min(x0, x);
+      x1 = std::max(x1, x);
+      y0 = std::min(y0, y);
+      y1 = std::max(y1, y);
+    };
+    for (std::size_t k = 0; data_.x && k < data_.x->size(); ++k)
+      take((*data_.x)[k], (*data_.y)[k]);
+    for (std::size_t k = 0; data_.x_true && k < data_.x_true->size(); ++k)
+      take((*data_.x_true)[k], (*data_.y_true)[k]);
+    for (const auto& p : data_.points)
+      take(p.x, p.y);
+    if (!(x0 <= x1 && y0 <= y1)) return;
+    const double mx = std::max(0.06 * (x1 - x0), 1e-9), my = std::max(0.06 * (y1 - y0), 1e-9);
+    if (!userZoomedX(plot_)) plot_->xAxis->setRange(x0 - mx, x1 + mx);
+    if (!userZoomedY(plot_)) plot_->yAxis->setRange(y0 - my, y1 + 2 * my);
+  }
+
+  model::PlotBlockSpec block_;
+  QString title_;
+  QCustomPlot* plot_ = nullptr;
+  QCPCurve *truth_ = nullptr, *estimate_ = nullptr;
+  QCPGraph *here_ = nullptr, *points_ = nullptr;
+  std::vector<QCPItemText*> labels_;
+  model::TrajectoryData data_;
+};
+
+}  // namespace
+
+std::unique_ptr<BlockDrawer> makeTrajectoryBlock(QWidget* parent, const model::PlotBlockSpec& b,
+                                                 const Scenario&) {
+  return std::make_unique<TrajectoryBlock>(parent, b);
+}
+
+}  // namespace kfw::plot

@@ -1,6 +1,7 @@
 // The gain_curve plot block: the steady-state gain entries and derived scalars of a linear
 // time-invariant model at points of one parameter, drawn against a derived scalar — seed 000's
 // k1(β) and p11⁻/N_θ against the tracking index β (Fig. 3), from the file's own declarations.
+#include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -58,10 +59,11 @@ Status parse_sweep(const detail::Reader& p, const json& j, const std::string& ke
     const bool pair =
         it->is_array() && it->size() == 2 && (*it)[0].is_number() && (*it)[1].is_number();
     if (!pair) return p.error(key + ".range", "expected [lowest, highest] of the swept parameter");
-    out.range_lo = (*it)[0].get<double>();
-    out.range_hi = (*it)[1].get<double>();
-    const bool inside =
-        spec->min <= out.range_lo && out.range_lo < out.range_hi && out.range_hi <= spec->max;
+    // Within the parameter's range: a preset that narrows the range narrows the curve.
+    const double lo = (*it)[0].get<double>(), hi = (*it)[1].get<double>();
+    out.range_lo = std::max(lo, spec->min);
+    out.range_hi = std::min(hi, spec->max);
+    const bool inside = lo < hi && out.range_lo < out.range_hi;
     if (!inside || (spec->scale == Scale::kLog && out.range_lo <= 0.0)) {
       return p.error(key + ".range", "expected lowest < highest within " + *sweep + "'s range [" +
                                          short_number(spec->min) + ", " + short_number(spec->max) +

@@ -305,7 +305,7 @@ TEST(ModelPlots, MistakesAreNamedWithTheirKeyPath) {
        "you mean 'K.theta.angle'?)"},
       {"log", json::array({"x", "z"}),
        "heli.json: model.plots[0].log[1]: unknown axis 'z' (one of x, y, y2)"},
-      {"range", json::array({0.5, 1e9}),
+      {"range", json::array({1e3, 1}),
        "heli.json: model.plots[0].range: expected lowest < highest within Q's range [1e-06, "
        "1e+06]"},
       {"id", "gain", "heli.json: model.plots[0].id: 'gain' is a panel of the model view already"},

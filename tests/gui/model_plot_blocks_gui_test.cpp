@@ -88,6 +88,25 @@ TEST(ModelPlotBlocksWindow, EachBlockIsAPanelWithItsTitleAndData) {
       (std::log(b) - std::log(below->key)) / (std::log(above->key) - std::log(below->key));
   EXPECT_NEAR(k, below->value + u * (above->value - below->value), 0.01 * k);
   EXPECT_NEAR(b, 0.02 * 0.02 * w.values().at("Q") / w.values().at("R"), 1e-12 * b);
+  // Along the curve (only Q moves): the same points, the operating point the run's own closed form
+  // at the new β; R moves the curve itself.
+  const double k1_at_10 = k1->data()->at(10)->value, beta_at_10 = k1->data()->at(10)->key;
+  w.setParam("Q", w.values().at("Q") * 10);
+  ASSERT_TRUE(w.waitForRun(60000));
+  k1 = graphNamed(curve, "k1(β), closed-form angle gain");
+  op = graphNamed(curve, "operating point");
+  ASSERT_TRUE(k1 && op && op->data()->size() == 1);
+  EXPECT_EQ(k1->data()->at(10)->value, k1_at_10);
+  EXPECT_NEAR(op->data()->at(0)->key, w.result()->metrics.at("derived.beta"), 1e-12 * b * 10);
+  EXPECT_NEAR(op->data()->at(0)->value, w.result()->metrics.at("derived.k1"), 1e-12);
+  w.setParam("R", w.values().at("R") * 10);
+  ASSERT_TRUE(w.waitForRun(60000));
+  k1 = graphNamed(curve, "k1(β), closed-form angle gain");
+  ASSERT_NE(k1, nullptr);
+  EXPECT_NEAR(k1->data()->at(10)->key, beta_at_10 / 10, 1e-12 * beta_at_10);  // β ∝ 1/R
+  op = graphNamed(curve, "operating point");
+  ASSERT_TRUE(op && op->data()->size() == 1);
+  EXPECT_NEAR(op->data()->at(0)->key, w.result()->metrics.at("derived.beta"), 1e-12 * b * 10);
 
   QCustomPlot* series = plotNamed(w, "angle_error");
   ASSERT_NE(series, nullptr);

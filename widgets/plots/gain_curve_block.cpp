@@ -4,7 +4,9 @@
 #include <qcustomplot.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
 
 #include "experiment/gain_curve.h"
 #include "gain_curve_plot.h"
@@ -61,8 +63,7 @@ class GainCurveBlock final : public BlockDrawer {
     for (const auto& e : entries_)
       keys.push_back(e.key);
     const std::string x_key = block_.x.key == block_.sweep ? std::string() : block_.x.key;
-    auto c = gain_curve_of(in.scenario, in.values, block_.sweep, keys, x_key, 100, in.data,
-                           block_.range_lo, block_.range_hi);
+    auto c = curve(in, keys, x_key);
     for (QCPGraph* g : graphs_)
       g->data()->clear();
     for (QCPGraph* g : ops_)
@@ -92,6 +93,39 @@ class GainCurveBlock final : public BlockDrawer {
 
  private:
   int right(std::size_t e) const { return e < block_.y.size() ? 0 : 1; }
+
+  // The curve does not depend on the swept parameter's value: while only it changes (dragging Q
+  // along the curve), the points are the last curve's and the engine's steady state at the values
+  // gives the operating point (one gain() instead of 100). The data count through their time
+  // span and rows (dt), the simulator's values through the key.
+  Expected<GainCurve> curve(const BlockInput& in, const std::vector<std::string>& keys,
+                            const std::string& x_key) {
+    ParamValues key = in.values;
+    key.erase(block_.sweep);
+    std::array<double, 3> data{};
+    if (in.data && in.data->rows() > 0 && in.data->has("t")) {
+      const auto& t = in.data->col("t");
+      data = {static_cast<double>(t.size()), t.front(), t.back()};
+    }
+    if (cached_ && cache_key_ == key && cache_data_ == data) {
+      auto here = in.scenario.gain(in.values, in.data);
+      if (here) {
+        GainCurve c = *cached_;
+        c.steady = *here;
+        c.at_x = in.values.at(block_.sweep);
+        for (std::size_t e = 0; e < c.entries.size(); ++e) {
+          const auto it = here->find(c.entries[e]);
+          c.at[e] = it == here->end() ? std::nan("") : it->second;
+        }
+        return c;
+      }
+    }
+    auto c = gain_curve_of(in.scenario, in.values, block_.sweep, keys, x_key, 100, in.data,
+                           block_.range_lo, block_.range_hi);
+    cached_.reset();
+    if (c) cached_ = *c, cache_key_ = std::move(key), cache_data_ = data;
+    return c;
+  }
 
   // Every point of the curve (100, spaced in the swept parameter, not in x: setSeries' raster
   // reduction, made for time series, would merge them), a gap where there is no steady state.
@@ -144,6 +178,9 @@ class GainCurveBlock final : public BlockDrawer {
 
   model::PlotBlockSpec block_;
   std::vector<model::PlotLine> entries_;  // y then y2, gain entries' labels and units resolved
+  std::optional<GainCurve> cached_;       // the last curve, for the values in cache_key_
+  ParamValues cache_key_;                 // those values but the swept and simulator keys
+  std::array<double, 3> cache_data_{};    // rows, first and last time of the data
   QString title_;
   QCustomPlot* plot_ = nullptr;
   std::vector<QCPGraph*> graphs_, ops_;

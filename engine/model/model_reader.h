@@ -189,7 +189,7 @@ class Reader {
 // The process block, in any of its four forms (model_process.cpp).
 Status parse_process(const Reader& p, const json& j, ModelSpec& m);
 
-// A world's own keys (model_world_parse.cpp): its noise sources (symbols), its clocks, and a
+// A world's own keys (world/model_world_parse.cpp): its noise sources (symbols), its clocks, and a
 // sensor's clock, dropout and outliers (`j` the channel's object, `key` its key).
 Status parse_noise_sources(const Reader& p, const json& world, ModelSpec& m);
 Status parse_clocks(const Reader& p, const json& world, ModelSpec& m);

@@ -20,8 +20,8 @@
 #include "model/model_eval.h"
 #include "model/model_filter.h"
 #include "model/model_noise.h"
-#include "model/model_sim.h"
 #include "model/model_spec.h"
+#include "model/world/model_sim.h"
 
 namespace kfw {
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/scenario.h"
-#include "model/model_plots.h"
+#include "model/plots/model_plots.h"
 
 namespace kfw {
 

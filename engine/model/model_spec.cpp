@@ -10,7 +10,7 @@
 #include "model/model_expressions.h"
 #include "model/model_noise.h"
 #include "model/model_reader.h"
-#include "model/model_world.h"
+#include "model/world/model_world.h"
 
 namespace kfw::model {
 

@@ -13,7 +13,7 @@
 #include "core/param_spec.h"
 #include "filter/angle.h"
 #include "model/expression.h"
-#include "model/model_plots.h"
+#include "model/plots/model_plots.h"
 
 namespace kfw::model {
 
@@ -58,7 +58,7 @@ struct RoleSpec {
 };
 
 // A world's named noise source (version 2, world only): a symbol whose value the simulation
-// draws from its own stream "noise.NAME" (model_world_noise.h).
+// draws from its own stream "noise.NAME" (world/model_world_noise.h).
 enum class NoiseKind {
   kWhite,        // a new draw at every step of the sim.dt grid
   kHeld,         // a new draw every `hold` seconds (windows [i·hold, (i+1)·hold)), or once

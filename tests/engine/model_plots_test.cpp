@@ -1,7 +1,7 @@
-// Issue 27, plot blocks of a model file ("plots", engine/model/model_plots.h): each kind's keys
-// are checked when the file loads (key paths, "did you mean", version 2 only), and the numbers a
-// block shows come from the engine — the gain_curve block's k1 against β is the closed form
-// k1(β) and `kfw-cli gain --curve Q --x beta` (1e-9), a series block's data is the run's column.
+// Issue 27, plot blocks of a model file ("plots", engine/model/plots/model_plots.h): each kind's
+// keys are checked when the file loads (key paths, "did you mean", version 2 only), and the numbers
+// a block shows come from the engine — the gain_curve block's k1 against β is the closed form k1(β)
+// and `kfw-cli gain --curve Q --x beta` (1e-9), a series block's data is the run's column.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,9 +12,9 @@
 
 #include "core/scenario.h"
 #include "experiment/gain_curve.h"
-#include "model/model_plots.h"
 #include "model/model_result.h"
 #include "model/model_scenario.h"
+#include "model/plots/model_plots.h"
 
 namespace kfw {
 namespace model_plots_test {

@@ -1,4 +1,4 @@
-// The drawers of a model file's plot blocks (engine/model/model_plots.h): one file per kind,
+// The drawers of a model file's plot blocks (engine/model/plots/model_plots.h): one file per kind,
 // widgets/plots/<kind>_block.cpp, each registered in block_registry.cpp, the one place that
 // lists them. A drawer makes one panel and fills it from what the engine computed; it computes
 // no filter maths itself.
@@ -10,8 +10,8 @@
 #include "core/dataset.h"
 #include "core/param_spec.h"
 #include "core/scenario.h"
-#include "model/model_plots.h"
 #include "model/model_result.h"
+#include "model/plots/model_plots.h"
 #include "plot_blocks.h"
 
 class QCustomPlot;

@@ -1,4 +1,4 @@
-#include "model/model_sim.h"
+#include "model/world/model_sim.h"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -11,7 +11,7 @@
 #include "core/random.h"
 #include "filter/angle.h"
 #include "model/model_eval.h"
-#include "model/model_world_noise.h"
+#include "model/world/model_world_noise.h"
 
 namespace kfw::model {
 

@@ -2,10 +2,10 @@
 // replay cursor like the other time plots; the data are the run's own arrays.
 #include <nlohmann/json.hpp>
 
-#include "model/model_plots.h"
 #include "model/model_reader.h"
 #include "model/model_result.h"
 #include "model/model_spec.h"
+#include "model/plots/model_plots.h"
 
 namespace kfw::model {
 

@@ -1,4 +1,4 @@
-#include "model/model_world_noise.h"
+#include "model/world/model_world_noise.h"
 
 #include <algorithm>
 #include <cmath>

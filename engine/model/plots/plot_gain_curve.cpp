@@ -6,9 +6,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/suggest.h"
-#include "model/model_plots.h"
 #include "model/model_reader.h"
 #include "model/model_spec.h"
+#include "model/plots/model_plots.h"
 
 namespace kfw::model {
 

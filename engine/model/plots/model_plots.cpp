@@ -1,4 +1,4 @@
-#include "model/model_plots.h"
+#include "model/plots/model_plots.h"
 
 #include <algorithm>
 #include <nlohmann/json.hpp>

@@ -7,10 +7,10 @@
 #include <nlohmann/json.hpp>
 
 #include "model/expression.h"
-#include "model/model_plots.h"
 #include "model/model_reader.h"
 #include "model/model_result.h"
 #include "model/model_spec.h"
+#include "model/plots/model_plots.h"
 
 namespace kfw::model {
 

@@ -1,4 +1,4 @@
-#include "model/model_world.h"
+#include "model/world/model_world.h"
 
 #include <nlohmann/json.hpp>
 #include <set>

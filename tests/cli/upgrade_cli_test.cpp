@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/cli_runner.h"
+#include "common/working_directory.h"
 #include "document/document.h"
 #include "document/preset.h"
 #include "document/session.h"
@@ -55,20 +56,6 @@ kfw::testing::CliOutput cli_in(const fs::path& dir, const std::string& args) {
   return run_command("cd " + dir.string() + " && timeout 60 " + KFW_CLI + " " + args + " 2>&1");
 }
 
-// Runs a block in another working directory, as kfw-cli ran.
-class InDirectory {
- public:
-  explicit InDirectory(const fs::path& dir) : previous_(fs::current_path()) {
-    fs::current_path(dir);
-  }
-  ~InDirectory() { fs::current_path(previous_); }
-  InDirectory(const InDirectory&) = delete;
-  InDirectory& operator=(const InDirectory&) = delete;
-
- private:
-  fs::path previous_;
-};
-
 TEST(UpgradeCli, EveryOldPresetBecomesOneThatLoadsWithoutNoticeAndTheSameValues) {
   const fs::path dir = scratch("presets");
   for (const char* version : {"preset_v1", "preset_v2"}) {
@@ -109,7 +96,7 @@ TEST(UpgradeCli, EveryOldSessionBecomesVersion3ThatLoadsWithoutNoticeAndTheSameV
       const fs::path original = cwd / (name + ".json");
       const fs::path copy = dir / (std::string(version) + "_" + name + ".json");
       fs::copy_file(original, copy);
-      InDirectory in(cwd);
+      testing::WorkingDirectory in(cwd);
       auto old = load_session(original.string());
       ASSERT_TRUE(old.ok()) << old.error();
       auto before = Document::from_session(*old, original.string());

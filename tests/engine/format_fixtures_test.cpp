@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "common/fixture_metric_changes.h"
+#include "common/working_directory.h"
 #include "core/metrics.h"
 #include "core/retired.h"
 #include "core/scenario.h"
@@ -108,20 +109,6 @@ nlohmann::json fixture_json(const fs::path& path) {
 std::string broad_log_path() {
   return (fs::path(KFW_SHARED_DIR) / kBroadLog).lexically_normal().string();
 }
-
-// Runs a block in another working directory (a session's paths are relative to it).
-class WorkingDirectory {
- public:
-  explicit WorkingDirectory(const fs::path& dir) : previous_(fs::current_path()) {
-    fs::current_path(dir);
-  }
-  ~WorkingDirectory() { fs::current_path(previous_); }
-  WorkingDirectory(const WorkingDirectory&) = delete;
-  WorkingDirectory& operator=(const WorkingDirectory&) = delete;
-
- private:
-  fs::path previous_;
-};
 
 TEST(FormatFixtures, PresetsOfVersion1And2LoadTheValuesTheyWereSavedWith) {
   for (const auto& s : seed_fixtures()) {
@@ -241,7 +228,7 @@ TEST(FormatFixtures, SessionsOfVersion1And2LoadTheirValuesSnapshotsAndData) {
       EXPECT_EQ(session->window_state.front() == '{', version == 2) << session->window_state;
 
       // Opened from its own directory, as it was saved: the preset and values are applied.
-      WorkingDirectory cwd(kFixtureDir / dir);
+      testing::WorkingDirectory cwd(kFixtureDir / dir);
       auto doc = Document::from_session(*session, path.string());
       ASSERT_TRUE(doc.ok()) << doc.error();
       EXPECT_EQ(doc->preset().scenario, loads_as(s.scenario));

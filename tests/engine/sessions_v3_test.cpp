@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/working_directory.h"
 #include "core/retired.h"
 #include "core/scenario.h"
 #include "document/document.h"
@@ -42,20 +43,6 @@ std::string fixture(const std::string& dir, const std::string& name) {
 bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
-
-// Runs a block in another working directory (a session's paths are relative to it).
-class InDirectory {
- public:
-  explicit InDirectory(const fs::path& dir) : previous_(fs::current_path()) {
-    fs::current_path(dir);
-  }
-  ~InDirectory() { fs::current_path(previous_); }
-  InDirectory(const InDirectory&) = delete;
-  InDirectory& operator=(const InDirectory&) = delete;
-
- private:
-  fs::path previous_;
-};
 
 const std::string kSessionHead = R"({"format": "kfw-session", "preset": "presets/radome.json",
   "scenario": "radome", "values": {"Q": 50}, "data": null, "snapshots": [], )";
@@ -97,7 +84,7 @@ TEST(SessionsV3, RetiredSessionsOfVersion1And2LoadTheirValuesAndDropWindowAndVie
       ASSERT_TRUE(s.ok()) << s.error();
       EXPECT_EQ(s->version, version);
       EXPECT_TRUE(s->notices.empty());
-      InDirectory cwd(kFixtureDir / dir);
+      testing::WorkingDirectory cwd(kFixtureDir / dir);
       auto d = Document::from_session(*s, path);
       ASSERT_TRUE(d.ok()) << d.error();
       EXPECT_EQ(d->preset().scenario, "model");

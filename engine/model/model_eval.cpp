@@ -124,6 +124,13 @@ void ModelEval::set_inputs(const double* u) {
     vars_[static_cast<std::size_t>(spec_.input_slots[i])] = u[i];
 }
 
+void ModelEval::set_input_ages(const double* age) {
+  for (std::size_t i = 0; i < spec_.input_age_slots.size(); ++i) {
+    const int slot = spec_.input_age_slots[i];
+    if (slot >= 0) vars_[static_cast<std::size_t>(slot)] = age[i];
+  }
+}
+
 void ModelEval::set_state(const double* x) {
   for (std::size_t i = 0; i < spec_.state_slots.size(); ++i)
     vars_[static_cast<std::size_t>(spec_.state_slots[i])] = x[i];
@@ -208,7 +215,12 @@ Status ModelEval::bind(const ParamValues& values) {
       ch.every = static_cast<int>(v);
     }
     if (cs.gate > 0.0) ch.gate_nis = chi2_quantile(cs.gate, cs.size());
+    if (!cs.gate_sigma.text.empty())
+      place(cs.gate_sigma, &ch.gate_sigma, param, unused, unused, nullptr);
   }
+  groups_.resize(s.groups.size());
+  for (std::size_t g = 0; g < s.groups.size(); ++g)
+    place(s.groups[g].cross, &groups_[g].cross, param, unused, unused, nullptr);
 
   // Compile every group against the symbols, then evaluate the parameter-only entries once.
   for (ExprGroup* g :
@@ -221,6 +233,7 @@ Status ModelEval::bind(const ParamValues& values) {
     }
   }
   param.eval();
+  if (auto st = bind_gates_and_groups(values); !st) return st;
 
   if (rk4_ && !(substep_ >= 0.0 && std::isfinite(substep_))) {
     return Error{path + ": model.process.substep: " + number(substep_) +

@@ -41,6 +41,8 @@ class ModelEval {
   // A symbol of its own (a world's noise source) by slot.
   void set_symbol(int slot, double v) { vars_[static_cast<std::size_t>(slot)] = v; }
   void set_inputs(const double* u);
+  // The inputs' ages (InputSpec::age), per input; entries without an age symbol are ignored.
+  void set_input_ages(const double* age);
   void set_state(const double* x);
   // Makes dt current: re-evaluates what depends on it when it differs from the last value.
   // Fails (message without the step) when the discretisation fails or Q is not PSD there (not
@@ -90,8 +92,9 @@ class ModelEval {
     MatX R;
     VecX hx;  // h(x) (nonlinear channels)
     int every = 1;
-    double gate_nis = 0.0;  // reject when NIS exceeds this (0: no gate)
-    bool R_varies = false;  // R depends on t, inputs or states: checked where evaluated
+    double gate_nis = 0.0;    // reject when NIS exceeds this (0: no gate)
+    double gate_sigma = 0.0;  // a distance gate d: gate_nis = d² (scalar channels)
+    bool R_varies = false;    // R depends on t, inputs or states: checked where evaluated
     ExprGroup dt, step, h, H_state, R_state;
   };
   Channel& channel(std::size_t c) { return channels_[c]; }
@@ -99,6 +102,14 @@ class ModelEval {
   void channel_h(std::size_t c) { channels_[c].h.eval(); }
   void channel_jacobian(std::size_t c) { channels_[c].H_state.eval(); }
   void channel_noise(std::size_t c) { channels_[c].R_state.eval(); }
+
+  // A channel group's scheme at the parameters' values, and the noise covariance between two of
+  // its members.
+  struct Group {
+    GroupScheme scheme = GroupScheme::kEach;
+    double cross = 0.0;
+  };
+  const Group& group(std::size_t g) const { return groups_[g]; }
 
   // Current process matrices: F (or ∂f/∂x), B (n × inputs, or empty), Q; fx = f(x).
   MatX F, B, Q;
@@ -116,6 +127,8 @@ class ModelEval {
  private:
   explicit ModelEval(const ModelSpec& spec);
   Status bind(const ParamValues& values);
+  // After the parameters' entries are evaluated: the distance gates and the groups' schemes.
+  Status bind_gates_and_groups(const ParamValues& values);
   // The continuous nonlinear form (model_continuous.cpp): its groups, the RK4 step over dt from
   // the state and time set (restored after), with the exact Jacobian of the step map when asked,
   // and Q by Van Loan at A(x).
@@ -133,6 +146,7 @@ class ModelEval {
   std::vector<double> vars_;  // sized once: the muparser groups hold pointers into it
   double dt_;
   std::vector<Channel> channels_;
+  std::vector<Group> groups_;
   ExprGroup p_dt_, p_step_, F_state_, f_state_, Q_state_;
   ExprGroup xdot_state_, A_state_;  // continuous nonlinear: ẋ and A = ∂ẋ/∂x at the symbols
   VecX xdot_;

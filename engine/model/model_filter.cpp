@@ -188,6 +188,26 @@ const char* kind_name(FilterKind k) {
   return "kf";
 }
 
+// The groups whose scheme waits for instants (stacked, sequential): their members and queues.
+// The UKF has no stacked update of a group.
+Status set_groups(detail::Context& ctx, FilterKind kind) {
+  const ModelSpec& spec = ctx.spec;
+  ctx.group_of.assign(spec.channels.size(), -1);
+  ctx.pending.resize(spec.groups.size());
+  for (std::size_t g = 0; g < spec.groups.size(); ++g) {
+    const GroupScheme scheme = ctx.ev.group(g).scheme;
+    if (scheme == GroupScheme::kEach) continue;
+    if (scheme == GroupScheme::kStacked && kind == FilterKind::kUkf) {
+      return Error{spec.path + ": model.groups." + spec.groups[g].name +
+                   ": the stacked scheme runs in the kf or the ekf, not the ukf"};
+    }
+    for (int c : spec.groups[g].members)
+      ctx.group_of[static_cast<std::size_t>(c)] = static_cast<int>(g);
+    ctx.pending[g].reserve(spec.groups[g].members.size());
+  }
+  return Ok{};
+}
+
 template <int N>
 Status dispatch(detail::Context& ctx, const VecX& x0, const MatX& P0) {
   Vec<N> x = x0;
@@ -285,11 +305,18 @@ Expected<std::shared_ptr<ModelResult>> run_model_filter(const ModelSpec& spec, c
     s.y.assign(m, std::vector<double>(rows, kNoSample));
     s.S.assign(m, std::vector<double>(rows, kNoSample));
     s.K.assign(m * un, std::vector<double>(rows, kNoSample));
+    if (!cs.outlier_column.empty() && d.has(cs.outlier_column))
+      s.outlier = d.col(cs.outlier_column);
     s.nis.assign(rows, kNoSample);
     s.log_det_s.assign(rows, kNoSample);
     r->chans.push_back(std::move(s));
   }
   ctx.u_held.assign(spec.inputs.size(), 0.0);
+  for (int slot : spec.input_age_slots)
+    ctx.any_age = ctx.any_age || slot >= 0;
+  ctx.u_time.assign(spec.inputs.size(), (*data.t)[0]);
+  ctx.u_age.assign(spec.inputs.size(), 0.0);
+  if (auto st = set_groups(ctx, options.kind); !st) return st.err();
   ctx.first_skip.assign(spec.channels.size(), rows);
   ctx.first_why.assign(spec.channels.size(), std::string());
   ctx.set_angles();

@@ -35,6 +35,13 @@ struct Data {
   std::vector<const std::vector<double>*> truth;           // per state; null: no truth
 };
 
+// A group member's sample waiting for its instant (GroupScheme kStacked, kSequential).
+struct Pending {
+  std::size_t c = 0;    // the channel
+  std::size_t row = 0;  // the row it arrived on (its y and S are recorded there)
+  double z = 0.0;
+};
+
 // What every filter shares: the evaluator, the data, the result being filled, inputs held.
 struct Context {
   const ModelSpec& spec;
@@ -51,6 +58,13 @@ struct Context {
   bool any_angle = false;                      // some state is an angle
   std::vector<std::size_t> first_skip{};       // per channel: the first skipped step (or rows)
   std::vector<std::string> first_why{};        // per channel: why it was skipped
+  // Input ages (InputSpec::age): per input the time of its last sample, and the ages set.
+  bool any_age = false;
+  std::vector<double> u_time{}, u_age{};
+  // Channel groups whose scheme is stacked or sequential: each channel's group (-1: none, or
+  // updated on its own), and per group the samples waiting for their instant.
+  std::vector<int> group_of{};
+  std::vector<std::vector<Pending>> pending{};
 
   // The angles of the states and channel components, from the spec.
   void set_angles() {
@@ -89,8 +103,19 @@ struct Context {
   void hold_inputs(std::size_t k) {
     for (std::size_t i = 0; i < u_held.size(); ++i) {
       const double v = (*data.u[i])[k];
-      if (std::isfinite(v)) u_held[i] = v;
+      if (std::isfinite(v)) {
+        u_held[i] = v;
+        if (any_age) u_time[i] = (*data.t)[k];
+      }
     }
+  }
+  // The inputs held, and their ages at time `now`, as the evaluator's symbols.
+  void set_inputs(double now) {
+    ev.set_inputs(u_held.data());
+    if (!any_age) return;
+    for (std::size_t i = 0; i < u_time.size(); ++i)
+      u_age[i] = now - u_time[i];
+    ev.set_input_ages(u_age.data());
   }
 
   // The channel updates at row k: its clock allows and every value is present. Fills z_buf.
@@ -152,6 +177,7 @@ struct Context {
     ChannelSeries& ch = r.chans[c];
     if (u.status == UpdateStatus::kSkipped) return;
     ++(u.updated() ? ch.updates : ch.gated);
+    if (u.status == UpdateStatus::kGated) ch.gated_rows.push_back(k);
     const auto m = static_cast<std::size_t>(u.y.size());
     for (std::size_t j = 0; j < m; ++j) {
       const auto jj = static_cast<Eigen::Index>(j);
@@ -209,9 +235,50 @@ struct Context {
   }
 };
 
+// Applies group g's waiting samples at row k (the instant closes): one after the other through
+// the filter's update (sequential), or in the filter's update_group (stacked).
+template <class Filter>
+Status flush_group(Context& ctx, Filter& f, std::size_t g, std::size_t k) {
+  std::vector<Pending>& batch = ctx.pending[g];
+  if (batch.empty()) return Ok{};
+  Status st = Ok{};
+  if (ctx.ev.group(g).scheme == GroupScheme::kSequential) {
+    for (const Pending& q : batch) {
+      ctx.z_buf[0] = q.z;
+      ctx.ev.channel_step(q.c);
+      if (st = f.update(q.c, q.row); !st) break;
+    }
+  } else if constexpr (requires { f.update_group(g, batch, k); }) {
+    for (const Pending& q : batch)
+      ctx.ev.channel_step(q.c);
+    st = f.update_group(g, batch, k);
+  }
+  batch.clear();
+  return st;
+}
+
+// A group member's sample at row k (in z_buf): it waits for its instant, which closes before it
+// when the member already waits (another member dropped out) and after it when every member has
+// a sample (seed 004's synchronisation of the ranges).
+template <class Filter>
+Status group_sample(Context& ctx, Filter& f, std::size_t c, std::size_t k) {
+  const auto g = static_cast<std::size_t>(ctx.group_of[c]);
+  auto& batch = ctx.pending[g];
+  const Pending sample{c, k, ctx.z_buf[0]};  // before a sequential flush reuses z_buf
+  for (const Pending& q : batch) {
+    if (q.c != c) continue;
+    if (auto st = flush_group(ctx, f, g, k); !st) return st;
+    break;
+  }
+  batch.push_back(sample);
+  if (batch.size() < ctx.spec.groups[g].members.size()) return Ok{};
+  return flush_group(ctx, f, g, k);
+}
+
 // The recursion over the rows that every model filter runs: the process set to the interval
 // before row k, then the filter's predict; each channel due at row k set, then the filter's
-// update; then x and P recorded. A Filter has x, P, Status predict(k) and Status update(c, k).
+// update (a grouped channel's sample waits for its instant); then x and P recorded. A Filter has
+// x, P, Status predict(k) and Status update(c, k), and may have update_group(g, batch, k).
 template <class Filter>
 Status run_steps(Context& ctx, Filter& f) {
   ModelEval& ev = ctx.ev;
@@ -220,7 +287,7 @@ Status run_steps(Context& ctx, Filter& f) {
     if (k > 0) {
       if (auto st = ev.set_dt(t[k] - t[k - 1]); !st) return ctx.fail(k, st.error());
       ev.set_time(t[k - 1]);
-      ev.set_inputs(ctx.u_held.data());
+      ctx.set_inputs(t[k - 1]);
       ev.process_step();
       if (auto st = f.predict(k); !st) return st;
     }
@@ -230,14 +297,22 @@ Status run_steps(Context& ctx, Filter& f) {
       if (!ctx.channel_ready(c, k)) continue;
       if (!row_set) {
         ev.set_time(t[k]);
-        ev.set_inputs(ctx.u_held.data());
+        ctx.set_inputs(t[k]);
         row_set = true;
+      }
+      if (ctx.group_of[c] >= 0) {
+        if (auto st = group_sample(ctx, f, c, k); !st) return st;
+        continue;
       }
       ev.channel_step(c);
       if (auto st = f.update(c, k); !st) return st;
     }
     ctx.record_state(k, f.x, f.P);
     if ((k & 0xFFF) == 0xFFF && ctx.control.cancelled()) return Error{"cancelled"};
+  }
+  // Samples still waiting at the end are applied (their y and S recorded; no row follows).
+  for (std::size_t g = 0; g < ctx.pending.size(); ++g) {
+    if (auto st = flush_group(ctx, f, g, ctx.data.rows - 1); !st) return st;
   }
   return Ok{};
 }

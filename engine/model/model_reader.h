@@ -196,4 +196,11 @@ Status parse_clocks(const Reader& p, const json& world, ModelSpec& m);
 Status parse_sensor(const Reader& p, const json& j, const std::string& key, ModelSpec& m,
                     ChannelSpec& c);
 
+// model_groups.cpp: a channel's "gate" (a χ² probability, or {"sigma": EXPR} in version 2 for a
+// scalar channel) and "outlier_column" (version 2), from the channel's object `j` at `key`; and
+// the "groups" block (version 2).
+Status parse_gate(const Reader& p, const json& j, const std::string& key, int version,
+                  ChannelSpec& c);
+Status parse_groups(const Reader& p, const json& groups, const ParamTable& params, ModelSpec& m);
+
 }  // namespace kfw::model::detail

@@ -19,6 +19,8 @@ struct ChannelSeries {
   std::vector<double> nis, log_det_s;               // per step; NaN where no update
   std::vector<std::vector<double>> K;               // [state · m + component][step]
   std::size_t updates = 0, gated = 0, skipped = 0;  // skipped: S not positive definite
+  std::vector<std::size_t> gated_rows;              // the rows of the gated samples
+  std::vector<double> outlier;  // the channel's outlier column (ChannelSpec), or empty
 };
 
 struct ModelResult final : RunResult {

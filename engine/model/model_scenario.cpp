@@ -19,6 +19,7 @@
 #include "model/model_derived.h"
 #include "model/model_eval.h"
 #include "model/model_filter.h"
+#include "model/model_gates.h"
 #include "model/model_noise.h"
 #include "model/model_spec.h"
 #include "model/world/model_sim.h"
@@ -184,13 +185,8 @@ class ModelScenario final : public Scenario {
   }
 
   std::vector<MetricSpec> metric_specs() const override {
-    std::vector<MetricSpec> out;
+    std::vector<MetricSpec> out = model::gate_metric_specs(*spec_);
     for (const auto& c : spec_->channels) {
-      if (c.gate > 0.0) {
-        out.push_back({"gated." + c.name, "updates gated out (" + c.label + ")", "",
-                       "measurements rejected by the χ² gate", MetricGroup::kConsistency,
-                       Direction::kLower});
-      }
       // A channel of several components is tested for whiteness component by component.
       if (c.roles.size() > 1) {
         for (const auto& r : c.roles) {
@@ -267,11 +263,7 @@ class ModelScenario final : public Scenario {
       m["rmse." + spec_->states[i].name] = rmse_finite(e, zero);
     }
     if (spec_->primary.size() > 1) primary_rmse(res);
-    for (const auto& c : res.chans) {
-      for (const auto& cs : spec_->channels) {
-        if (cs.name == c.name && cs.gate > 0.0) m["gated." + c.name] = static_cast<double>(c.gated);
-      }
-    }
+    model::add_gate_metrics(*spec_, res, m, res.undefined);
     add_consistency_metrics(res.channels(), res.nees_series(), m, res.undefined);
     if (auto st = model::add_derived(*spec_, v, d, res); !st) return st.err();
     const double dt = d.rows() >= 2 ? d.median_dt() : param(v, spec_->sim_dt_key);

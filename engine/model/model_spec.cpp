@@ -49,7 +49,7 @@ Expected<ChannelSpec> parse_channel(const Reader& p, const std::string& name, co
   if (!j.is_object()) return p.error(key, "expected an object");
   if (auto st = p.only_keys(j, key,
                             {"roles", "label", "H", "h", "R", "every", "gate", "noise_param",
-                             "clock", "dropout", "outliers"});
+                             "clock", "dropout", "outliers", "outlier_column"});
       !st) {
     return st.err();
   }
@@ -146,12 +146,7 @@ Expected<ChannelSpec> parse_channel(const Reader& p, const std::string& name, co
       return p.error(key + ".every", "expected an integer ≥ 1 or a parameter name");
     }
   }
-  if (auto it = j.find("gate"); it != j.end()) {
-    if (!it->is_number() || !(it->get<double>() > 0.0 && it->get<double>() < 1.0)) {
-      return p.error(key + ".gate", "expected a χ² probability in (0, 1), e.g. 0.999");
-    }
-    c.gate = it->get<double>();
-  }
+  if (auto st = detail::parse_gate(p, j, key, m.version, c); !st) return st.err();
   return c;
 }
 
@@ -204,7 +199,7 @@ Status check_noise_version(const Reader& p, const json& j) {
 // lowest version that holds the file, so a version-1 file never needs them).
 Status check_version_keys(const Reader& p, const json& j, int version) {
   if (version >= 2) return Ok{};
-  for (const char* k : {"expressions", "world", "derived", "sim", "plots"}) {
+  for (const char* k : {"expressions", "world", "derived", "sim", "plots", "groups"}) {
     if (j.contains(k))
       return p.error(std::string("model.") + k, "a version-2 key: set \"version\": 2");
   }
@@ -281,7 +276,8 @@ Status parse_inputs(const Reader& p, const json& j, ModelSpec& m,
       if (u.is_string()) {
         in.name = u.get<std::string>();
       } else if (u.is_object()) {
-        if (auto ok = p.only_keys(u, ukey, {"name", "unit", "label", "sim", "noise_param"}); !ok) {
+        if (auto ok = p.only_keys(u, ukey, {"name", "unit", "label", "sim", "noise_param", "age"});
+            !ok) {
           return ok.err();
         }
         auto nm = p.string(u, "name", ukey, true);
@@ -299,6 +295,15 @@ Status parse_inputs(const Reader& p, const json& j, ModelSpec& m,
       if (auto ok = check_name(p, m.symbols, in.name, ukey + ".name"); !ok) return ok.err();
       roles_seen.insert(in.name);
       m.input_slots.push_back(m.symbols.add(in.name, kInputSymbol));
+      auto age = p.string(u.is_object() ? u : json::object(), "age", ukey, false);
+      if (!age) return age.err();
+      in.age = *age;
+      m.input_age_slots.push_back(-1);
+      if (!in.age.empty()) {
+        if (m.version < 2) return p.error(ukey + ".age", "a version-2 key: set \"version\": 2");
+        if (auto ok = check_name(p, m.symbols, in.age, ukey + ".age"); !ok) return ok.err();
+        m.input_age_slots.back() = m.symbols.add(in.age, kInputSymbol);
+      }
       m.inputs.push_back(in);
     }
     // Simulation expressions once every symbol is known.
@@ -486,7 +491,7 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   if (auto st = p.only_keys(j, key,
                             {"version", "description", "states", "inputs", "expressions", "x0",
                              "P0", "process", "measurements", "truth", "primary", "filter", "world",
-                             "derived", "noise", "clocks", "sim", "plots"});
+                             "derived", "noise", "clocks", "sim", "plots", "groups"});
       !st) {
     return st.err();
   }
@@ -559,6 +564,10 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
     m.channels.push_back(std::move(*c));
   }
 
+  if (auto it = j.find("groups"); it != j.end()) {
+    if (world) return p.error("model.groups", "a world's sensors are not grouped: group channels");
+    if (auto st = detail::parse_groups(p, *it, params, m); !st) return st.err();
+  }
   if (auto st = parse_noise_params(j, m, params, world); !st) return st.err();
   if (auto st = parse_outputs(p, j, m, roles_seen); !st) return st.err();
   if (auto it = j.find("derived"); it != j.end()) {

@@ -45,10 +45,14 @@ struct InputNoise {
 };
 
 // A known signal u: its column (same name) in data; in simulation, the `sim` expression of t.
+// `age` (version 2): the name of a symbol whose value is the time since the input's last sample
+// (s): at t[k−1] in the process, at t[k] in a channel; from the first row before any sample; 0 in
+// simulation, where every input is sampled each step. Seed 004's heading at mid-interval.
 struct InputSpec {
   std::string name, unit, label;
   Expr sim;
   InputNoise noise;
+  std::string age;
 };
 
 // One component of a measurement channel: a role that binds to the column of the same name.
@@ -103,12 +107,32 @@ struct ChannelSpec {
   int every = 1;            // update on rows k with k % every == 0 ...
   std::string every_param;  // ... or every = this parameter's value
   double gate = 0.0;        // χ² gate probability; 0: no gate
-  SensorSpec sensor;        // a world's sensor: its clock, dropouts and outliers
+  Expr gate_sigma;  // or (version 2, scalar channels) |y| > gate_sigma·√S: a distance gate
+  std::string outlier_column;  // version 2: the column marking known outliers (non-zero)
+  SensorSpec sensor;           // a world's sensor: its clock, dropouts and outliers
   // noise_param (version 2, model_noise.h): per role, the parameter its noise sets (empty:
   // none); `noise_shared`: one parameter for every role. Empty: the channel links nothing.
   std::vector<std::string> noise_params;
   bool noise_shared = false;
   int size() const { return static_cast<int>(roles.size()); }
+  bool has_gate() const { return gate > 0.0 || !gate_sigma.text.empty(); }
+};
+
+// A group of scalar channels updated together (version 2, model_groups.cpp; seed 004's AS / SC /
+// SI). `each`: every member updates on its own when it arrives, as without the group. `stacked`
+// and `sequential`: an instant closes when every member has a new sample since the last instant
+// (or a member's sample repeats before that: another member dropped out), and the members'
+// samples are applied there, at the filter's state of that row: in one update with the members'
+// R on the diagonal and `cross` between members (stacked), or one after the other in the group's
+// order (sequential). Each member is gated on its own S_ii.
+enum class GroupScheme { kEach, kStacked, kSequential };
+struct GroupSpec {
+  std::string name;
+  std::vector<int> members;  // channel indices, in the group's order
+  Expr cross;                // the noise covariance between two members (parameters only)
+  GroupScheme scheme = GroupScheme::kEach;  // fixed, unless ...
+  std::string scheme_param;                 // ... a choice parameter selects it:
+  std::vector<GroupScheme> by_choice;       // per choice index
 };
 
 enum class ProcessForm {
@@ -150,10 +174,12 @@ struct ModelSpec {
   std::vector<int> param_slots;         // the parameters usable in expressions, by slot
   std::vector<std::string> param_keys;  // each one's key (a world's symbol X reads sim.X)
   std::vector<int> state_slots, input_slots;
+  std::vector<int> input_age_slots;  // per input: its age symbol, or -1
   std::vector<StateSpec> states;
   std::vector<InputSpec> inputs;
   ProcessSpec process;
   std::vector<ChannelSpec> channels;  // in the order of their names
+  std::vector<GroupSpec> groups;      // channel groups (version 2), in the order of their names
   std::vector<InitialSpec> x0;
   MatrixSpec P0;
   std::vector<std::string> truth;  // per state: its truth column, or empty

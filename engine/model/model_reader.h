@@ -193,8 +193,8 @@ Status parse_process(const Reader& p, const json& j, ModelSpec& m);
 // sensor's clock, dropout and outliers (`j` the channel's object, `key` its key).
 Status parse_noise_sources(const Reader& p, const json& world, ModelSpec& m);
 Status parse_clocks(const Reader& p, const json& world, ModelSpec& m);
-Status parse_sensor(const Reader& p, const json& j, const std::string& key, ModelSpec& m,
-                    ChannelSpec& c);
+Status parse_sensor(const Reader& p, const json& j, const std::string& key,
+                    const ParamTable& params, ModelSpec& m, ChannelSpec& c);
 
 // model_groups.cpp: a channel's "gate" (a χ² probability, or {"sigma": EXPR} in version 2 for a
 // scalar channel) and "outlier_column" (version 2), from the channel's object `j` at `key`; and

@@ -556,7 +556,8 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
     auto c = parse_channel(p, it.key(), it.value(), m, params, roles_seen);
     if (!c) return c.err();
     if (world) {
-      if (auto st = detail::parse_sensor(p, it.value(), "model.measurements." + it.key(), m, *c);
+      if (auto st =
+              detail::parse_sensor(p, it.value(), "model.measurements." + it.key(), params, m, *c);
           !st) {
         return st.err();
       }

@@ -89,7 +89,11 @@ struct ClockSpec {
 // What a world's sensor adds to a channel (world only).
 struct SensorSpec {
   int clock = -1;  // an index into ModelSpec::clocks, or -1: the sim.dt grid (and `every`)
-  Expr dropout;    // the probability that a sample is lost (stream "dropout.NAME"); "0": none
+  // Or (issue 27) a choice parameter's value selects the clock: `clock_choice` is the parameter
+  // (as the world's symbol), `clock_by_choice` the clock per choice index.
+  Expr clock_choice;
+  std::vector<int> clock_by_choice;
+  Expr dropout;  // the probability that a sample is lost (stream "dropout.NAME"); "0": none
   // Outliers: ±size added to `count` samples drawn without replacement from the samples of the
   // sensors of one group (stream "outliers.GROUP"), or to each sample with probability `rate`.
   bool outliers = false, outlier_count = true;

@@ -7,11 +7,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "common/model_files.h"
 #include "core/dataset.h"
 #include "core/scenario.h"
+#include "model/model_scenario.h"
 
 namespace kfw {
 namespace world_underwater_test {
@@ -75,6 +78,66 @@ TEST(ModelWorldUnderwater, TheWorldSimulatesWhatTheBuiltInSimulates) {
     auto dm = model->simulate(vm);
     ASSERT_TRUE(dm.ok()) << dm.error();
     EXPECT_TRUE(same_data(*db, *dm, 1e-12));
+  }
+}
+
+// Synchronous clocks (sim.clock, a choice between the world's shared clock "sync" and each
+// sensor's own): every sensor on the ticks of the stream clock.sync, as the built-in — seeds
+// 1..20, two periods.
+TEST(ModelWorldUnderwater, SynchronousClocksSimulateWhatTheBuiltInSimulates) {
+  auto builtin = make_scenario("underwater");
+  ASSERT_TRUE(builtin.ok());
+  auto model = testing::load_model_file(kFile);
+  ASSERT_TRUE(model);
+  for (int seed = 1; seed <= 20; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    ParamValues vb = (*builtin)->params().defaults(), vm = model->params().defaults();
+    for (auto* v : {&vb, &vm}) {
+      (*v)["sim.seed"] = seed;
+      (*v)["sim.duration"] = 60;
+      (*v)["sim.clock"] = 0;  // synchronous
+      (*v)["sim.dt_sync"] = seed % 2 ? 0.1 : 0.25;
+    }
+    auto db = (*builtin)->simulate(vb);
+    ASSERT_TRUE(db.ok()) << db.error();
+    auto dm = model->simulate(vm);
+    ASSERT_TRUE(dm.ok()) << dm.error();
+    const double ticks = 60 / vm["sim.dt_sync"];  // every sensor on one clock: a row per tick
+    EXPECT_NEAR(static_cast<double>(dm->rows()), ticks, 0.02 * ticks);
+    EXPECT_TRUE(same_data(*db, *dm, 1e-12));
+  }
+}
+
+// A sensor's clock chosen by a parameter: each mistake named with its key.
+TEST(ModelWorldUnderwater, ClockAlternativesAreCheckedAtLoad) {
+  struct Case {
+    const char* edit;  // a JSON merge patch of model.world.measurements.depth.clock
+    std::string want;
+  };
+  const Case cases[] = {
+      {R"({"synchronous": "snyc"})",
+       "model.world.measurements.depth.clock.synchronous: unknown clock 'snyc' (did you mean "
+       "'sync'?)"},
+      {R"({"asynchronous": null})",
+       "model.world.measurements.depth.clock: missing the clock for 'sim.clock' = 'asynchronous'"},
+      {R"({"param": "scheme"})",
+       "model.world.measurements.depth.clock.asynchronous: unknown choice of 'scheme' "
+       "'asynchronous'"},
+      {R"({"param": "sim.clok"})",
+       "model.world.measurements.depth.clock.param: unknown choice parameter 'sim.clok' (did you "
+       "mean "
+       "'sim.clock'?)"},
+      {R"({"hourly": "sync"})",
+       "model.world.measurements.depth.clock.hourly: unknown choice of 'sim.clock' 'hourly'"},
+  };
+  for (const auto& c : cases) {
+    std::ifstream in(kFile);
+    auto j = nlohmann::json::parse(in);
+    j["model"]["world"]["measurements"]["depth"]["clock"].merge_patch(
+        nlohmann::json::parse(c.edit));
+    auto s = make_model_scenario(j, "uw.json");
+    ASSERT_FALSE(s.ok()) << c.edit;
+    EXPECT_NE(s.error().find(c.want), std::string::npos) << s.error();
   }
 }
 

@@ -72,6 +72,7 @@ class Simulation {
   }
 
   Status prepare(double duration, std::size_t grid_rows);
+  Status select_clocks();
   Expected<Dataset> run(const std::string& source);
 
  private:
@@ -111,12 +112,32 @@ class Simulation {
   std::vector<double> row_t_;
   std::vector<long long> row_grid_;
   std::vector<std::vector<bool>> clock_rows_;
+  std::vector<int> sensor_clock_;  // per channel: its clock this run (a choice selects), or −1
 
   std::size_t j_ = 0;  // the grid step of x_
   VecX x_, row_x_;
   std::vector<std::size_t> role_col_;
   std::vector<std::vector<detail::Sample>> samples_;  // per channel: its samples kept
 };
+
+// Each sensor's clock this run: its own, or the one its choice parameter selects.
+Status Simulation::select_clocks() {
+  for (const auto& c : spec_.channels) {
+    const SensorSpec& s = c.sensor;
+    sensor_clock_.push_back(s.clock);
+    if (s.clock_by_choice.empty()) continue;
+    const std::string key = "model.world.measurements." + c.name + ".clock.param";
+    auto v = detail::param_value(s.clock_choice, spec_, vars_, key);
+    if (!v) return v.err();
+    const auto n = static_cast<double>(s.clock_by_choice.size());
+    if (!(*v >= 0.0 && *v < n) || *v != std::round(*v)) {
+      return Error{spec_.path + ": " + key + ": " + std::to_string(*v) +
+                   " is not one of the parameter's choices"};
+    }
+    sensor_clock_.back() = s.clock_by_choice[static_cast<std::size_t>(*v)];
+  }
+  return Ok{};
+}
 
 Status Simulation::prepare(double duration, std::size_t grid_rows) {
   // Inputs: their simulation expressions of t, bound to a copy of the symbols.
@@ -137,16 +158,20 @@ Status Simulation::prepare(double duration, std::size_t grid_rows) {
     }
     dropout_.push_back(*p);
   }
-  // The grid's rows (when a sensor samples on it) and every clock's ticks, merged.
-  const bool grid =
-      spec_.clocks.empty() || std::any_of(spec_.channels.begin(), spec_.channels.end(),
-                                          [](const ChannelSpec& c) { return c.sensor.clock < 0; });
+  if (auto st = select_clocks(); !st) return st;
+  // The grid's rows (when a sensor samples on it) and the ticks of the clocks in use, merged.
+  const bool grid = spec_.clocks.empty() || std::any_of(sensor_clock_.begin(), sensor_clock_.end(),
+                                                        [](int c) { return c < 0; });
   std::vector<std::pair<double, long long>> times;  // (t, clock or −1 for the grid)
   if (grid) {
     for (std::size_t j = 0; j < grid_rows; ++j)
       times.emplace_back(static_cast<double>(j) * dt_, -1);
   }
   for (std::size_t c = 0; c < spec_.clocks.size(); ++c) {
+    if (std::find(sensor_clock_.begin(), sensor_clock_.end(), static_cast<int>(c)) ==
+        sensor_clock_.end()) {
+      continue;  // no sensor samples on it this run: it adds no rows
+    }
     auto ticks = detail::clock_ticks(spec_.clocks[c], spec_, vars_, seed_, duration, kMaxRows);
     if (!ticks) return ticks.err();
     for (double t : *ticks)
@@ -378,7 +403,7 @@ Expected<Dataset> Simulation::run(const std::string& source) {
     for (std::size_t i = 0; i < u_.size(); ++i)
       d.columns[1 + i][r] = u_[i];
     for (std::size_t c = 0; c < spec_.channels.size(); ++c) {
-      const int clock = spec_.channels[c].sensor.clock;
+      const int clock = sensor_clock_[c];
       const bool due = clock >= 0 ? clock_rows_[static_cast<std::size_t>(clock)][r]
                                   : row_grid_[r] >= 0 && row_grid_[r] % ev_.channel(c).every == 0;
       if (!due) continue;

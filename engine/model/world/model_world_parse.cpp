@@ -1,6 +1,7 @@
 // The keys only a world block carries (version 2): "noise" (named noise sources), "clocks" (sensor
 // clocks), a sensor's "clock", "dropout" and "outliers", and truth columns of sub-expressions.
 // Documented in presets/models/README.md, "The world block".
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "model/model_reader.h"
@@ -176,30 +177,80 @@ Status parse_clocks(const Reader& p, const json& world, ModelSpec& m) {
   return Ok{};
 }
 
-Status parse_sensor(const Reader& p, const json& j, const std::string& key, ModelSpec& m,
-                    ChannelSpec& c) {
+namespace {
+
+// One clock: a declared clock's name, or an object (a clock of its own, named after the sensor).
+Expected<int> sensor_clock(const Reader& p, const json& j, const std::string& key, ModelSpec& m,
+                           const std::string& sensor) {
+  if (j.is_string()) {
+    const int clock = clock_index(m, j.get<std::string>());
+    if (clock >= 0) return clock;
+    std::vector<std::string> names;
+    for (const auto& c : m.clocks)
+      names.push_back(c.name);
+    return p.error(key, unknown_message("clock", j.get<std::string>(), names) +
+                            " (declare it under model.world.clocks)");
+  }
+  if (clock_index(m, sensor) >= 0) {
+    return p.error(key, "a clock named '" + sensor + "' exists: name it");
+  }
+  auto clock = parse_clock(p, sensor, j, key);
+  if (!clock) return clock.err();
+  m.clocks.push_back(std::move(*clock));
+  return static_cast<int>(m.clocks.size()) - 1;
+}
+
+// {"param": CHOICE, LABEL: clock, ...}: the clock a choice parameter selects (seed 004's
+// synchronous or asynchronous sensors), every label given.
+Status clock_alternatives(const Reader& p, const json& j, const std::string& key,
+                          const ParamTable& params, ModelSpec& m, ChannelSpec& c) {
+  auto param = p.string(j, "param", key, true);
+  if (!param) return param.err();
+  const ParamSpec* spec = params.find(*param);
+  const std::string symbol = param->rfind("sim.", 0) == 0 ? param->substr(4) : *param;
+  if (!spec || spec->scale != Scale::kChoice || m.symbols.find(symbol) < 0) {
+    std::vector<std::string> names;
+    for (const auto& s : params.specs()) {
+      if (s.scale == Scale::kChoice) names.push_back(s.key);
+    }
+    return p.error(key + ".param", unknown_message("choice parameter", *param, names));
+  }
+  auto e = p.expr(json(symbol), key + ".param", kParamsOnly, kParamsOnlyWhat);
+  if (!e) return e.err();
+  c.sensor.clock_choice = *e;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    if (it.key() != "param" &&
+        std::find(spec->choices.begin(), spec->choices.end(), it.key()) == spec->choices.end()) {
+      return p.error(key + "." + truncate_token(it.key()),
+                     unknown_message("choice of '" + *param + "'", it.key(), spec->choices));
+    }
+  }
+  for (const auto& label : spec->choices) {
+    if (!j.contains(label)) {
+      return p.error(key, "missing the clock for '" + *param + "' = '" + label + "'");
+    }
+    auto clock = sensor_clock(p, j[label], key + "." + label, m, c.name);
+    if (!clock) return clock.err();
+    c.sensor.clock_by_choice.push_back(*clock);
+  }
+  c.sensor.clock = c.sensor.clock_by_choice.front();
+  return Ok{};
+}
+
+}  // namespace
+
+Status parse_sensor(const Reader& p, const json& j, const std::string& key,
+                    const ParamTable& params, ModelSpec& m, ChannelSpec& c) {
   SensorSpec& s = c.sensor;
   s.dropout = Expr{"0", Dep::kConst, 0.0};
   if (auto it = j.find("clock"); it != j.end()) {
     if (j.contains("every")) return p.error(key + ".every", "a sensor with a clock has no every");
-    if (it->is_string()) {
-      s.clock = clock_index(m, it->get<std::string>());
-      if (s.clock < 0) {
-        std::vector<std::string> names;
-        for (const auto& clock : m.clocks)
-          names.push_back(clock.name);
-        return p.error(key + ".clock", unknown_message("clock", it->get<std::string>(), names) +
-                                           " (declare it under model.world.clocks)");
-      }
+    if (it->is_object() && it->contains("param")) {
+      if (auto st = clock_alternatives(p, *it, key + ".clock", params, m, c); !st) return st;
     } else {
-      // A clock of its own, named after the sensor.
-      if (clock_index(m, c.name) >= 0) {
-        return p.error(key + ".clock", "a clock named '" + c.name + "' exists: name it");
-      }
-      auto clock = parse_clock(p, c.name, *it, key + ".clock");
+      auto clock = sensor_clock(p, *it, key + ".clock", m, c.name);
       if (!clock) return clock.err();
-      m.clocks.push_back(std::move(*clock));
-      s.clock = static_cast<int>(m.clocks.size()) - 1;
+      s.clock = *clock;
     }
   }
   if (auto it = j.find("dropout"); it != j.end()) {

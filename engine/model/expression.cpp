@@ -143,6 +143,38 @@ std::string expand_subs(const std::string& text, const Symbols& symbols) {
   return out + text.substr(done);
 }
 
+// A sub-expression that a state expression may keep as its symbol: one of dt or inputs (and
+// parameters), not of t (the RK4 stages move t within a step). One of parameters only stays
+// expanded: muparser folds it into the entry, and a run keeps its last bit.
+bool step_level(const Expr& sub) {
+  return (sub.dep == Dep::kDt || sub.dep == Dep::kStep) && !(sub.uses & kTimeSymbol) &&
+         !sub.source.empty();
+}
+
+// `text` with its step-level sub-expressions kept by name (their slots added to `kept`, with the
+// sub-expressions they use) and the others expanded from their own source the same way.
+std::string expand_state_subs(const std::string& text, const Symbols& symbols,
+                              std::vector<int>& kept) {
+  std::string out;
+  std::size_t done = 0;
+  for_each_identifier(text, [&](std::size_t start, std::size_t len) {
+    const int slot = symbols.find(std::string_view(text).substr(start, len));
+    if (slot < 0 || symbols.kinds[static_cast<std::size_t>(slot)] != kSubSymbol) return false;
+    const Expr& sub = symbols.subs[static_cast<std::size_t>(slot)];
+    if (step_level(sub)) {
+      for (int s : sub.step_subs)
+        kept.push_back(s);
+      kept.push_back(slot);
+      return false;
+    }
+    out.append(text, done, start - done);
+    out += "(" + expand_state_subs(sub.source, symbols, kept) + ")";
+    done = start + len;
+    return false;
+  });
+  return out + text.substr(done);
+}
+
 // The first symbol of `e` (expanded) whose kind is outside `allowed`: its name and kind.
 std::pair<std::string, SymbolKind> first_disallowed(const Expr& e, const Symbols& symbols,
                                                     KindMask allowed) {
@@ -436,6 +468,20 @@ Expected<Expr> compile_expr(const std::string& text, const std::string& key, con
     }
   }
   if (dep != Dep::kConst) out.value = 0.0;
+  out.source = text;
+  if (any_sub) {
+    // Sub-expressions a step-level sub-expression uses are evaluated with it (its slots first).
+    std::vector<int> kept;
+    std::string partial = expand_state_subs(text, symbols, kept);
+    std::sort(kept.begin(), kept.end());
+    kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+    if (!kept.empty() && (dep == Dep::kState || step_level(out))) {
+      // A state entry's text for the filter; a step-level sub-expression's for its own slot,
+      // evaluated after the slots it reads.
+      out.state_text = std::move(partial);
+      out.step_subs = std::move(kept);
+    }
+  }
 
   // The same text must mean the same to GiNaC (e.g. a^b^c is ambiguous there).
   if (auto st = detail::check_symbolic(text, out.text, key, symbols); !st) return st.err();

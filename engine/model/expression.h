@@ -45,6 +45,14 @@ struct Expr {
   Dep dep = Dep::kConst;
   double value = 0.0;  // the value when dep == kConst
   KindMask uses = 0;   // the kinds of symbol it uses, through its sub-expressions too
+  std::string source;  // the user's text, sub-expressions by name (compile_expr)
+  // An expression of states (or a sub-expression of parameters, dt and inputs) that uses
+  // sub-expressions of parameters, dt and inputs only (not t): `text` with those left as their
+  // symbols, which ModelEval evaluates once per step, each once, instead of at every
+  // linearisation or sigma point (`step_subs` their slots, nested ones included); empty when
+  // there are none. Seed 004's heading at mid-interval and its rotation are such sub-expressions.
+  std::string state_text;
+  std::vector<int> step_subs;
 };
 
 // The symbols of one model; an expression's symbol binds to vars[slot] when evaluated. A

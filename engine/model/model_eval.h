@@ -61,7 +61,10 @@ class ModelEval {
   // The process at the current symbols. step: entries of t and inputs (once per step);
   // f / f_jacobian / noise: what depends on states, at the state set by set_state: fx = f(x) (or
   // the RK4 step of ẋ over dt), F = ∂fx/∂x, Q (or Van Loan of A(x), G Qc Gᵀ over dt).
-  void process_step() { p_step_.eval(); }
+  void process_step() {
+    process_subs_.eval();
+    p_step_.eval();
+  }
   void process_f() {
     if (rk4_) {
       rk4(false);
@@ -87,6 +90,18 @@ class ModelEval {
   // Q depends on t, inputs or states: its definiteness is checked where it is evaluated.
   bool process_noise_varies() const { return q_varies_; }
 
+  // Step-level sub-expressions read by state entries (Expr::state_text), one group per nesting
+  // level (a group writes its results after evaluating all of them).
+  struct StepSubs {
+    std::vector<int> slots;  // collected while placing
+    std::vector<ExprGroup> levels;
+    Status build(const Symbols& symbols, std::vector<double>& vars);
+    void eval() {
+      for (auto& g : levels)
+        g.eval();
+    }
+  };
+
   struct Channel {
     MatX H;  // H, or ∂h/∂x at the state set
     MatX R;
@@ -96,9 +111,13 @@ class ModelEval {
     double gate_sigma = 0.0;  // a distance gate d: gate_nis = d² (scalar channels)
     bool R_varies = false;    // R depends on t, inputs or states: checked where evaluated
     ExprGroup dt, step, h, H_state, R_state;
+    StepSubs subs;
   };
   Channel& channel(std::size_t c) { return channels_[c]; }
-  void channel_step(std::size_t c) { channels_[c].step.eval(); }
+  void channel_step(std::size_t c) {
+    channels_[c].subs.eval();
+    channels_[c].step.eval();
+  }
   void channel_h(std::size_t c) { channels_[c].h.eval(); }
   void channel_jacobian(std::size_t c) { channels_[c].H_state.eval(); }
   void channel_noise(std::size_t c) { channels_[c].R_state.eval(); }
@@ -148,6 +167,9 @@ class ModelEval {
   std::vector<Channel> channels_;
   std::vector<Group> groups_;
   ExprGroup p_dt_, p_step_, F_state_, f_state_, Q_state_;
+  // Step-level sub-expressions that state entries read by name (Expr::state_text): evaluated by
+  // process_step (the process's) and channel_step (the channel's), before the entries.
+  StepSubs process_subs_;
   ExprGroup xdot_state_, A_state_;  // continuous nonlinear: ẋ and A = ∂ẋ/∂x at the symbols
   VecX xdot_;
   double substep_ = 0.0;
@@ -155,6 +177,7 @@ class ModelEval {
   bool rk4_ = false;  // the continuous nonlinear form
   bool q_varies_ = false;
   bool process_dt_ = false;         // the process matrices depend on dt
+  bool q_dt_ = false;               // Q depends on dt (and nothing later)
   bool intervals_checked_ = false;  // check_intervals passed: set_dt need not check Q
 
   struct DtEntry {

@@ -95,8 +95,25 @@ std::vector<StateSeries> ModelResult::states() const {
   return out;
 }
 
+namespace {
+
+// errᵀ Ps⁻¹ err with fixed sizes (a position of 2 or 3 states: seed 004's NEES per row).
+template <int D>
+double nees_fixed(const detail::Dims<Eigen::Dynamic>::Meas& err,
+                  const detail::Dims<Eigen::Dynamic>::MeasCov& Ps) {
+  const Eigen::Matrix<double, D, D> P = Ps.topLeftCorner<D, D>();
+  const Eigen::Matrix<double, D, 1> e = err.head<D>();
+  Eigen::LLT<Eigen::Matrix<double, D, D>> llt(P);
+  if (llt.info() == Eigen::Success) return e.dot(llt.solve(e));
+  return kNoSample;
+}
+
+}  // namespace
+
 double detail::Context::nees(const detail::Dims<Eigen::Dynamic>::Meas& err,
                              const detail::Dims<Eigen::Dynamic>::MeasCov& Ps) {
+  if (err.size() == 2) return nees_fixed<2>(err, Ps);
+  if (err.size() == 3) return nees_fixed<3>(err, Ps);
   Eigen::LLT<detail::Dims<Eigen::Dynamic>::MeasCov> llt(Ps);
   if (llt.info() == Eigen::Success) return err.dot(llt.solve(err));
   return kNoSample;

@@ -206,6 +206,51 @@ TEST(ModelPlotBlocksWindow, ATopViewAndACovariancePanel) {
     EXPECT_GT(testing::colouredPixels(f), 10) << f.toStdString();
 }
 
+// "equal_scale": one metre is as many pixels east as north in the window, after a resize and in
+// exports of either shape (seed 004's top view, as the built-in view draws it).
+TEST(ModelPlotBlocksWindow, AnEqualScaleTopViewKeepsOneUnitPerPixelAtAnySize) {
+  QTemporaryDir dir;
+  std::ifstream in(KFW_SOURCE_DIR "/presets/models/underwater_world.json");
+  json p = json::parse(in);
+  p["parameters"]["sim.duration"]["value"] = 30;
+  const QString path = dir.filePath("uw.json");
+  QFile f(path);
+  ASSERT_TRUE(f.open(QIODevice::WriteOnly));
+  f.write(QByteArray::fromStdString(p.dump(2)));
+  f.close();
+  MainWindow w;
+  auto st = w.loadPreset(path);
+  ASSERT_TRUE(st.ok()) << st.error();
+  ASSERT_TRUE(w.waitForRun(60000));
+  QCustomPlot* top = plotNamed(w, "top_view");
+  ASSERT_NE(top, nullptr);
+  QCPGraph* beacons = graphNamed(top, "fixed points");
+  ASSERT_NE(beacons, nullptr);
+  auto check = [&](const char* where) {
+    const QCPAxisRect* ar = top->axisRect();
+    ASSERT_GT(ar->width(), 0);
+    const double per_px_x = top->xAxis->range().size() / ar->width();
+    const double per_px_y = top->yAxis->range().size() / ar->height();
+    EXPECT_NEAR(per_px_x / per_px_y, 1.0, 0.01) << where;
+    for (auto it = beacons->data()->constBegin(); it != beacons->data()->constEnd(); ++it) {
+      EXPECT_TRUE(top->xAxis->range().contains(it->key)) << where;
+      EXPECT_TRUE(top->yAxis->range().contains(it->value)) << where;
+    }
+  };
+  w.show();
+  QCoreApplication::processEvents();
+  top->replot();
+  check("window");
+  top->resize(500, 300);
+  top->replot();
+  check("small");
+  for (const QSize size : {QSize(1200, 700), QSize(700, 900)}) {
+    const QPixmap pm = top->toPixmap(size.width(), size.height());
+    ASSERT_EQ(pm.width(), size.width());
+    check(size.height() > size.width() ? "tall export" : "wide export");
+  }
+}
+
 }  // namespace
 }  // namespace model_plot_blocks_gui_test
 }  // namespace kfw

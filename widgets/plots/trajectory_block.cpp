@@ -41,6 +41,10 @@ class TrajectoryBlock final : public BlockDrawer {
     points_->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssDiamond, QPen(color::kSecond, 2),
                                              QBrush(color::kSecond), 9));
     if (b.points.empty()) points_->removeFromLegend();
+    if (b.equal_scale) {
+      // At whatever size the plot is drawn (window, export): after every layout.
+      QObject::connect(plot_, &QCustomPlot::afterLayout, plot_, [this] { equalScale(); });
+    }
   }
 
   QCustomPlot* plot() const override { return plot_; }
@@ -99,8 +103,35 @@ class TrajectoryBlock final : public BlockDrawer {
       take(p.x, p.y);
     if (!(x0 <= x1 && y0 <= y1)) return;
     const double mx = std::max(0.06 * (x1 - x0), 1e-9), my = std::max(0.06 * (y1 - y0), 1e-9);
-    if (!userZoomedX(plot_)) plot_->xAxis->setRange(x0 - mx, x1 + mx);
-    if (!userZoomedY(plot_)) plot_->yAxis->setRange(y0 - my, y1 + 2 * my);
+    box_ = QRectF(QPointF(x0 - mx, y0 - my), QPointF(x1 + mx, y1 + 2 * my));
+    if (!userZoomedX(plot_)) plot_->xAxis->setRange(box_.left(), box_.right());
+    if (!userZoomedY(plot_)) plot_->yAxis->setRange(box_.top(), box_.bottom());
+  }
+
+  // Equal scale ("equal_scale"): the fitted box (or the user's zoom) inside the axis rect, the
+  // roomier axis widened about its centre, laid out again while the tick labels move the margins.
+  void equalScale() {
+    if (fitting_) return;
+    fitting_ = true;
+    QCPAxisRect* ar = plot_->axisRect();
+    for (int pass = 0; pass < 3; ++pass) {
+      const int w = ar->width(), h = ar->height();
+      if (w <= 0 || h <= 0) break;
+      const QCPRange x = plot_->xAxis->range(), y = plot_->yAxis->range();
+      const bool fitted = !userZoomedX(plot_) && !userZoomedY(plot_) && box_.isValid();
+      const double wx = fitted ? box_.width() : x.size(), wy = fitted ? box_.height() : y.size();
+      const double cx = fitted ? box_.center().x() : x.center();
+      const double cy = fitted ? box_.center().y() : y.center();
+      const double per_px = std::max(wx / w, wy / h);
+      plot_->xAxis->setRange(cx - 0.5 * w * per_px, cx + 0.5 * w * per_px);
+      plot_->yAxis->setRange(cy - 0.5 * h * per_px, cy + 0.5 * h * per_px);
+      for (auto phase : {QCPLayoutElement::upPreparation, QCPLayoutElement::upMargins,
+                         QCPLayoutElement::upLayout}) {
+        plot_->plotLayout()->update(phase);
+      }
+      if (ar->width() == w && ar->height() == h) break;
+    }
+    fitting_ = false;
   }
 
   model::PlotBlockSpec block_;
@@ -110,6 +141,8 @@ class TrajectoryBlock final : public BlockDrawer {
   QCPGraph *here_ = nullptr, *points_ = nullptr;
   std::vector<QCPItemText*> labels_;
   model::TrajectoryData data_;
+  QRectF box_;  // the fitted ranges: x from left to right, y from top to bottom
+  bool fitting_ = false;
 };
 
 }  // namespace

@@ -20,7 +20,7 @@ const std::vector<PlotKind>& plot_kinds() {
        {"sweep", "x", "y", "y2", "log", "range", "operating_point"},
        &parse_gain_curve_block},
       {"series", {"y"}, &parse_series_block},
-      {"trajectory", {"x", "y", "points"}, &parse_trajectory_block},
+      {"trajectory", {"x", "y", "points", "equal_scale"}, &parse_trajectory_block},
       {"covariance", {"series", "design"}, &parse_covariance_block},
   };
   return kinds;

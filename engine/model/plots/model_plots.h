@@ -53,6 +53,7 @@ struct PlotBlockSpec {
   // fixed points.
   PlotLine tx, ty;
   std::vector<PlotPoint> points;
+  bool equal_scale = false;  // one unit is as many pixels on both axes (same-unit states)
   // covariance: the sample covariance of `series` (derived series) beside the declared matrix
   // `design` (n × n expressions of parameters and dt, row-major, compiled text).
   std::vector<std::string> design;

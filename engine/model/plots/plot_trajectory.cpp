@@ -59,6 +59,15 @@ Status parse_trajectory_block(const detail::Reader& p, const json& j, const std:
   if (x->key == y->key) return p.error(key + ".y", "the same state as x: draw two states");
   out.tx = *x;
   out.ty = *y;
+  if (auto it = j.find("equal_scale"); it != j.end()) {
+    if (!it->is_boolean()) return p.error(key + ".equal_scale", "expected true or false");
+    out.equal_scale = it->get<bool>();
+    if (out.equal_scale && x->unit != y->unit) {
+      return p.error(key + ".equal_scale", "'" + x->key + "' is in " + quote_token(x->unit) +
+                                               " and '" + y->key + "' in " + quote_token(y->unit) +
+                                               ": an equal scale needs one unit");
+    }
+  }
   return parse_points(p, j, key, out);
 }
 

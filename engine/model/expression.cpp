@@ -203,6 +203,8 @@ const char* kind_name(SymbolKind k) {
       return "sub-expression";
     case kTruthSymbol:
       return "truth column";
+    case kMeasuredSymbol:
+      return "measurement";
   }
   return "symbol";
 }
@@ -218,6 +220,7 @@ Dep dep_of(SymbolKind k) {
       return Dep::kStep;
     case kStateSymbol:
     case kTruthSymbol:
+    case kMeasuredSymbol:
     case kSubSymbol:  // not reached: a sub-expression's class is its own
       return Dep::kState;
   }

@@ -25,7 +25,9 @@ enum SymbolKind : unsigned {
   kStateSymbol = 8u,   // a state
   kInputSymbol = 16u,  // an input (a known signal, e.g. a gyro rate)
   kSubSymbol = 32u,    // a sub-expression (model.expressions): stands for its own text
-  kTruthSymbol = 64u   // a truth column (model.truth), in derived quantities only
+  kTruthSymbol = 64u,  // a truth column (model.truth), in derived quantities only
+  kMeasuredSymbol =
+      128u  // a channel's role: its column as read (NaN where no sample), derived only
 };
 using KindMask = unsigned;
 // Every kind but truth: what the model's own expressions may use.

@@ -25,6 +25,14 @@ void add_truth_symbols(ModelSpec& m) {
     }
     m.truth_slots[i] = m.symbols.add(col, kTruthSymbol);
   }
+  // The channels' roles (their columns as read): a measurement minus the truth is an error.
+  for (const auto& c : m.channels) {
+    for (const auto& r : c.roles) {
+      const bool free =
+          is_identifier(r.name) && !is_reserved_name(r.name) && m.symbols.find(r.name) < 0;
+      m.measured_slots.push_back(free ? m.symbols.add(r.name, kMeasuredSymbol) : -1);
+    }
+  }
 }
 
 Expected<DerivedSpec> parse_one(const detail::Reader& p, const std::string& name, const json& j) {
@@ -46,8 +54,8 @@ Expected<DerivedSpec> parse_one(const detail::Reader& p, const std::string& name
       *out = *v;
     }
   }
-  auto e = p.expr(*text, j.is_object() ? key + ".expression" : key, kAllSymbols | kTruthSymbol,
-                  kDerivedWhat);
+  auto e = p.expr(*text, j.is_object() ? key + ".expression" : key,
+                  kAllSymbols | kTruthSymbol | kMeasuredSymbol, kDerivedWhat);
   if (!e) return e.err();
   d.e = *e;
   return d;
@@ -157,6 +165,10 @@ Status add_derived(const ModelSpec& spec, const ParamValues& values, const Datas
     for (std::size_t i = 0; i < spec.inputs.size(); ++i) {
       vars[static_cast<std::size_t>(spec.input_slots[i])] =
           d.has(spec.inputs[i].name) ? d.col(spec.inputs[i].name)[k] : kNoSample;
+    }
+    for (std::size_t j = 0; j < spec.measured_slots.size() && j < r.z.size(); ++j) {
+      if (spec.measured_slots[j] >= 0)
+        vars[static_cast<std::size_t>(spec.measured_slots[j])] = r.z[j][k];
     }
     series.eval();
     std::size_t s = 0;

@@ -202,6 +202,9 @@ struct ModelSpec {
   // The plot blocks the file asks for (version 2, model_plots.h), in the file's order.
   std::vector<PlotBlockSpec> plots;
   std::vector<int> truth_slots;  // per state: its truth column's symbol, or -1
+  // Per role of every channel, in channel order (ModelResult::z's): its symbol in derived
+  // quantities (kMeasuredSymbol), or -1.
+  std::vector<int> measured_slots;
   // World only: the named noise sources, the sensor clocks, and truth columns written from
   // sub-expressions ({column, expression}).
   bool world_block = false;  // this is a world (parsed with parse_model(..., world = true))

@@ -15,7 +15,9 @@
 #include "common/model_files.h"
 #include "core/dataset.h"
 #include "core/scenario.h"
+#include "model/model_result.h"
 #include "model/model_scenario.h"
+#include "model/plots/model_plots.h"
 #include "scenarios/underwater/underwater_stats.h"
 
 namespace kfw {
@@ -230,6 +232,45 @@ TEST(ModelGroups, TheWorldsRangeErrorsReproduceEquations5To8) {
   EXPECT_LE((st->covariance - sb->covariance).cwiseAbs().maxCoeff(), 1e-9);
 }
 
+// The same statistics declared in the file: derived series of the measurements minus the truth
+// (range1 − |B1 − X|, …, depth − z) and a covariance block at synchronous instants that leaves
+// out an instant holding a marked outlier — equal to the built-in's statistics on the same data
+// (the default 3 minutes with 276 outliers, three seeds).
+TEST(ModelGroups, TheFilesErrorCovarianceBlockIsTheBuiltInsStatistics) {
+  auto m = testing::load_model_file(kFile);
+  ASSERT_TRUE(m);
+  const auto layout = model_layout_of(*m);
+  ASSERT_TRUE(layout);
+  const model::PlotBlockSpec* block = nullptr;
+  for (const auto& b : layout->plots) {
+    if (b.id == "error_cov") block = &b;
+  }
+  ASSERT_NE(block, nullptr);
+  for (int seed = 1; seed <= 3; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    ParamValues v = m->params().defaults();
+    v["sim.seed"] = seed;
+    auto d = m->simulate(v);
+    ASSERT_TRUE(d.ok()) << d.error();
+    auto r = m->run(*d, v);
+    ASSERT_TRUE(r.ok()) << r.error();
+    const auto c =
+        model::covariance_block_data(*block, dynamic_cast<const model::ModelResult&>(**r));
+    const auto st = underwater::error_stats(*d);
+    ASSERT_TRUE(st) << st.error();
+    ASSERT_EQ(c.n, 5u);
+    EXPECT_EQ(c.count, st->instants);
+    EXPECT_EQ(c.excluded, st->outlier_instants);
+    EXPECT_GT(c.excluded, 100u);
+    for (int i = 0; i < 5; ++i) {
+      for (int j = 0; j < 5; ++j) {
+        EXPECT_NEAR(c.sample[static_cast<std::size_t>(i * 5 + j)], st->covariance(i, j), 1e-12)
+            << i << ", " << j;
+      }
+    }
+  }
+}
+
 nlohmann::json underwater_json() {
   std::ifstream in(kFile);
   return nlohmann::json::parse(in);
@@ -282,6 +323,15 @@ TEST(ModelGroups, BadGroupsGatesAndAgesAreRefusedWithTheirKey) {
        "distance > 0"},
       {[](auto& m) { m["inputs"][1]["age"] = "psi_age"; },
        "uw.json: model.inputs[5].age: 'psi_age' is already a symbol"},
+      {[](auto& m) { m["plots"][1]["exclude"]["e_r1"] = "depth"; },
+       "uw.json: model.plots[1].exclude.e_r1: unknown channel with an outlier_column 'depth'"},
+      {[](auto& m) { m["plots"][1]["exclude"]["e_x"] = "range1"; },
+       "uw.json: model.plots[1].exclude.e_x: unknown series 'e_x'"},
+      {[](auto& m) { m["plots"][1]["instants"] = false; },
+       "uw.json: model.plots[1].exclude: applies to instants: set \"instants\": true"},
+      {[](auto& m) { m["derived"]["e_d"]["expression"] = "dept - z_true"; },
+       "uw.json: model.derived.e_d.expression: unknown symbol 'dept' at position 1: \"dept - "
+       "z_true\" (did you mean 'depth'?)"},
       {[](auto& m) { m["version"] = 1; },
        "uw.json: model.expressions: a version-2 key: set \"version\": 2"},
   };

@@ -82,7 +82,16 @@ class CovarianceBlock final : public BlockDrawer {
     }
     for (QCPColorMap* m : {sample_, design_})
       m->setDataRange(QCPRange(-top, top));
-    plot_->xAxis->setLabel(QString("%1 steps where every series is finite").arg(c.count));
+    if (!block_.instants) {
+      plot_->xAxis->setLabel(QString("%1 steps where every series is finite").arg(c.count));
+    } else if (c.excluded > 0) {
+      plot_->xAxis->setLabel(
+          QString("%1 synchronous instants (%2 holding a marked outlier left out)")
+              .arg(c.count)
+              .arg(c.excluded));
+    } else {
+      plot_->xAxis->setLabel(QString("%1 synchronous instants").arg(c.count));
+    }
     replot(plot_);
   }
 
@@ -98,8 +107,17 @@ class CovarianceBlock final : public BlockDrawer {
   // Each series' symbol under both matrices and beside the rows; no grid through the gap.
   void setTicks() {
     QSharedPointer<QCPAxisTickerText> cx(new QCPAxisTickerText), cy(new QCPAxisTickerText);
+    // The labels' symbols ("range 1 error" → "range"), or the series' names where those repeat.
+    QStringList names;
+    for (const auto& line : block_.series)
+      names << symbolOf(line.label);
+    if (names.removeDuplicates() > 0) {
+      names.clear();
+      for (const auto& line : block_.series)
+        names << symbolOf(line.key);
+    }
     for (int i = 0; i < n_; ++i) {
-      const QString name = symbolOf(block_.series[static_cast<std::size_t>(i)].label);
+      const QString name = names[i];
       cx->addTick(i, name);
       cx->addTick(n_ + 1 + i, name);
       cy->addTick(i, name);

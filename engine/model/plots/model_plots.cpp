@@ -21,7 +21,7 @@ const std::vector<PlotKind>& plot_kinds() {
        &parse_gain_curve_block},
       {"series", {"y"}, &parse_series_block},
       {"trajectory", {"x", "y", "points", "equal_scale"}, &parse_trajectory_block},
-      {"covariance", {"series", "design"}, &parse_covariance_block},
+      {"covariance", {"series", "design", "instants", "exclude"}, &parse_covariance_block},
   };
   return kinds;
 }

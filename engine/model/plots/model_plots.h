@@ -57,6 +57,12 @@ struct PlotBlockSpec {
   // covariance: the sample covariance of `series` (derived series) beside the declared matrix
   // `design` (n × n expressions of parameters and dt, row-major, compiled text).
   std::vector<std::string> design;
+  // Samples at instants (the row where every series has a new finite value since the last
+  // instant, each its latest; seed 004's verification statistics) instead of the rows where all
+  // are finite; `exclude`: per series, a channel whose outlier column marks its samples (empty:
+  // none), an instant holding a marked sample left out.
+  bool instants = false;
+  std::vector<std::string> exclude;
 };
 
 // A kind: its name, the keys it reads besides kind, id and title, and its reader.
@@ -119,6 +125,7 @@ Status add_plot_points(const ModelSpec& m, const ParamValues& values, double dt,
 // and the design matrix, both n × n row-major.
 struct CovarianceData {
   std::size_t n = 0, count = 0;
+  std::size_t excluded = 0;  // instants left out for a marked sample
   std::vector<double> sample, design;
 };
 CovarianceData covariance_block_data(const PlotBlockSpec& b, const ModelResult& r);

@@ -2,6 +2,7 @@
 // beside a declared design matrix — seed 004's simulated error covariance against the design
 // values — and the evaluation, once per run, of every block's expressions of parameters
 // (trajectory points, design matrices).
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -19,6 +20,38 @@ using nlohmann::json;
 namespace {
 
 constexpr KindMask kDesign = kParamSymbol | kDtSymbol;
+
+// "exclude": {"SERIES": "CHANNEL", ...}: the channel (with an outlier_column) whose marked
+// samples leave an instant out.
+Status parse_exclude(const detail::Reader& p, const json& j, const std::string& key,
+                     const ModelSpec& m, PlotBlockSpec& out) {
+  out.exclude.assign(out.series.size(), std::string());
+  auto it = j.find("exclude");
+  if (it == j.end()) return Ok{};
+  if (!out.instants)
+    return p.error(key + ".exclude", "applies to instants: set \"instants\": true");
+  if (!it->is_object()) return p.error(key + ".exclude", "expected {\"SERIES\": \"CHANNEL\"}");
+  std::vector<std::string> series, channels;
+  for (const auto& s : out.series)
+    series.push_back(s.key);
+  for (const auto& c : m.channels) {
+    if (!c.outlier_column.empty()) channels.push_back(c.name);
+  }
+  for (auto e = it->begin(); e != it->end(); ++e) {
+    const std::string at = key + ".exclude." + truncate_token(e.key());
+    std::size_t i = 0;
+    while (i < series.size() && series[i] != e.key() && series[i] != "derived." + e.key())
+      ++i;
+    if (i == series.size()) return p.error(at, unknown_message("series", e.key(), series));
+    if (!e->is_string()) return p.error(at, "expected a channel name");
+    const std::string c = e->get<std::string>();
+    if (std::find(channels.begin(), channels.end(), c) == channels.end()) {
+      return p.error(at, unknown_message("channel with an outlier_column", c, channels));
+    }
+    out.exclude[i] = c;
+  }
+  return Ok{};
+}
 
 }  // namespace
 
@@ -45,7 +78,11 @@ Status parse_covariance_block(const detail::Reader& p, const json& j, const std:
   if (auto st = p.symmetric(*design); !st) return st;
   for (const auto& e : design->e)
     out.design.push_back(e.text);
-  return Ok{};
+  if (auto at = j.find("instants"); at != j.end()) {
+    if (!at->is_boolean()) return p.error(key + ".instants", "expected true or false");
+    out.instants = at->get<bool>();
+  }
+  return parse_exclude(p, j, key, m, out);
 }
 
 Status add_plot_points(const ModelSpec& m, const ParamValues& values, double dt, ModelResult& r) {
@@ -85,6 +122,68 @@ Status add_plot_points(const ModelSpec& m, const ParamValues& values, double dt,
   return Ok{};
 }
 
+namespace {
+
+// The sample covariance (mean removed, count − 1) of vectors of n.
+void sample_covariance(const std::vector<std::vector<double>>& rows, CovarianceData& c) {
+  c.count = rows.size();
+  if (c.count < 2) return;
+  std::vector<double> mean(c.n, 0.0);
+  for (const auto& v : rows) {
+    for (std::size_t i = 0; i < c.n; ++i)
+      mean[i] += v[i] / static_cast<double>(c.count);
+  }
+  std::fill(c.sample.begin(), c.sample.end(), 0.0);
+  for (const auto& v : rows) {
+    for (std::size_t i = 0; i < c.n; ++i) {
+      for (std::size_t j = 0; j < c.n; ++j)
+        c.sample[i * c.n + j] += (v[i] - mean[i]) * (v[j] - mean[j]);
+    }
+  }
+  for (auto& x : c.sample)
+    x /= static_cast<double>(c.count - 1);
+}
+
+// Instants: the rows where every series has a new finite value since the last instant, each
+// series its latest value; one holding a sample its exclude channel marks is left out.
+CovarianceData instant_covariance(const PlotBlockSpec& b, const ModelResult& r,
+                                  const std::vector<const std::vector<double>*>& cols,
+                                  CovarianceData c) {
+  std::vector<const std::vector<double>*> marks(c.n, nullptr);
+  for (std::size_t i = 0; i < c.n && i < b.exclude.size(); ++i) {
+    for (const auto& ch : r.chans) {
+      if (ch.name == b.exclude[i] && !ch.outlier.empty()) marks[i] = &ch.outlier;
+    }
+  }
+  std::vector<std::vector<double>> rows;
+  std::vector<double> latest(c.n, 0.0);
+  std::vector<bool> fresh(c.n, false), marked(c.n, false);
+  for (std::size_t k = 0; k < r.steps(); ++k) {
+    bool all = true;
+    for (std::size_t i = 0; i < c.n; ++i) {
+      const double v = (*cols[i])[k];
+      if (std::isfinite(v)) {
+        latest[i] = v;
+        fresh[i] = true;
+        const double o = marks[i] ? (*marks[i])[k] : 0.0;
+        marked[i] = std::isfinite(o) && o != 0.0;
+      }
+      all = all && fresh[i];
+    }
+    if (!all) continue;
+    if (std::find(marked.begin(), marked.end(), true) != marked.end()) {
+      ++c.excluded;
+    } else {
+      rows.push_back(latest);
+    }
+    std::fill(fresh.begin(), fresh.end(), false);
+  }
+  sample_covariance(rows, c);
+  return c;
+}
+
+}  // namespace
+
 CovarianceData covariance_block_data(const PlotBlockSpec& b, const ModelResult& r) {
   CovarianceData c;
   c.n = b.series.size();
@@ -99,6 +198,7 @@ CovarianceData covariance_block_data(const PlotBlockSpec& b, const ModelResult& 
     if (id == b.id) c.design = m;
   }
   if (cols.size() != c.n) return c;
+  if (b.instants) return instant_covariance(b, r, cols, std::move(c));
   // Two passes: the means over the steps where every series is finite, then the products.
   const auto all_finite = [&](std::size_t k) {
     for (const auto* col : cols) {

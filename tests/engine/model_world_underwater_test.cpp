@@ -59,8 +59,10 @@ TEST(ModelWorldUnderwater, KeepsTheSeedPresetsParameterKeys) {
   }
 }
 
-// Seeds 1..20, 60 s, with range dropouts and the default 276 outliers (over fewer samples).
-TEST(ModelWorldUnderwater, TheWorldSimulatesWhatTheBuiltInSimulates) {
+// The built-in's and the model file's simulations of seeds 1..20 (60 s), each with the values
+// `set` gives for its seed, compared by `check`.
+template <class Set, class Check>
+void simulate_both(const Set& set, const Check& check) {
   auto builtin = make_scenario("underwater");
   ASSERT_TRUE(builtin.ok());
   auto model = testing::load_model_file(kFile);
@@ -71,41 +73,38 @@ TEST(ModelWorldUnderwater, TheWorldSimulatesWhatTheBuiltInSimulates) {
     for (auto* v : {&vb, &vm}) {
       (*v)["sim.seed"] = seed;
       (*v)["sim.duration"] = 60;
-      (*v)["sim.range_dropout"] = 0.1;
+      set(seed, *v);
     }
     auto db = (*builtin)->simulate(vb);
     ASSERT_TRUE(db.ok()) << db.error();
     auto dm = model->simulate(vm);
     ASSERT_TRUE(dm.ok()) << dm.error();
-    EXPECT_TRUE(same_data(*db, *dm, 1e-12));
+    check(vm, *db, *dm);
   }
+}
+
+// Seeds 1..20, 60 s, with range dropouts and the default 276 outliers (over fewer samples).
+TEST(ModelWorldUnderwater, TheWorldSimulatesWhatTheBuiltInSimulates) {
+  simulate_both([](int, ParamValues& v) { v["sim.range_dropout"] = 0.1; },
+                [](const ParamValues&, const Dataset& b, const Dataset& m) {
+                  EXPECT_TRUE(same_data(b, m, 1e-12));
+                });
 }
 
 // Synchronous clocks (sim.clock, a choice between the world's shared clock "sync" and each
 // sensor's own): every sensor on the ticks of the stream clock.sync, as the built-in — seeds
 // 1..20, two periods.
 TEST(ModelWorldUnderwater, SynchronousClocksSimulateWhatTheBuiltInSimulates) {
-  auto builtin = make_scenario("underwater");
-  ASSERT_TRUE(builtin.ok());
-  auto model = testing::load_model_file(kFile);
-  ASSERT_TRUE(model);
-  for (int seed = 1; seed <= 20; ++seed) {
-    SCOPED_TRACE("seed " + std::to_string(seed));
-    ParamValues vb = (*builtin)->params().defaults(), vm = model->params().defaults();
-    for (auto* v : {&vb, &vm}) {
-      (*v)["sim.seed"] = seed;
-      (*v)["sim.duration"] = 60;
-      (*v)["sim.clock"] = 0;  // synchronous
-      (*v)["sim.dt_sync"] = seed % 2 ? 0.1 : 0.25;
-    }
-    auto db = (*builtin)->simulate(vb);
-    ASSERT_TRUE(db.ok()) << db.error();
-    auto dm = model->simulate(vm);
-    ASSERT_TRUE(dm.ok()) << dm.error();
-    const double ticks = 60 / vm["sim.dt_sync"];  // every sensor on one clock: a row per tick
-    EXPECT_NEAR(static_cast<double>(dm->rows()), ticks, 0.02 * ticks);
-    EXPECT_TRUE(same_data(*db, *dm, 1e-12));
-  }
+  simulate_both(
+      [](int seed, ParamValues& v) {
+        v["sim.clock"] = 0;  // synchronous
+        v["sim.dt_sync"] = seed % 2 ? 0.1 : 0.25;
+      },
+      [](const ParamValues& v, const Dataset& b, const Dataset& m) {
+        const double ticks = 60 / v.at("sim.dt_sync");  // every sensor on one clock: a row a tick
+        EXPECT_NEAR(static_cast<double>(m.rows()), ticks, 0.02 * ticks);
+        EXPECT_TRUE(same_data(b, m, 1e-12));
+      });
 }
 
 // A sensor's clock chosen by a parameter: each mistake named with its key.

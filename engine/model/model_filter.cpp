@@ -322,8 +322,14 @@ Expected<std::shared_ptr<ModelResult>> run_model_filter(const ModelSpec& spec, c
     s.y.assign(m, std::vector<double>(rows, kNoSample));
     s.S.assign(m, std::vector<double>(rows, kNoSample));
     s.K.assign(m * un, std::vector<double>(rows, kNoSample));
-    if (!cs.outlier_column.empty() && d.has(cs.outlier_column))
-      s.outlier = d.col(cs.outlier_column);
+    if (!cs.outlier_column.empty()) {
+      if (d.has(cs.outlier_column)) {
+        s.outlier = d.col(cs.outlier_column);
+      } else {
+        r->warnings.push_back("channel '" + cs.name + "': its outlier column '" +
+                              cs.outlier_column + "' is not in the data; outliers_* leave it out");
+      }
+    }
     s.nis.assign(rows, kNoSample);
     s.log_det_s.assign(rows, kNoSample);
     r->chans.push_back(std::move(s));

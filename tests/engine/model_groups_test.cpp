@@ -271,6 +271,37 @@ TEST(ModelGroups, TheFilesErrorCovarianceBlockIsTheBuiltInsStatistics) {
   }
 }
 
+// A channel whose outlier column is missing from the data is left out of the outlier counts with
+// a warning naming it; with none of the columns the counts are undefined, not zero.
+TEST(ModelGroups, MissingOutlierColumnsAreNamedNotCountedAsZero) {
+  auto m = testing::load_model_file(kFile);
+  ASSERT_TRUE(m);
+  ParamValues v = values(*m, 4, "SC");
+  auto d = m->simulate(v);
+  ASSERT_TRUE(d.ok());
+  auto without = [&](const std::vector<std::string>& drop) {
+    Dataset out;
+    for (std::size_t c = 0; c < d->names.size(); ++c) {
+      if (std::find(drop.begin(), drop.end(), d->names[c]) != drop.end()) continue;
+      out.names.push_back(d->names[c]);
+      out.columns.push_back(d->columns[c]);
+    }
+    return out;
+  };
+  auto all = m->run(*d, v);
+  auto some = m->run(without({"outlier1"}), v);
+  auto none = m->run(without({"outlier1", "outlier2", "outlier3", "outlier4"}), v);
+  ASSERT_TRUE(all.ok() && some.ok() && none.ok());
+  EXPECT_LT((*some)->metrics.at("outliers_injected"), (*all)->metrics.at("outliers_injected"));
+  const auto& w = (*some)->warnings;
+  EXPECT_TRUE(std::any_of(w.begin(), w.end(), [](const std::string& x) {
+    return x.find("channel 'range1': its outlier column 'outlier1' is not in the data") !=
+           std::string::npos;
+  }));
+  EXPECT_EQ((*none)->metrics.count("outliers_injected"), 0u);
+  EXPECT_EQ((*none)->undefined.count("outliers_detected"), 1u);
+}
+
 nlohmann::json underwater_json() {
   std::ifstream in(kFile);
   return nlohmann::json::parse(in);

@@ -34,30 +34,12 @@ Status parse_scheme(const Reader& p, const json& j, const std::string& key,
     g.scheme = *s;
     return Ok{};
   }
-  auto param = p.string(j, "param", key, true);
-  if (!param) return param.err();
-  const ParamSpec* spec = params.find(*param);
-  if (!spec || spec->scale != Scale::kChoice) {
-    std::vector<std::string> names;
-    for (const auto& s : params.specs()) {
-      if (s.scale == Scale::kChoice) names.push_back(s.key);
-    }
-    return p.error(key + ".param", unknown_message("choice parameter", *param, names));
-  }
-  g.scheme_param = *param;
-  for (auto it = j.begin(); it != j.end(); ++it) {
-    if (it.key() == "param") continue;
-    if (std::find(spec->choices.begin(), spec->choices.end(), it.key()) == spec->choices.end()) {
-      return p.error(key + "." + truncate_token(it.key()),
-                     unknown_message("choice of '" + *param + "'", it.key(), spec->choices));
-    }
-  }
-  for (const auto& label : spec->choices) {
-    auto it = j.find(label);
-    if (it == j.end()) {
-      return p.error(key, "missing the alternative for '" + *param + "' = '" + label + "'");
-    }
-    auto s = scheme_named(p, *it, key + "." + label);
+  auto alt = choice_alternatives(p, j, key, params, "alternative");
+  if (!alt) return alt.err();
+  g.scheme_param = alt->param;
+  for (std::size_t c = 0; c < alt->values.size(); ++c) {
+    const std::string& label = params.find(alt->param)->choices[c];
+    auto s = scheme_named(p, *alt->values[c], key + "." + label);
     if (!s) return s.err();
     g.by_choice.push_back(*s);
   }
@@ -116,6 +98,42 @@ Expected<GroupSpec> parse_group(const Reader& p, const std::string& name, const 
 }
 
 }  // namespace
+
+Error unknown_choice_parameter(const Reader& p, const std::string& key, const std::string& name,
+                               const ParamTable& params) {
+  std::vector<std::string> names;
+  for (const auto& s : params.specs()) {
+    if (s.scale == Scale::kChoice) names.push_back(s.key);
+  }
+  return p.error(key + ".param", unknown_message("choice parameter", name, names));
+}
+
+Expected<ChoiceAlternatives> choice_alternatives(const Reader& p, const json& j,
+                                                 const std::string& key, const ParamTable& params,
+                                                 const char* what) {
+  auto param = p.string(j, "param", key, true);
+  if (!param) return param.err();
+  const ParamSpec* spec = params.find(*param);
+  if (!spec || spec->scale != Scale::kChoice)
+    return unknown_choice_parameter(p, key, *param, params);
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    if (it.key() != "param" &&
+        std::find(spec->choices.begin(), spec->choices.end(), it.key()) == spec->choices.end()) {
+      return p.error(key + "." + truncate_token(it.key()),
+                     unknown_message("choice of '" + *param + "'", it.key(), spec->choices));
+    }
+  }
+  ChoiceAlternatives out{*param, {}};
+  for (const auto& label : spec->choices) {
+    auto it = j.find(label);
+    if (it == j.end()) {
+      return p.error(
+          key, std::string("missing the ") + what + " for '" + *param + "' = '" + label + "'");
+    }
+    out.values.push_back(&*it);
+  }
+  return out;
+}
 
 Status parse_gate(const Reader& p, const json& j, const std::string& channel_key, int version,
                   ChannelSpec& c) {

@@ -203,4 +203,18 @@ Status parse_gate(const Reader& p, const json& j, const std::string& key, int ve
                   ChannelSpec& c);
 Status parse_groups(const Reader& p, const json& groups, const ParamTable& params, ModelSpec& m);
 
+// {"param": CHOICE, LABEL: value, ...} (model_groups.cpp): a choice parameter and each of its
+// labels' values in the parameter's order — every label given, no other key; `what` names a
+// value in messages ("missing the clock for 'sim.clock' = 'asynchronous'").
+struct ChoiceAlternatives {
+  std::string param;
+  std::vector<const json*> values;  // per choice index
+};
+Expected<ChoiceAlternatives> choice_alternatives(const Reader& p, const json& j,
+                                                 const std::string& key, const ParamTable& params,
+                                                 const char* what);
+// "unknown choice parameter 'NAME' (did you mean ...)" at KEY.param.
+Error unknown_choice_parameter(const Reader& p, const std::string& key, const std::string& name,
+                               const ParamTable& params);
+
 }  // namespace kfw::model::detail

@@ -204,32 +204,17 @@ Expected<int> sensor_clock(const Reader& p, const json& j, const std::string& ke
 // synchronous or asynchronous sensors), every label given.
 Status clock_alternatives(const Reader& p, const json& j, const std::string& key,
                           const ParamTable& params, ModelSpec& m, ChannelSpec& c) {
-  auto param = p.string(j, "param", key, true);
-  if (!param) return param.err();
-  const ParamSpec* spec = params.find(*param);
-  const std::string symbol = param->rfind("sim.", 0) == 0 ? param->substr(4) : *param;
-  if (!spec || spec->scale != Scale::kChoice || m.symbols.find(symbol) < 0) {
-    std::vector<std::string> names;
-    for (const auto& s : params.specs()) {
-      if (s.scale == Scale::kChoice) names.push_back(s.key);
-    }
-    return p.error(key + ".param", unknown_message("choice parameter", *param, names));
-  }
+  auto alt = choice_alternatives(p, j, key, params, "clock");
+  if (!alt) return alt.err();
+  // The world reads sim.X as X.
+  const std::string symbol = alt->param.rfind("sim.", 0) == 0 ? alt->param.substr(4) : alt->param;
+  if (m.symbols.find(symbol) < 0) return unknown_choice_parameter(p, key, alt->param, params);
   auto e = p.expr(json(symbol), key + ".param", kParamsOnly, kParamsOnlyWhat);
   if (!e) return e.err();
   c.sensor.clock_choice = *e;
-  for (auto it = j.begin(); it != j.end(); ++it) {
-    if (it.key() != "param" &&
-        std::find(spec->choices.begin(), spec->choices.end(), it.key()) == spec->choices.end()) {
-      return p.error(key + "." + truncate_token(it.key()),
-                     unknown_message("choice of '" + *param + "'", it.key(), spec->choices));
-    }
-  }
-  for (const auto& label : spec->choices) {
-    if (!j.contains(label)) {
-      return p.error(key, "missing the clock for '" + *param + "' = '" + label + "'");
-    }
-    auto clock = sensor_clock(p, j[label], key + "." + label, m, c.name);
+  const auto& labels = params.find(alt->param)->choices;
+  for (std::size_t i = 0; i < alt->values.size(); ++i) {
+    auto clock = sensor_clock(p, *alt->values[i], key + "." + labels[i], m, c.name);
     if (!clock) return clock.err();
     c.sensor.clock_by_choice.push_back(*clock);
   }

@@ -11,6 +11,7 @@
 #include "core/scenario.h"
 #include "core/suggest.h"
 #include "experiment/grammar.h"
+#include "model/model_stats.h"
 
 #ifndef KFW_VERSION
 #error "KFW_VERSION comes from CMake's project(VERSION)"
@@ -28,13 +29,16 @@ constexpr const char* kExitCodes =
     "or an output path is invalid (checked before any work, so nothing is written); 1 the work\n"
     "failed (a write error, a run that breaks down numerically). Errors are one line.\n";
 
-// Commands offered by scenarios (Scenario::commands()): name -> the scenarios offering it.
+// Commands offered by scenarios (Scenario::commands()): name -> who offers it (the built-ins by
+// name; a model file's commands, model/model_stats.h, as "model files that declare it").
 std::map<std::string, std::vector<std::string>> scenario_commands() {
   std::map<std::string, std::vector<std::string>> cmds;
   for (const auto& name : scenarios().listed_names()) {
     for (const auto& c : scenarios().make(name)->commands())
       cmds[c].push_back(name);
   }
+  for (const auto& c : model::model_commands())
+    cmds[c].push_back("model files that declare it");
   return cmds;
 }
 
@@ -342,8 +346,8 @@ void declare_scenario_commands(CLI::App& app, Cli& cli) {
     CLI::App* c = app.add_subcommand(name, "a scenario's own analysis, offered by: " + who);
     ScenarioCommandArgs& a = cli.scenario[name];
     add_target_and_data(c, a.target, a.data,
-                        std::string(kPresetHelp) + "; or FILE.csv, short for " + offering.front() +
-                            " --data FILE.csv when one scenario offers " + name);
+                        std::string(kPresetHelp) + "; or FILE.csv, short for PRESET --data " +
+                            "FILE.csv when one shipped preset offers " + name);
   }
 }
 

@@ -286,6 +286,29 @@ int cmd_noise(const NoiseArgs& a, std::ostream& out, std::ostream& err) {
   return kExitOk;
 }
 
+// The listed built-ins and the shipped presets (preset_dir(), not models/) that offer `cmd`.
+static std::vector<std::string> offering_presets(const std::string& cmd) {
+  const auto offers = [&](const Scenario& s) {
+    const auto cmds = s.commands();
+    return std::find(cmds.begin(), cmds.end(), cmd) != cmds.end();
+  };
+  std::vector<std::string> out;
+  for (const auto& name : scenarios().listed_names()) {
+    if (offers(*scenarios().make(name))) out.push_back(name);
+  }
+  std::vector<std::string> presets;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(preset_dir(), ec)) {
+    if (e.path().extension() == ".json") presets.push_back(e.path().stem().string());
+  }
+  std::sort(presets.begin(), presets.end());
+  for (const auto& name : presets) {
+    auto p = load_preset(preset_dir() + "/" + name + ".json");
+    if (p && p->scenario == "model" && p->instance && offers(*p->instance)) out.push_back(name);
+  }
+  return out;
+}
+
 // `kfw-cli CMD FILE.csv` is short for `kfw-cli CMD SCENARIO --data FILE.csv` when exactly one
 // scenario offers CMD.
 int cmd_scenario(const std::string& cmd, ScenarioCommandArgs a, std::ostream& out,
@@ -293,15 +316,12 @@ int cmd_scenario(const std::string& cmd, ScenarioCommandArgs a, std::ostream& ou
   const std::string first = a.target.preset;
   const bool csv = first.size() > 4 && (first.compare(first.size() - 4, 4, ".csv") == 0 ||
                                         first.compare(first.size() - 4, 4, ".CSV") == 0);
-  std::vector<std::string> offering;
-  for (const auto& name : scenarios().listed_names()) {
-    const auto cmds = scenarios().make(name)->commands();
-    if (std::find(cmds.begin(), cmds.end(), cmd) != cmds.end()) offering.push_back(name);
-  }
+  const std::vector<std::string> offering = offering_presets(cmd);
   if (csv && !a.data.file) {
     if (offering.size() != 1) {
-      return fail(err, Error{cmd + " FILE.csv: more than one scenario offers '" + cmd +
-                             "'; name one (kfw-cli " + cmd + " SCENARIO --data FILE.csv)"});
+      return fail(err, Error{cmd + " FILE.csv: " + std::to_string(offering.size()) +
+                             " shipped presets offer '" + cmd + "'; name one (kfw-cli " + cmd +
+                             " PRESET --data FILE.csv)"});
     }
     a.data.file = first;
     a.target.preset = offering.front();

@@ -144,10 +144,35 @@ void InnovationPlot::setData(const std::vector<double>* t, const std::vector<dou
   s_ = S && !S->empty() ? S : nullptr;
 }
 
+void InnovationPlot::setRejected(const std::vector<std::size_t>* rows, const QString& name) {
+  rows_ = rows && !rows->empty() ? rows : nullptr;
+  if (rows_ && !rejected_) {
+    rejected_ = addGraph(plot_, name, color::kFourth, Style::kDots);
+    rejected_->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCross, color::kFourth, 7));
+  }
+  if (rejected_) {
+    rejected_->setName(name);
+    rejected_->data()->clear();
+    if (rows_) {
+      rejected_->addToLegend();
+    } else {
+      rejected_->removeFromLegend();
+    }
+  }
+}
+
 void InnovationPlot::draw(const Frame& f) {
   if (!t_ || !yv_) return;
   if (s_) setSigmaBand(band_, *t_, nullptr, *s_, 2.0, f.n);
   setSeries(y_, *t_, *yv_, f.n);
+  if (rejected_) {
+    QVector<QCPGraphData> marks;
+    for (std::size_t k : rows_ ? *rows_ : std::vector<std::size_t>{}) {
+      if (k >= f.n || k >= t_->size() || k >= yv_->size()) break;
+      marks.append(QCPGraphData((*t_)[k], (*yv_)[k]));
+    }
+    rejected_->data()->set(marks, true);
+  }
   rescale(plot_, f.t0, f.t1, f.settle());
   setCursorAt(cursor_, f.tc, !f.all);
   replot(plot_);

@@ -90,12 +90,17 @@ class InnovationPlot {
   // S: the innovation variance of this component (NaN where no update).
   void setData(const std::vector<double>* t, const std::vector<double>* y,
                const std::vector<double>* S);
+  // The rows (ascending) whose sample the channel's gate rejected, marked over the innovation
+  // under `name`; null or empty: no marks (the legend entry goes with them).
+  void setRejected(const std::vector<std::size_t>* rows, const QString& name);
   void draw(const Frame& f);
 
  private:
   QCustomPlot* plot_;
   Band band_;
   QCPGraph* y_ = nullptr;
+  QCPGraph* rejected_ = nullptr;  // made on the first setRejected with rows
+  const std::vector<std::size_t>* rows_ = nullptr;
   QCPItemStraightLine* cursor_ = nullptr;
   const std::vector<double>*t_ = nullptr, *yv_ = nullptr;
   const std::vector<double>* s_ = nullptr;

@@ -22,6 +22,7 @@
 #include "model/model_gates.h"
 #include "model/model_noise.h"
 #include "model/model_spec.h"
+#include "model/model_stats.h"
 #include "model/world/model_sim.h"
 
 namespace kfw {
@@ -236,6 +237,24 @@ class ModelScenario final : public Scenario {
 
   // The file's noise_param keys (model_noise.h).
   std::vector<NoiseLink> noise_links() const override { return model::noise_links(spec_, table_); }
+
+  // The commands the file has blocks for (model_stats.h).
+  std::vector<std::string> commands() const override {
+    std::vector<std::string> out;
+    for (const auto& c : model::model_commands()) {
+      if (model::model_offers(*spec_, c)) out.push_back(c);
+    }
+    return out;
+  }
+  Expected<std::string> command(const std::string& cmd, const Dataset& d,
+                                const ParamValues& v) const override {
+    if (!model::model_offers(*spec_, cmd)) return Scenario::command(cmd, d, v);
+    auto r = run(d, v);
+    if (!r) return r.err();
+    const auto* res = dynamic_cast<const model::ModelResult*>(r->get());
+    if (!res) return Error{"stats: the run is not a model run"};
+    return model::stats_json(*spec_, *res, d.source);
+  }
 
  protected:
   Expected<std::shared_ptr<RunResult>> run_impl(const Dataset& d, const ParamValues& v,

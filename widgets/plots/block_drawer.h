@@ -6,6 +6,8 @@
 
 #include <QString>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include "core/dataset.h"
 #include "core/param_spec.h"
@@ -38,6 +40,10 @@ class BlockDrawer {
   virtual void setResult(const BlockInput& in) = 0;
   // Replay: a time plot shows the frame's steps; other plots stay.
   virtual void draw(const Frame& f) { (void)f; }
+  // Pinned snapshots (name, run of the same model; the view keeps them alive): a block that
+  // draws a run's estimates adds each as a faded ghost, cut at the cursor's time in draw().
+  using Ghost = std::pair<QString, const model::ModelResult*>;
+  virtual void setGhosts(const std::vector<Ghost>& ghosts) { (void)ghosts; }
 };
 
 // A drawer for the block's kind (nullptr for a kind with no drawer in this build); `s` is the

@@ -40,8 +40,27 @@ class SeriesBlock final : public BlockDrawer {
     data_ = model::series_block_data(block_, in.result);
   }
 
+  // Each pinned run's lines, faded and dashed, in the legend as "LABEL [pinned: NAME]".
+  void setGhosts(const std::vector<Ghost>& ghosts) override {
+    for (auto& g : ghosts_)
+      plot_->removeGraph(g.graph);
+    ghosts_.clear();
+    int colour = 0;
+    for (const auto& [name, r] : ghosts) {
+      const auto data = model::series_block_data(block_, *r);
+      for (const auto& d : data) {
+        if (!d.y) continue;
+        const QString label = QString::fromStdString(d.line.label) + " [pinned: " + name + "]";
+        ghosts_.push_back({addGhost(plot_, label, colour), &r->t, d.y});
+      }
+      ++colour;
+    }
+  }
+
   void draw(const Frame& f) override {
     if (!result_) return;
+    for (const auto& g : ghosts_)
+      setSeries(g.graph, *g.t, *g.y, f.all ? g.t->size() : stepsUpTo(*g.t, f));
     for (std::size_t i = 0; i < graphs_.size() && i < data_.size(); ++i) {
       if (data_[i].y) {
         setSeries(graphs_[i], result_->t, *data_[i].y, f.n);
@@ -55,10 +74,16 @@ class SeriesBlock final : public BlockDrawer {
   }
 
  private:
+  struct GhostLine {
+    QCPGraph* graph = nullptr;
+    const std::vector<double>*t = nullptr, *y = nullptr;
+  };
+
   model::PlotBlockSpec block_;
   QString title_;
   QCustomPlot* plot_ = nullptr;
   std::vector<QCPGraph*> graphs_;
+  std::vector<GhostLine> ghosts_;
   QCPItemStraightLine* cursor_ = nullptr;
   const model::ModelResult* result_ = nullptr;  // the view keeps the result alive
   std::vector<model::SeriesData> data_;

@@ -61,22 +61,47 @@ class TrajectoryBlock final : public BlockDrawer {
     for (auto* l : labels_)
       plot_->removeItem(l);
     labels_.clear();
+    // Each label on the side of its point that faces the middle of the points, so that a point
+    // at the edge of the view keeps its label inside.
+    double cx = 0.0, cy = 0.0;
+    for (const auto& p : data_.points) {
+      cx += p.x / static_cast<double>(data_.points.size());
+      cy += p.y / static_cast<double>(data_.points.size());
+    }
     for (const auto& p : data_.points) {
       points_->addData(p.x, p.y);
       auto* label = new QCPItemText(plot_);
       label->setText(QString::fromStdString(p.name));
       label->setColor(color::kSecond);
       label->setFont(QFont(plot_->font().family(), 8));
-      label->setPositionAlignment(Qt::AlignLeft | Qt::AlignBottom);
+      const bool right = p.x >= cx, top = p.y >= cy;  // the y axis points up
+      label->setPositionAlignment((right ? Qt::AlignRight : Qt::AlignLeft) |
+                                  (top ? Qt::AlignTop : Qt::AlignBottom));
       label->position->setCoords(p.x, p.y);
-      label->setPadding(QMargins(6, 0, 0, 4));
+      label->setPadding(QMargins(right ? 0 : 6, top ? 4 : 0, right ? 6 : 0, top ? 0 : 4));
       labels_.push_back(label);
     }
     fit();
   }
 
+  void setGhosts(const std::vector<Ghost>& ghosts) override {
+    for (auto& g : ghosts_)
+      plot_->removePlottable(g.curve);
+    ghosts_.clear();
+    int i = 0;
+    for (const auto& [name, r] : ghosts) {
+      auto d = model::trajectory_block_data(block_, *r);
+      if (!d.x || !d.y) continue;
+      auto* c = addTrack(plot_, "estimate [pinned: " + name + "]", color::ghost(i++));
+      c->setPen(QPen(c->pen().color(), 1, Qt::DashLine));
+      ghosts_.push_back({c, &r->t, d});
+    }
+  }
+
   void draw(const Frame& f) override {
     if (!data_.x || !data_.y) return;
+    for (const auto& g : ghosts_)
+      setCurve(g.curve, *g.data.x, *g.data.y, f.all ? kAll : stepsUpTo(*g.t, f));
     setCurve(estimate_, *data_.x, *data_.y, f.n);
     here_->data()->clear();
     const std::size_t n = std::min(f.n, data_.x->size());
@@ -134,10 +159,17 @@ class TrajectoryBlock final : public BlockDrawer {
     fitting_ = false;
   }
 
+  struct GhostTrack {
+    QCPCurve* curve = nullptr;
+    const std::vector<double>* t = nullptr;
+    model::TrajectoryData data;
+  };
+
   model::PlotBlockSpec block_;
   QString title_;
   QCustomPlot* plot_ = nullptr;
   QCPCurve *truth_ = nullptr, *estimate_ = nullptr;
+  std::vector<GhostTrack> ghosts_;
   QCPGraph *here_ = nullptr, *points_ = nullptr;
   std::vector<QCPItemText*> labels_;
   model::TrajectoryData data_;

@@ -156,6 +156,7 @@ class ModelView final : public ScenarioView {
           comp.zhat_y[k] = z[k] - ch.y[j][k];  // NaN where the channel did not update
         if (comp.turn > 0.0) comp.zhat_gapped = gap_wraps(r->t, comp.zhat_y, comp.turn);
         comp.innovation->setData(&r->t, &ch.y[j], &ch.S[j]);
+        comp.innovation->setRejected(&ch.gated_rows, "rejected by the gate");
       }
       nis_[c]->setData(&r->t, &ch.nis, static_cast<double>(ch.y.size()));
     }
@@ -178,16 +179,20 @@ class ModelView final : public ScenarioView {
   void setSnapshots(const Snapshots& snapshots) override {
     ghosts_.clear();
     std::vector<QList<plot::GhostSeries>> per_state(states_.size());
+    std::vector<plot::BlockDrawer::Ghost> block_ghosts;
     for (const auto& [name, result] : snapshots) {
       auto r = std::dynamic_pointer_cast<const ModelResult>(result);
       if (!r || r->n() != states_.size()) continue;
       ghosts_.push_back(r);
+      block_ghosts.emplace_back(name, r.get());
       for (std::size_t i = 0; i < states_.size(); ++i)
         per_state[i].push_back(
             {q(layout_->states[i].name) + " [pinned: " + name + "]", &r->t, &r->x[i]});
     }
     for (std::size_t i = 0; i < states_.size(); ++i)
       states_[i]->setGhosts(per_state[i]);
+    for (auto& b : blocks_)
+      b->setGhosts(block_ghosts);
     if (result_) drawUpTo(cursor_);
   }
 

@@ -122,11 +122,11 @@ Status add_plot_points(const ModelSpec& m, const ParamValues& values, double dt,
 
 // A covariance block's data on a run: the sample covariance of its series over the steps where
 // every one is finite (mean removed, divided by count − 1; NaN with fewer than two such steps)
-// and the design matrix, both n × n row-major.
+// and the design matrix, both n × n row-major, and the series' sample means (NaN likewise).
 struct CovarianceData {
   std::size_t n = 0, count = 0;
   std::size_t excluded = 0;  // instants left out for a marked sample
-  std::vector<double> sample, design;
+  std::vector<double> sample, design, mean;
 };
 CovarianceData covariance_block_data(const PlotBlockSpec& b, const ModelResult& r);
 

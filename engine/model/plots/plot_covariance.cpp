@@ -128,7 +128,8 @@ namespace {
 void sample_covariance(const std::vector<std::vector<double>>& rows, CovarianceData& c) {
   c.count = rows.size();
   if (c.count < 2) return;
-  std::vector<double> mean(c.n, 0.0);
+  std::vector<double>& mean = c.mean;
+  mean.assign(c.n, 0.0);
   for (const auto& v : rows) {
     for (std::size_t i = 0; i < c.n; ++i)
       mean[i] += v[i] / static_cast<double>(c.count);
@@ -194,6 +195,7 @@ CovarianceData covariance_block_data(const PlotBlockSpec& b, const ModelResult& 
     }
   }
   c.sample.assign(c.n * c.n, std::numeric_limits<double>::quiet_NaN());
+  c.mean.assign(c.n, std::numeric_limits<double>::quiet_NaN());
   for (const auto& [id, m] : r.plot_matrices) {
     if (id == b.id) c.design = m;
   }
@@ -216,6 +218,7 @@ CovarianceData covariance_block_data(const PlotBlockSpec& b, const ModelResult& 
   if (c.count < 2) return c;
   for (auto& x : mean)
     x /= static_cast<double>(c.count);
+  c.mean = mean;
   std::fill(c.sample.begin(), c.sample.end(), 0.0);
   for (std::size_t k = 0; k < r.steps(); ++k) {
     if (!all_finite(k)) continue;

@@ -16,6 +16,7 @@ struct RetiredScenario {
 
 inline constexpr RetiredScenario kRetiredScenarios[] = {
     {"helicopter", "helicopter.json"},
+    {"underwater", "underwater.json"},
 };
 
 // The entry of a retired scenario, or nullptr.

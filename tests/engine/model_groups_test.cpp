@@ -1,6 +1,6 @@
 // Issue 27: channel groups (stacked / sequential instants, a choice parameter's alternatives),
 // the distance gate and input ages (engine/model/model_groups.cpp, model_filter_detail.h) — seed
-// 004's AS / SC / SI as a model file (presets/models/underwater_world.json) against the built-in
+// 004's AS / SC / SI as a model file (presets/underwater.json) against the built-in
 // underwater EKF on the same simulated data (the world's data equal the built-in's to 1e-12,
 // model_world_underwater_test.cpp), in the equality form of ../shared/STAGE.md with tol 1e-9.
 #include <gtest/gtest.h>
@@ -24,7 +24,7 @@ namespace kfw {
 namespace model_groups_test {
 namespace {
 
-const std::string kFile = KFW_SOURCE_DIR "/presets/models/underwater_world.json";
+const std::string kFile = KFW_SOURCE_DIR "/presets/underwater.json";
 const char* const kSchemes[] = {"AS", "SC", "SI"};
 
 double largest(const std::vector<double>& v) {
@@ -243,7 +243,7 @@ TEST(ModelGroups, TheFilesErrorCovarianceBlockIsTheBuiltInsStatistics) {
   ASSERT_TRUE(layout);
   const model::PlotBlockSpec* block = nullptr;
   for (const auto& b : layout->plots) {
-    if (b.id == "error_cov") block = &b;
+    if (b.id == "covariance") block = &b;
   }
   ASSERT_NE(block, nullptr);
   for (int seed = 1; seed <= 3; ++seed) {
@@ -354,12 +354,12 @@ TEST(ModelGroups, BadGroupsGatesAndAgesAreRefusedWithTheirKey) {
        "distance > 0"},
       {[](auto& m) { m["inputs"][1]["age"] = "psi_age"; },
        "uw.json: model.inputs[5].age: 'psi_age' is already a symbol"},
-      {[](auto& m) { m["plots"][1]["exclude"]["e_r1"] = "depth"; },
-       "uw.json: model.plots[1].exclude.e_r1: unknown channel with an outlier_column 'depth'"},
-      {[](auto& m) { m["plots"][1]["exclude"]["e_x"] = "range1"; },
-       "uw.json: model.plots[1].exclude.e_x: unknown series 'e_x'"},
-      {[](auto& m) { m["plots"][1]["instants"] = false; },
-       "uw.json: model.plots[1].exclude: applies to instants: set \"instants\": true"},
+      {[](auto& m) { m["plots"][2]["exclude"]["e_r1"] = "depth"; },
+       "uw.json: model.plots[2].exclude.e_r1: unknown channel with an outlier_column 'depth'"},
+      {[](auto& m) { m["plots"][2]["exclude"]["e_x"] = "range1"; },
+       "uw.json: model.plots[2].exclude.e_x: unknown series 'e_x'"},
+      {[](auto& m) { m["plots"][2]["instants"] = false; },
+       "uw.json: model.plots[2].exclude: applies to instants: set \"instants\": true"},
       {[](auto& m) { m["derived"]["e_d"]["expression"] = "dept - z_true"; },
        "uw.json: model.derived.e_d.expression: unknown symbol 'dept' at position 1: \"dept - "
        "z_true\" (did you mean 'depth'?)"},

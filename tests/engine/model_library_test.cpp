@@ -107,8 +107,8 @@ TEST(ModelLibrary, EveryPresetHasADescriptionAndIsInTheList) {
     EXPECT_EQ(j.value("scenario", ""), "model") << entry.path();
     EXPECT_GT(j.value("description", "").size(), 40u) << entry.path();
   }
-  EXPECT_EQ(files, 10u);  // issue 27: helicopter_world.json became presets/helicopter.json;
-                          // underwater_world.json staged
+  EXPECT_EQ(files, 9u);  // issue 27: helicopter_world.json and underwater_world.json became
+                         // presets/helicopter.json and presets/underwater.json
 }
 
 // One scenario, runs on two threads at once (Sweep uses both cores): each run has its own

@@ -17,7 +17,7 @@ namespace kfw::model {
 namespace step_subs_test {
 namespace {
 
-const std::string kFile = KFW_SOURCE_DIR "/presets/models/underwater_world.json";
+const std::string kFile = KFW_SOURCE_DIR "/presets/underwater.json";
 
 TEST(ModelStepSubs, AStateExpressionKeepsItsStepLevelSubExpressionsByName) {
   Symbols s;

@@ -1,8 +1,9 @@
-// Issue 27: seed 004 as a model file (presets/models/underwater_world.json, staged until it
-// replaces presets/underwater.json). Its world draws the built-in underwater simulator's streams
-// (core/random.h: noise.n_u, noise.n_w, noise.n_r per 0.01 s step, clock.SENSOR, channel.SENSOR,
-// noise.n_c per t_gap window, dropout.rangeN, outliers.range), so its simulated data equal the
-// built-in's to 1e-12 of each column's largest magnitude (../shared/STAGE.md, "Randomness").
+// Issue 27: seed 004 as a model file (presets/underwater.json, staged as
+// presets/models/underwater_world.json until it replaced the built-in's preset). Its world draws
+// the built-in underwater simulator's streams (core/random.h: noise.n_u, noise.n_w, noise.n_r per
+// 0.01 s step, clock.SENSOR, channel.SENSOR, noise.n_c per t_gap window, dropout.rangeN,
+// outliers.range), so its simulated data equal the built-in's to 1e-12 of each column's largest
+// magnitude (../shared/STAGE.md, "Randomness").
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -20,7 +21,7 @@ namespace kfw {
 namespace world_underwater_test {
 namespace {
 
-const std::string kFile = KFW_SOURCE_DIR "/presets/models/underwater_world.json";
+const std::string kFile = KFW_SOURCE_DIR "/presets/underwater.json";
 
 // Every column of the built-in's data in the model's, row by row: the same samples (NaN where no
 // sample) and values within tol of the column's largest magnitude.

@@ -210,7 +210,7 @@ TEST(ModelPlotBlocksWindow, ATopViewAndACovariancePanel) {
 // exports of either shape (seed 004's top view, as the built-in view draws it).
 TEST(ModelPlotBlocksWindow, AnEqualScaleTopViewKeepsOneUnitPerPixelAtAnySize) {
   QTemporaryDir dir;
-  std::ifstream in(KFW_SOURCE_DIR "/presets/models/underwater_world.json");
+  std::ifstream in(KFW_SOURCE_DIR "/presets/underwater.json");
   json p = json::parse(in);
   p["parameters"]["sim.duration"]["value"] = 30;
   const QString path = dir.filePath("uw.json");
@@ -222,7 +222,7 @@ TEST(ModelPlotBlocksWindow, AnEqualScaleTopViewKeepsOneUnitPerPixelAtAnySize) {
   auto st = w.loadPreset(path);
   ASSERT_TRUE(st.ok()) << st.error();
   ASSERT_TRUE(w.waitForRun(60000));
-  QCustomPlot* top = plotNamed(w, "top_view");
+  QCustomPlot* top = plotNamed(w, "trajectory");
   ASSERT_NE(top, nullptr);
   QCPGraph* beacons = graphNamed(top, "fixed points");
   ASSERT_NE(beacons, nullptr);

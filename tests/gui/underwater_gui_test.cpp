@@ -1,6 +1,8 @@
 // The underwater window driven as a user would, offscreen: filter and simulator parameters change
 // what the plots hold, pinned snapshots draw ghost tracks and errors, the top view keeps one metre
-// as long east as north at any size, and the covariance numbers are readable.
+// as long east as north at any size, and the covariance numbers are readable. Issue 27:
+// presets/underwater.json is a model file, so these are the generic view's panels and the file's
+// plot blocks (trajectory, distance_error, covariance) where the built-in view had its own.
 #include <qcustomplot.h>
 
 #include <gtest/gtest.h>
@@ -10,7 +12,7 @@
 
 #include "common/plot_probe.h"
 #include "main_window.h"
-#include "scenarios/underwater/underwater_ekf.h"
+#include "model/model_result.h"
 #include "transport_bar.h"
 
 namespace kfw {
@@ -46,14 +48,24 @@ class UnderwaterWindow : public ::testing::Test {
  protected:
   void SetUp() override {
     ASSERT_TRUE(w.loadPreset(QString(KFW_SOURCE_DIR) + "/presets/underwater.json").ok());
-    ASSERT_TRUE(w.waitForRun());
+    ASSERT_TRUE(w.waitForRun(60000));
     ASSERT_TRUE(w.result());
     track = plotNamed(w, "trajectory");
     err = plotNamed(w, "distance_error");
     ASSERT_TRUE(track && err);
   }
-  std::shared_ptr<const underwater::UnderwaterResult> result() const {
-    return std::dynamic_pointer_cast<const underwater::UnderwaterResult>(w.result());
+  std::shared_ptr<const model::ModelResult> result() const {
+    return std::dynamic_pointer_cast<const model::ModelResult>(w.result());
+  }
+  // The gate's marks over the four ranges' innovations.
+  int rejectedMarks() const {
+    int n = 0;
+    for (int b = 1; b <= 4; ++b) {
+      const QString id = QString("innovation.range%1.range%1").arg(b);
+      if (QCPGraph* g = graphNamed(plotNamed(w, id), "rejected by the gate"))
+        n += g->data()->size();
+    }
+    return n;
   }
   MainWindow w;
   QCustomPlot* track = nullptr;
@@ -63,33 +75,32 @@ class UnderwaterWindow : public ::testing::Test {
 TEST_F(UnderwaterWindow, FilterParametersChangeWhatThePlotsHold) {
   QCPCurve* est = curveNamed(track, "estimate");
   QCPGraph* dist = graphNamed(err, "distance error");
-  QCPGraph* rejected = graphNamed(plotNamed(w, "innovation"), "rejected by the χ² gate");
-  ASSERT_TRUE(est && dist && rejected);
+  ASSERT_TRUE(est && dist);
   const auto track_before = points(est);
   const auto err_before = graphValues(dist);
   ASSERT_GT(track_before.size(), 100u);
-  EXPECT_GT(rejected->data()->size(), 200);  // 276 injected ±1 m outliers
+  EXPECT_GT(rejectedMarks(), 200);  // 276 injected ±1 m outliers
 
   w.setParam("gate", 50.0);  // wide open: nothing rejected, the outliers pull the estimate
-  ASSERT_TRUE(w.waitForRun());
-  EXPECT_EQ(rejected->data()->size(), 0);
+  ASSERT_TRUE(w.waitForRun(60000));
+  EXPECT_EQ(rejectedMarks(), 0);
   EXPECT_NE(points(est), track_before);
   EXPECT_NE(graphValues(dist), err_before);
 
   const auto err_open = graphValues(dist);
   w.setParam("scheme", 0.0);  // AS
-  ASSERT_TRUE(w.waitForRun());
+  ASSERT_TRUE(w.waitForRun(60000));
   EXPECT_EQ(w.values().at("scheme"), 0.0);
   EXPECT_NE(graphValues(dist), err_open);
 }
 
 TEST_F(UnderwaterWindow, SimulatorParameterResimulates) {
-  QCPCurve* truth = curveNamed(track, "true");
+  QCPCurve* truth = curveNamed(track, "truth");
   ASSERT_NE(truth, nullptr);
   const auto before = points(truth);
   const auto data_before = w.dataset();
   w.setParam("sim.seed", 7);
-  ASSERT_TRUE(w.waitForRun());
+  ASSERT_TRUE(w.waitForRun(60000));
   EXPECT_NE(w.dataset(), data_before);
   EXPECT_NE(points(truth), before);
 }
@@ -97,9 +108,9 @@ TEST_F(UnderwaterWindow, SimulatorParameterResimulates) {
 TEST_F(UnderwaterWindow, SnapshotsDrawGhostTrackAndErrorCutAtTheCursor) {
   w.pinSnapshot("SC");
   w.setParam("scheme", 0.0);
-  ASSERT_TRUE(w.waitForRun());
+  ASSERT_TRUE(w.waitForRun(60000));
   QCPCurve* ghost_track = curveNamed(track, "estimate [pinned: SC]");
-  QCPGraph* ghost_err = graphNamed(err, "error [pinned: SC]");
+  QCPGraph* ghost_err = graphNamed(err, "distance error [pinned: SC]");
   ASSERT_TRUE(ghost_track && ghost_err);
   EXPECT_GT(ghost_track->data()->size(), 100);
   EXPECT_GT(ghost_err->data()->size(), 100);
@@ -108,6 +119,7 @@ TEST_F(UnderwaterWindow, SnapshotsDrawGhostTrackAndErrorCutAtTheCursor) {
   EXPECT_NE(graphValues(ghost_err), graphValues(graphNamed(err, "distance error")));
   // Cut at the replay cursor like the live curves.
   auto r = result();
+  ASSERT_TRUE(r);
   w.transport()->seek(2000);
   EXPECT_LE((ghost_err->data()->constEnd() - 1)->key, r->t[2000] + 1e-9);
   EXPECT_GE((ghost_err->data()->constEnd() - 1)->key, r->t[1900]);
@@ -124,7 +136,7 @@ TEST_F(UnderwaterWindow, SnapshotsDrawGhostTrackAndErrorCutAtTheCursor) {
   w.clearSnapshots();
   EXPECT_EQ(curveNamed(track, "estimate [pinned: SC]"), nullptr);
   EXPECT_EQ(curveNamed(track, "estimate [pinned: AS]"), nullptr);
-  EXPECT_EQ(graphNamed(err, "error [pinned: SC]"), nullptr);
+  EXPECT_EQ(graphNamed(err, "distance error [pinned: SC]"), nullptr);
 }
 
 TEST_F(UnderwaterWindow, TopViewIsEqualScaleAtAnySizeWithBeaconsAndLabelsInside) {
@@ -136,8 +148,8 @@ TEST_F(UnderwaterWindow, TopViewIsEqualScaleAtAnySizeWithBeaconsAndLabelsInside)
     const QRect rect = track->axisRect()->rect();
     // The legend sits beside the plot, not over it.
     EXPECT_FALSE(track->legend->outerRect().intersects(rect)) << where;
-    // Beacons (drawn at the edge when out of view) and their labels stay inside.
-    QCPCurve* beacons = curveNamed(track, "beacons (at the edge\nwhen out of view)");
+    // The beacons and their labels stay inside.
+    QCPGraph* beacons = graphNamed(track, "fixed points");
     ASSERT_NE(beacons, nullptr);
     ASSERT_EQ(beacons->data()->size(), 4);
     for (auto it = beacons->data()->constBegin(); it != beacons->data()->constEnd(); ++it) {
@@ -150,7 +162,10 @@ TEST_F(UnderwaterWindow, TopViewIsEqualScaleAtAnySizeWithBeaconsAndLabelsInside)
       if (!t || !t->text().startsWith("B")) continue;
       ++labels;
       const QRectF box(t->topLeft->pixelPosition(), t->bottomRight->pixelPosition());
-      EXPECT_TRUE(QRectF(rect).contains(box)) << where << " " << t->text().toStdString();
+      EXPECT_TRUE(QRectF(rect).contains(box))
+          << where << " " << t->text().toStdString() << " box " << box.left() << "," << box.top()
+          << " " << box.right() << "," << box.bottom() << " in " << rect.left() << "," << rect.top()
+          << " " << rect.right() << "," << rect.bottom();
     }
     EXPECT_EQ(labels, 4);
   };
@@ -166,11 +181,13 @@ TEST_F(UnderwaterWindow, TopViewIsEqualScaleAtAnySizeWithBeaconsAndLabelsInside)
   track->resize(500, 300);
   track->replot();
   check("small");
-  // The truth's whole track is in view.
+  // The truth's whole track is in view: east (y) across, north (x) up.
   const auto r = result();
+  ASSERT_TRUE(r);
   for (std::size_t k = 0; k < r->steps(); k += 50) {
-    EXPECT_TRUE(track->xAxis->range().contains(r->y_true[k]));
-    EXPECT_TRUE(track->yAxis->range().contains(r->x_true[k]));
+    if (!std::isfinite(r->truth[0][k])) continue;
+    EXPECT_TRUE(track->xAxis->range().contains(r->truth[1][k]));
+    EXPECT_TRUE(track->yAxis->range().contains(r->truth[0][k]));
   }
 }
 

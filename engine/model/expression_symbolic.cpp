@@ -2,6 +2,7 @@
 // loads (the same meaning as muparser's, else refused), differentiates it, and prints derivatives
 // back for muparser. Runs never touch GiNaC.
 #include <ginac/ginac.h>
+#include <algorithm>
 
 #include <cmath>
 #include <limits>
@@ -168,11 +169,18 @@ std::string to_muparser(const GiNaC::ex& e) {
     if (e.is_equal(Pi)) return "pi";
     return number_text(ex_to<numeric>(e.evalf()).to_double());
   }
+  // The terms of a sum or product in the order of their text: GiNaC orders them by hashes that
+  // hold addresses, so its own order (and the rounding of the sum) changed from one process to
+  // the next.
   auto join = [&](const char* op) {
+    std::vector<std::string> terms;
+    for (std::size_t i = 0; i < e.nops(); ++i)
+      terms.push_back(to_muparser(e.op(i)));
+    std::sort(terms.begin(), terms.end());
     std::string s = "(";
-    for (std::size_t i = 0; i < e.nops(); ++i) {
+    for (std::size_t i = 0; i < terms.size(); ++i) {
       if (i) s += op;
-      s += to_muparser(e.op(i));
+      s += terms[i];
     }
     return s + ")";
   };

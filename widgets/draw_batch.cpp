@@ -2,6 +2,9 @@
 
 #include <qcustomplot.h>
 
+#include <QEvent>
+#include <QSet>
+
 #include <atomic>
 #include <condition_variable>
 #include <deque>
@@ -100,6 +103,59 @@ Helper& helper() {
   return h;
 }
 
+// A plot that is not on screen (another tab, scrolled out of the plot area, a hidden window)
+// is not drawn when asked: it is marked, and drawn before it is next painted (exports draw at
+// their own size and do not need it). A slider drag then draws only the panels in view.
+class DeferredReplots final : public QObject {
+ public:
+  static DeferredReplots& instance() {
+    static auto* d = new DeferredReplots;  // lives as long as the application's plots
+    return *d;
+  }
+  void replot(QCustomPlot* p, QCustomPlot::RefreshPriority priority) {
+    if (!watched_.contains(p)) {
+      watched_.insert(p);
+      p->installEventFilter(this);
+      connect(p, &QObject::destroyed, this, [this, p] {
+        watched_.remove(p);
+        stale_.remove(p);
+      });
+    }
+    if (inView(p)) {
+      stale_.remove(p);
+      p->replot(priority);
+      return;
+    }
+    stale_.insert(p);
+  }
+
+ protected:
+  bool eventFilter(QObject* o, QEvent* e) override {
+    auto* p = static_cast<QCustomPlot*>(o);
+    if (e->type() == QEvent::Paint || e->type() == QEvent::Show) {
+      if (stale_.remove(p)) p->replot(QCustomPlot::rpQueuedRefresh);
+    } else if (e->type() == QEvent::Resize && !inView(p)) {
+      // QCustomPlot redraws on every resize (a relayout after a run resizes every panel): out
+      // of view, only its viewport follows now.
+      p->setViewport(p->rect());
+      stale_.insert(p);
+      return true;
+    }
+    return false;
+  }
+
+  static bool inView(const QCustomPlot* p) {
+    return p->isVisible() && !p->visibleRegion().isEmpty();
+  }
+
+ private:
+  QSet<QCustomPlot*> watched_, stale_;
+};
+
+void replotNow(QCustomPlot* p) {
+  DeferredReplots::instance().replot(p, QCustomPlot::rpQueuedRefresh);
+}
+
 // GUI-thread state of the open batch.
 int g_depth = 0;
 std::vector<std::shared_ptr<Job>> g_pending;  // in submission order
@@ -127,7 +183,7 @@ DrawBatch::~DrawBatch() {
   auto replots = std::move(g_replots);
   g_replots.clear();
   for (const auto& p : replots) {
-    if (p) p->replot(QCustomPlot::rpQueuedRefresh);
+    if (p) replotNow(p);
   }
 }
 
@@ -171,7 +227,7 @@ void settleDraws(QCustomPlot* plot) {
 void requestReplot(QCustomPlot* plot) {
   if (g_depth == 0) {
     settleDraws(plot);
-    plot->replot(QCustomPlot::rpQueuedRefresh);
+    replotNow(plot);
     return;
   }
   settleDraws(plot);  // the plot's jobs end with its drawing code (their arrays live that long)
@@ -179,6 +235,10 @@ void requestReplot(QCustomPlot* plot) {
     if (p == plot) return;
   }
   g_replots.emplace_back(plot);
+}
+
+void replotQueued(QCustomPlot* plot) {
+  DeferredReplots::instance().replot(plot, QCustomPlot::rpQueuedReplot);
 }
 
 }  // namespace kfw::plot

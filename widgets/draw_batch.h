@@ -26,7 +26,11 @@ class DrawBatch {
 void submitDraw(QCustomPlot* plot, std::function<void()> compute, std::function<void()> apply);
 // Applies the plot's started jobs (helping with any not yet started), in order.
 void settleDraws(QCustomPlot* plot);
-// Inside a batch: replot when the batch closes (once); outside: settle and replot now.
+// Inside a batch: replot when the batch closes (once); outside: settle and replot now. A plot
+// out of view (another tab, scrolled away, hidden) is drawn before it is next painted instead.
 void requestReplot(QCustomPlot* plot);
+// QCustomPlot's queued replot (after the event loop's turn: a resize settles first), or, out of
+// view, the same deferral.
+void replotQueued(QCustomPlot* plot);
 
 }  // namespace kfw::plot

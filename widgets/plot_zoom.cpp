@@ -8,6 +8,7 @@
 #include <QTimer>
 #include <QWheelEvent>
 
+#include "draw_batch.h"
 #include "plot_kit.h"
 #include "plot_readout.h"
 
@@ -91,7 +92,7 @@ void ZoomGroup::userChanged(QCustomPlot* source, bool x, bool y) {
       if (!q->property(kAutoX).isValid()) q->setProperty(kAutoX, rangeVariant(q->xAxis->range()));
       q->xAxis->setRange(r);
       setUserZoom(q, true, userZoomedY(q));
-      q->replot(QCustomPlot::rpQueuedReplot);
+      plot::replotQueued(q);
     }
     linking_ = false;
   }
@@ -132,7 +133,7 @@ void ZoomGroup::resetAll() {
   linking_ = false;
   if (redraw_) redraw_();
   for (const PlotPanel& panel : plots_)
-    panel.plot->replot(QCustomPlot::rpQueuedReplot);
+    plot::replotQueued(panel.plot);
 }
 
 QJsonValue ZoomGroup::save() const {

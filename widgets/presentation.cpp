@@ -9,6 +9,8 @@
 #include <QSettings>
 #include <algorithm>
 
+#include "draw_batch.h"
+
 namespace kfw {
 
 namespace {
@@ -77,7 +79,7 @@ void Presentation::style(QCustomPlot* p, Theme theme, bool force) {
   wrapTitlesToWidth(p);
   p->removeEventFilter(this);
   p->installEventFilter(this);
-  p->replot(QCustomPlot::rpQueuedReplot);
+  plot::replotQueued(p);
 }
 
 void Presentation::wrapTitles(const QList<PlotPanel>& plots, const QList<QCustomPlot*>& others) {
@@ -85,7 +87,7 @@ void Presentation::wrapTitles(const QList<PlotPanel>& plots, const QList<QCustom
   for (const PlotPanel& p : plots)
     all << p.plot;
   for (QCustomPlot* p : all) {
-    if (wrapTitlesToWidth(p)) p->replot(QCustomPlot::rpQueuedReplot);
+    if (wrapTitlesToWidth(p)) plot::replotQueued(p);
     // Before every replot too: a view may set a new title with its data.
     if (!p->property("kfwWrapOnReplot").toBool()) {
       p->setProperty("kfwWrapOnReplot", true);
@@ -205,7 +207,7 @@ void Presentation::restoreLayout(const QList<PlotPanel>& plots) {
 bool Presentation::eventFilter(QObject* watched, QEvent* event) {
   if (event->type() == QEvent::Resize) {
     auto* p = qobject_cast<QCustomPlot*>(watched);
-    if (p && wrapTitlesToWidth(p)) p->replot(QCustomPlot::rpQueuedReplot);
+    if (p && wrapTitlesToWidth(p)) plot::replotQueued(p);
   }
   return QObject::eventFilter(watched, event);
 }

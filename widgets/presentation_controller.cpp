@@ -12,6 +12,7 @@
 #include <QMenuBar>
 #include <QRegularExpression>
 
+#include "draw_batch.h"
 #include "presentation.h"
 
 namespace kfw {
@@ -113,7 +114,7 @@ void PresentationController::setTheme(Theme theme) {
     all << p.plot;
   for (QCustomPlot* p : all) {
     applyTheme(p, theme);
-    p->replot(QCustomPlot::rpQueuedReplot);
+    plot::replotQueued(p);
   }
 }
 

@@ -105,7 +105,7 @@ void ReplayController::applyTimeWindow(double t0, double t1) {
   for (const auto& p : all) {
     if (!plot::isTimePlot(p.plot)) continue;
     p.plot->xAxis->setRange(t0, t1);
-    p.plot->replot(QCustomPlot::rpQueuedReplot);
+    plot::replotQueued(p.plot);
   }
 }
 

@@ -93,6 +93,16 @@ void setup_parser(mu::Parser& p) {
   p.DefineFun("dsinc", &dsinc);
   p.DefineFun("sign", &sign_fn);
   p.DefineFun("step", &step_fn);
+  // fast_powers's products (reserved names, never in a user's text).
+  p.DefineFun(
+      "_pow2", +[](double x) { return x * x; });
+  p.DefineFun(
+      "_pow3", +[](double x) { return x * x * x; });
+  p.DefineFun(
+      "_rsqrt", +[](double x) {
+        // pow's answer where 1/√x would differ (±0, −∞, negatives).
+        return x > 0.0 && x < HUGE_VAL ? 1.0 / std::sqrt(x) : std::pow(x, -0.5);
+      });
   p.DefineConst("pi", std::numbers::pi);
 }
 
@@ -125,6 +135,21 @@ std::size_t for_each_identifier(const std::string& text, Visit visit) {
   }
   return std::string::npos;
 }
+
+}  // namespace
+
+std::vector<int> symbols_used(const std::string& text, const Symbols& symbols) {
+  std::vector<int> out;
+  for_each_identifier(text, [&](std::size_t start, std::size_t len) {
+    const int slot = symbols.find(std::string_view(text).substr(start, len));
+    if (slot >= 0 && std::find(out.begin(), out.end(), slot) == out.end()) out.push_back(slot);
+    return false;
+  });
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+namespace {
 
 // The text with every sub-expression replaced by its own text in parentheses (theirs are
 // expanded already, so one pass does).
@@ -335,7 +360,8 @@ bool is_identifier(std::string_view name) {
 }
 
 bool is_reserved_name(std::string_view name) {
-  static const char* const kReserved[] = {"t", "dt", "pi", "Pi", "sign", "step", "dsinc"};
+  static const char* const kReserved[] = {"t",    "dt",    "pi",    "Pi",    "sign",
+                                          "step", "dsinc", "_pow2", "_pow3", "_rsqrt"};
   for (const char* r : kReserved) {
     if (name == r) return true;
   }
@@ -498,7 +524,7 @@ ExprGroup& ExprGroup::operator=(ExprGroup&&) noexcept = default;
 
 void ExprGroup::add(const std::string& text, double* target) {
   if (!source_.empty()) source_ += ",";
-  source_ += text;
+  source_ += fast_powers(text);
   targets_.push_back(target);
 }
 

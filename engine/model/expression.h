@@ -105,8 +105,17 @@ Expected<std::vector<Expr>> derivatives(const Expr& e, const std::string& key,
 // True when a and b are the same function of the symbols (GiNaC: normal(a − b) == 0).
 bool same_function(const Expr& a, const Expr& b, const Symbols& symbols);
 
+// The slots of the symbols `text` names (a compiled text names no sub-expression), ascending.
+std::vector<int> symbols_used(const std::string& text, const Symbols& symbols);
+
+// The text muparser evaluates for `text` (a checked expression): a parenthesised base or a call
+// raised to the literal power 2 or 3 — (15 - x)^2 — becomes a product (_pow2(15 - x)), since
+// muparser calls std::pow for it (its own x^2 fast path takes a plain symbol only). The same
+// values to the last bit or two; seed 004's ranges run ≈ 1.4× faster.
+std::string fast_powers(const std::string& text);
+
 // Evaluates a set of expressions into target doubles in one muparser pass (a comma-separated
-// list, one byte-code program). Not copyable; one per run and thread.
+// list, one byte-code program; fast_powers applied). Not copyable; one per run and thread.
 class ExprGroup {
  public:
   ExprGroup();

@@ -1,6 +1,9 @@
 #include "model/model_derived.h"
 
 #include <cmath>
+#include <cstring>
+#include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 
 #include "core/statistics.h"
@@ -126,56 +129,70 @@ Metrics DerivedScalars::eval(const ParamValues& values, double dt) {
   return out;
 }
 
-Status add_derived(const ModelSpec& spec, const ParamValues& values, const Dataset& d,
-                   ModelResult& r) {
-  if (spec.derived.empty()) return Ok{};
-  std::vector<double> vars(spec.symbols.names.size(), 0.0);
-  for (std::size_t i = 0; i < spec.param_slots.size(); ++i)
-    vars[static_cast<std::size_t>(spec.param_slots[i])] = param(values, spec.param_keys[i]);
-  vars[static_cast<std::size_t>(spec.dt_slot)] =
-      d.rows() >= 2 ? d.median_dt() : param(values, spec.sim_dt_key);
-  std::vector<double> out(spec.derived.size(), 0.0);
-  ExprGroup scalars, series;
-  for (std::size_t q = 0; q < spec.derived.size(); ++q)
-    (spec.derived[q].series() ? series : scalars).add(spec.derived[q].e.text, &out[q]);
-  if (auto st = scalars.bind(spec.symbols, vars.data()); !st) return st;
-  if (auto st = series.bind(spec.symbols, vars.data()); !st) return st;
-  scalars.eval();
-  for (std::size_t q = 0; q < spec.derived.size(); ++q) {
-    const DerivedSpec& ds = spec.derived[q];
-    if (ds.series()) {
-      r.derived_names.push_back(ds.name);
-      r.derived.emplace_back(r.steps(), kNoSample);
-    } else if (std::isfinite(out[q])) {
-      r.metrics["derived." + ds.name] = out[q];
-    } else {
-      r.undefined["derived." + ds.name] = "not finite at the run's values";
+namespace {
+
+// What a run's derived series read besides the estimates: the parameters and dt (vars at those
+// slots), t, the truth columns, the inputs and the measurements, copied for DerivedCache.
+struct Reads {
+  std::vector<double> values;
+  std::vector<std::vector<double>> columns;
+};
+
+// Bit for bit (a missing sample is NaN, which == would call different from itself).
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+
+bool same_reads(const Reads& a, const Reads& b) {
+  if (!same_bits(a.values, b.values) || a.columns.size() != b.columns.size()) return false;
+  for (std::size_t i = 0; i < a.columns.size(); ++i) {
+    if (!same_bits(a.columns[i], b.columns[i])) return false;
+  }
+  return true;
+}
+
+Reads reads_of(const ModelSpec& spec, const std::vector<int>& slots,
+               const std::vector<double>& vars, const ModelResult& r,
+               const std::vector<const std::vector<double>*>& inputs) {
+  Reads k;
+  for (int slot : slots)  // the symbols the series name: parameters, dt (the rest are per row)
+    k.values.push_back(vars[static_cast<std::size_t>(slot)]);
+  k.columns.push_back(r.t);
+  for (const auto& c : r.truth)
+    k.columns.push_back(c);
+  for (const auto* c : inputs)
+    k.columns.push_back(c ? *c : std::vector<double>{});
+  for (std::size_t j = 0; j < spec.measured_slots.size() && j < r.z.size(); ++j) {
+    if (spec.measured_slots[j] >= 0) k.columns.push_back(r.z[j]);
+  }
+  return k;
+}
+
+// Sets row k's symbols of the series: t, states, truth, inputs, measurements.
+void set_row(const ModelSpec& spec, const ModelResult& r,
+             const std::vector<const std::vector<double>*>& inputs, std::size_t k,
+             std::vector<double>& vars) {
+  vars[static_cast<std::size_t>(spec.t_slot)] = r.t[k];
+  for (std::size_t i = 0; i < spec.states.size(); ++i) {
+    vars[static_cast<std::size_t>(spec.state_slots[i])] = r.x[i][k];
+    if (spec.truth_slots.size() > i && spec.truth_slots[i] >= 0) {
+      vars[static_cast<std::size_t>(spec.truth_slots[i])] =
+          r.truth[i].empty() ? kNoSample : r.truth[i][k];
     }
   }
-  if (series.empty()) return Ok{};
-  for (std::size_t k = 0; k < r.steps(); ++k) {
-    vars[static_cast<std::size_t>(spec.t_slot)] = r.t[k];
-    for (std::size_t i = 0; i < spec.states.size(); ++i) {
-      vars[static_cast<std::size_t>(spec.state_slots[i])] = r.x[i][k];
-      if (spec.truth_slots.size() > i && spec.truth_slots[i] >= 0) {
-        vars[static_cast<std::size_t>(spec.truth_slots[i])] =
-            r.truth[i].empty() ? kNoSample : r.truth[i][k];
-      }
-    }
-    for (std::size_t i = 0; i < spec.inputs.size(); ++i) {
-      vars[static_cast<std::size_t>(spec.input_slots[i])] =
-          d.has(spec.inputs[i].name) ? d.col(spec.inputs[i].name)[k] : kNoSample;
-    }
-    for (std::size_t j = 0; j < spec.measured_slots.size() && j < r.z.size(); ++j) {
-      if (spec.measured_slots[j] >= 0)
-        vars[static_cast<std::size_t>(spec.measured_slots[j])] = r.z[j][k];
-    }
-    series.eval();
-    std::size_t s = 0;
-    for (std::size_t q = 0; q < spec.derived.size(); ++q) {
-      if (spec.derived[q].series()) r.derived[s++][k] = out[q];
-    }
+  for (std::size_t i = 0; i < spec.inputs.size(); ++i) {
+    vars[static_cast<std::size_t>(spec.input_slots[i])] =
+        inputs[i] && k < inputs[i]->size() ? (*inputs[i])[k] : kNoSample;
   }
+  for (std::size_t j = 0; j < spec.measured_slots.size() && j < r.z.size(); ++j) {
+    if (spec.measured_slots[j] >= 0)
+      vars[static_cast<std::size_t>(spec.measured_slots[j])] = r.z[j][k];
+  }
+}
+
+// derived.NAME.rms and .max of each series.
+void series_metrics(const ModelSpec& spec, ModelResult& r) {
   std::size_t s = 0;
   for (const auto& ds : spec.derived) {
     if (!ds.series()) continue;
@@ -190,6 +207,104 @@ Status add_derived(const ModelSpec& spec, const ParamValues& values, const Datas
     r.metrics["derived." + ds.name + ".rms"] = rmse_finite(v, zero);
     r.metrics["derived." + ds.name + ".max"] = top;
   }
+}
+
+}  // namespace
+
+struct DerivedCache::Entry {
+  Reads reads;
+  std::vector<std::vector<double>> series;  // the series that read no estimate, in order
+};
+
+DerivedCache::DerivedCache() = default;
+DerivedCache::~DerivedCache() = default;
+
+Status add_derived(const ModelSpec& spec, const ParamValues& values, const Dataset& d,
+                   ModelResult& r, DerivedCache* cache) {
+  if (spec.derived.empty()) return Ok{};
+  std::vector<double> vars(spec.symbols.names.size(), 0.0);
+  for (std::size_t i = 0; i < spec.param_slots.size(); ++i)
+    vars[static_cast<std::size_t>(spec.param_slots[i])] = param(values, spec.param_keys[i]);
+  vars[static_cast<std::size_t>(spec.dt_slot)] =
+      d.rows() >= 2 ? d.median_dt() : param(values, spec.sim_dt_key);
+  std::vector<double> out(spec.derived.size(), 0.0);
+  // Series that read the estimates (live) and those that do not (fixed: the same for the same
+  // data and parameters, kept in the cache between runs).
+  ExprGroup scalars, live, fixed;
+  std::vector<std::size_t> fixed_rows;  // index into r.derived of each fixed series
+  for (std::size_t q = 0; q < spec.derived.size(); ++q) {
+    const DerivedSpec& ds = spec.derived[q];
+    if (!ds.series()) {
+      scalars.add(ds.e.text, &out[q]);
+      continue;
+    }
+    if (ds.e.uses & kStateSymbol) {
+      live.add(ds.e.text, &out[q]);
+    } else {
+      fixed_rows.push_back(r.derived.size());
+      fixed.add(ds.e.text, &out[q]);
+    }
+    r.derived_names.push_back(ds.name);
+    r.derived.emplace_back(r.steps(), kNoSample);
+  }
+  for (ExprGroup* g : {&scalars, &live, &fixed}) {
+    if (auto st = g->bind(spec.symbols, vars.data()); !st) return st;
+  }
+  scalars.eval();
+  for (std::size_t q = 0; q < spec.derived.size(); ++q) {
+    const DerivedSpec& ds = spec.derived[q];
+    if (ds.series()) continue;
+    if (std::isfinite(out[q])) {
+      r.metrics["derived." + ds.name] = out[q];
+    } else {
+      r.undefined["derived." + ds.name] = "not finite at the run's values";
+    }
+  }
+  if (r.derived.empty()) return Ok{};
+  // The inputs' columns, looked up once (null: not in the data).
+  std::vector<const std::vector<double>*> inputs(spec.inputs.size(), nullptr);
+  for (std::size_t i = 0; i < spec.inputs.size(); ++i) {
+    if (d.has(spec.inputs[i].name)) inputs[i] = &d.col(spec.inputs[i].name);
+  }
+  Reads reads;
+  bool hit = false;
+  if (cache && !fixed.empty()) {
+    std::vector<int> slots;
+    for (const auto& ds : spec.derived) {
+      if (!ds.series() || (ds.e.uses & kStateSymbol)) continue;
+      for (int slot : symbols_used(ds.e.text, spec.symbols))
+        slots.push_back(slot);
+    }
+    reads = reads_of(spec, slots, vars, r, inputs);
+    std::lock_guard lock(cache->mu);
+    if (cache->entry && same_reads(cache->entry->reads, reads)) {
+      hit = true;
+      for (std::size_t i = 0; i < fixed_rows.size(); ++i)
+        r.derived[fixed_rows[i]] = cache->entry->series[i];
+    }
+  }
+  std::vector<std::size_t> series_q;  // spec.derived index of each r.derived entry
+  for (std::size_t q = 0; q < spec.derived.size(); ++q) {
+    if (spec.derived[q].series()) series_q.push_back(q);
+  }
+  for (std::size_t k = 0; k < r.steps(); ++k) {
+    set_row(spec, r, inputs, k, vars);
+    live.eval();
+    if (!hit) fixed.eval();
+    for (std::size_t s = 0; s < series_q.size(); ++s) {
+      const bool is_fixed = !(spec.derived[series_q[s]].e.uses & kStateSymbol);
+      if (!hit || !is_fixed) r.derived[s][k] = out[series_q[s]];
+    }
+  }
+  if (cache && !fixed.empty() && !hit) {
+    auto e = std::make_unique<DerivedCache::Entry>();
+    e->reads = std::move(reads);
+    for (std::size_t i : fixed_rows)
+      e->series.push_back(r.derived[i]);
+    std::lock_guard lock(cache->mu);
+    cache->entry = std::move(e);
+  }
+  series_metrics(spec, r);
   return Ok{};
 }
 

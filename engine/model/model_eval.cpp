@@ -328,30 +328,6 @@ Status ModelEval::check_dt(double dt, const std::string& where) {
   return check_at(dt, [&] { return where; });
 }
 
-Status ModelEval::check_intervals(const std::vector<double>& t, const std::string& source) {
-  // Each distinct interval once (a clock that jitters has about as many as rows: the set stops
-  // growing at 4096 and the rest are checked as they come).
-  constexpr std::size_t kSeen = 4096;
-  std::unordered_set<double> seen;
-  // Intervals met recently, direct-mapped by their bits: a clock of a few intervals (the
-  // helicopter log has 18, changing at 40 % of its rows) costs a multiply and a compare a row.
-  std::array<double, 64> recent;
-  recent.fill(std::numeric_limits<double>::quiet_NaN());
-  for (std::size_t k = 1; k < t.size(); ++k) {
-    const double dt = t[k] - t[k - 1];
-    double& slot = recent[std::bit_cast<std::uint64_t>(dt) * 0x9E3779B97F4A7C15ull >> 58];
-    if (dt == slot || !std::isfinite(dt)) continue;
-    slot = dt;
-    if (seen.count(dt)) continue;
-    auto st = check_at(
-        dt, [&] { return "the interval into step " + std::to_string(k) + " of " + source; });
-    if (!st) return st;
-    if (seen.size() < kSeen) seen.insert(dt);
-  }
-  intervals_checked_ = true;
-  return Ok{};
-}
-
 Status ModelEval::check_at(double dt, const std::function<std::string()>& where) {
   const auto at = [&] { return " at dt = " + number(dt) + " s (" + where() + ")"; };
   if (auto st = eval_dt(dt, false); !st) return Error{st.error() + at()};

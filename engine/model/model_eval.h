@@ -45,18 +45,21 @@ class ModelEval {
   void set_input_ages(const double* age);
   void set_state(const double* x);
   // Makes dt current: re-evaluates what depends on it when it differs from the last value.
-  // Fails (message without the step) when the discretisation fails or Q is not PSD there (not
-  // re-checked once check_intervals has passed).
+  // Fails (message without the step) when the discretisation fails or Q is not PSD there.
   Status set_dt(double dt) {
     if (dt == dt_) return Ok{};
-    return eval_dt(dt, !intervals_checked_);
+    return eval_dt(dt, true);
   }
   // A Q or R that depends on dt must be PSD at every interval a run meets. check_dt: at one dt
-  // (`where` names it, e.g. "sim.dt"); check_intervals: at each distinct interval of the times
-  // `t` of the data `source`. An Error (exit 2) names the file, the key and the dt. The process
-  // matrices evaluated join the cache.
+  // (`where` names it, e.g. "sim.dt"); set_dt_at: set_dt for the filter's interval into a row of
+  // a dataset, checked there (`where()` names it: "the interval into step 7 of log.csv"). An
+  // Error (exit 2: the model does not hold for the data) names the file, the key and the dt.
   Status check_dt(double dt, const std::string& where);
-  Status check_intervals(const std::vector<double>& t, const std::string& source);
+  template <class Where>
+  Status set_dt_at(double dt, const Where& where) {
+    if (dt == dt_) return Ok{};
+    return check_at(dt, where);
+  }
 
   // The process at the current symbols. step: entries of t and inputs (once per step);
   // f / f_jacobian / noise: what depends on states, at the state set by set_state: fx = f(x) (or
@@ -176,9 +179,8 @@ class ModelEval {
   int rk4_steps_ = 1;
   bool rk4_ = false;  // the continuous nonlinear form
   bool q_varies_ = false;
-  bool process_dt_ = false;         // the process matrices depend on dt
-  bool q_dt_ = false;               // Q depends on dt (and nothing later)
-  bool intervals_checked_ = false;  // check_intervals passed: set_dt need not check Q
+  bool process_dt_ = false;  // the process matrices depend on dt
+  bool q_dt_ = false;        // Q depends on dt (and nothing later)
 
   struct DtEntry {
     double dt;

@@ -253,6 +253,7 @@ Expected<std::shared_ptr<ModelResult>> run_model_filter(const ModelSpec& spec, c
   }
   if (d.rows() < 2) return Error{d.source + ": need at least two rows"};
   detail::Data data;
+  data.source = d.source;
   data.rows = d.rows();
   auto column = [&](const std::string& name,
                     const std::string& what) -> Expected<const std::vector<double>*> {
@@ -280,8 +281,8 @@ Expected<std::shared_ptr<ModelResult>> run_model_filter(const ModelSpec& spec, c
 
   auto ev = ModelEval::create(spec, values);
   if (!ev) return ev.err();
-  // A Q or R that depends on dt, at every interval of the data: refused before the run.
-  if (auto st = (*ev)->check_intervals(*data.t, d.source); !st) return st.err();
+  // A Q or R that depends on dt is checked at every interval of the data as the run meets it
+  // (ModelEval::set_dt_at, run_steps): an Error, exit 2, like a refusal before the run.
 
   auto r = std::make_shared<ModelResult>();
   const std::size_t rows = d.rows();
@@ -359,7 +360,8 @@ Expected<std::shared_ptr<ModelResult>> run_model_filter(const ModelSpec& spec, c
     }
   }
   // dt at the first row (for channel entries that use it): the first interval.
-  if (auto st = (*ev)->set_dt((*data.t)[1] - (*data.t)[0]); !st) return ctx.fail(0, st.error());
+  const auto first = [&] { return "the interval into step 1 of " + d.source; };
+  if (auto st = (*ev)->set_dt_at((*data.t)[1] - (*data.t)[0], first); !st) return st.err();
 
   Status st = Ok{};
   switch (n) {

@@ -28,6 +28,7 @@ using Dims = FilterDims<N, Eigen::Dynamic, kM>;
 
 // The dataset's columns for a run, by role.
 struct Data {
+  std::string source;  // the dataset's, for messages
   std::size_t rows = 0;
   const std::vector<double>* t = nullptr;
   std::vector<const std::vector<double>*> u;               // per input
@@ -285,7 +286,10 @@ Status run_steps(Context& ctx, Filter& f) {
   const auto& t = *ctx.data.t;
   for (std::size_t k = 0; k < ctx.data.rows; ++k) {
     if (k > 0) {
-      if (auto st = ev.set_dt(t[k] - t[k - 1]); !st) return ctx.fail(k, st.error());
+      const auto where = [&] {
+        return "the interval into step " + std::to_string(k) + " of " + ctx.data.source;
+      };
+      if (auto st = ev.set_dt_at(t[k] - t[k - 1], where); !st) return st;
       ev.set_time(t[k - 1]);
       ctx.set_inputs(t[k - 1]);
       ev.process_step();

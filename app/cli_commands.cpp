@@ -333,8 +333,11 @@ int cmd_scenario(const std::string& cmd, ScenarioCommandArgs a, std::ostream& ou
     std::string who;
     for (const auto& n : offering)
       who += (who.empty() ? "" : ", ") + n;
-    return fail(err, Error{"scenario '" + ws->scenario->name() + "' has no command '" + cmd +
-                           "' (offered by: " + who + ")"});
+    // A model file by the name it was given (every model scenario is called "model").
+    const std::string who_lacks =
+        ws->scenario->name() == "model" ? a.target.preset : ws->scenario->name();
+    return fail(
+        err, Error{"'" + who_lacks + "' has no command '" + cmd + "' (offered by: " + who + ")"});
   }
   auto d = load_dataset(*ws);
   if (!d) return fail(err, d.err());

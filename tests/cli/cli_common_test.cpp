@@ -340,8 +340,13 @@ std::pair<int, std::string> paused_run(const std::vector<std::string>& args, con
   bool seen = false;
   for (int i = 0; i < 1000 && !seen; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    for (const auto& e : fs::directory_iterator(target.parent_path())) {
-      if (!seen && e.path().filename().string().rfind(prefix, 0) == 0 && fs::file_size(e) > 0) {
+    // Error-code overloads: a temporary may vanish between the listing and its size (seen under
+    // the sanitizers, where the run is slow); it is then not the one looked for.
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(target.parent_path(), ec)) {
+      std::error_code size_ec;
+      const auto size = fs::file_size(e.path(), size_ec);
+      if (!seen && e.path().filename().string().rfind(prefix, 0) == 0 && !size_ec && size > 0) {
         seen = true;
         during(child, e.path());
       }
@@ -387,7 +392,8 @@ TEST_F(CliCommon, ScenarioCommandShorthand) {
   const Out o = cli("stats " + csv + " --set sim.duration=20", "2>/dev/null");
   EXPECT_EQ(o.code, 0) << o.text;
   EXPECT_TRUE(nlohmann::json::accept(o.text)) << o.text;
-  expect_invalid("stats helicopter", "has no command 'stats'");
+  expect_invalid("stats helicopter",
+                 "'helicopter' has no command 'stats' (offered by: underwater)");
 }
 
 }  // namespace

@@ -316,8 +316,9 @@ int cmd_scenario(const std::string& cmd, ScenarioCommandArgs a, std::ostream& ou
   const std::string first = a.target.preset;
   const bool csv = first.size() > 4 && (first.compare(first.size() - 4, 4, ".csv") == 0 ||
                                         first.compare(first.size() - 4, 4, ".CSV") == 0);
-  const std::vector<std::string> offering = offering_presets(cmd);
   if (csv && !a.data.file) {
+    // Loads every shipped preset: only for the shorthand and the "offered by" of a refusal.
+    const std::vector<std::string> offering = offering_presets(cmd);
     if (offering.size() != 1) {
       return fail(err, Error{cmd + " FILE.csv: " + std::to_string(offering.size()) +
                              " shipped presets offer '" + cmd + "'; name one (kfw-cli " + cmd +
@@ -331,7 +332,7 @@ int cmd_scenario(const std::string& cmd, ScenarioCommandArgs a, std::ostream& ou
   const auto cmds = ws->scenario->commands();
   if (std::find(cmds.begin(), cmds.end(), cmd) == cmds.end()) {
     std::string who;
-    for (const auto& n : offering)
+    for (const auto& n : offering_presets(cmd))
       who += (who.empty() ? "" : ", ") + n;
     // A model file by the name it was given (every model scenario is called "model").
     const std::string who_lacks =

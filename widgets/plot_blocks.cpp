@@ -167,7 +167,8 @@ void InnovationPlot::draw(const Frame& f) {
   setSeries(y_, *t_, *yv_, f.n);
   if (rejected_) {
     QVector<QCPGraphData> marks;
-    for (std::size_t k : rows_ ? *rows_ : std::vector<std::size_t>{}) {
+    for (std::size_t i = 0; rows_ && i < rows_->size(); ++i) {
+      const std::size_t k = (*rows_)[i];
       if (k >= f.n || k >= t_->size() || k >= yv_->size()) break;
       marks.append(QCPGraphData((*t_)[k], (*yv_)[k]));
     }

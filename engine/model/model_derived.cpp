@@ -132,7 +132,12 @@ Metrics DerivedScalars::eval(const ParamValues& values, double dt) {
 namespace {
 
 // What a run's derived series read besides the estimates: the parameters and dt (vars at those
-// slots), t, the truth columns, the inputs and the measurements, copied for DerivedCache.
+// slots), t, the truth columns, the inputs and the measurements. A run compares its own columns
+// in place (ReadsView); only a run that misses copies them into the cache (Reads).
+struct ReadsView {
+  std::vector<double> values;
+  std::vector<const std::vector<double>*> columns;
+};
 struct Reads {
   std::vector<double> values;
   std::vector<std::vector<double>> columns;
@@ -144,27 +149,37 @@ bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
          (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
 }
 
-bool same_reads(const Reads& a, const Reads& b) {
-  if (!same_bits(a.values, b.values) || a.columns.size() != b.columns.size()) return false;
-  for (std::size_t i = 0; i < a.columns.size(); ++i) {
-    if (!same_bits(a.columns[i], b.columns[i])) return false;
+bool same_reads(const Reads& kept, const ReadsView& now) {
+  if (!same_bits(kept.values, now.values) || kept.columns.size() != now.columns.size()) {
+    return false;
+  }
+  for (std::size_t i = 0; i < now.columns.size(); ++i) {
+    if (!same_bits(kept.columns[i], *now.columns[i])) return false;
   }
   return true;
 }
 
-Reads reads_of(const ModelSpec& spec, const std::vector<int>& slots,
-               const std::vector<double>& vars, const ModelResult& r,
-               const std::vector<const std::vector<double>*>& inputs) {
-  Reads k;
+Reads copy_of(const ReadsView& now) {
+  Reads k{now.values, {}};
+  for (const auto* c : now.columns)
+    k.columns.push_back(*c);
+  return k;
+}
+
+ReadsView reads_of(const ModelSpec& spec, const std::vector<int>& slots,
+                   const std::vector<double>& vars, const ModelResult& r,
+                   const std::vector<const std::vector<double>*>& inputs) {
+  static const std::vector<double> kNone;
+  ReadsView k;
   for (int slot : slots)  // the symbols the series name: parameters, dt (the rest are per row)
     k.values.push_back(vars[static_cast<std::size_t>(slot)]);
-  k.columns.push_back(r.t);
+  k.columns.push_back(&r.t);
   for (const auto& c : r.truth)
-    k.columns.push_back(c);
+    k.columns.push_back(&c);
   for (const auto* c : inputs)
-    k.columns.push_back(c ? *c : std::vector<double>{});
+    k.columns.push_back(c ? c : &kNone);
   for (std::size_t j = 0; j < spec.measured_slots.size() && j < r.z.size(); ++j) {
-    if (spec.measured_slots[j] >= 0) k.columns.push_back(r.z[j]);
+    if (spec.measured_slots[j] >= 0) k.columns.push_back(&r.z[j]);
   }
   return k;
 }
@@ -266,7 +281,7 @@ Status add_derived(const ModelSpec& spec, const ParamValues& values, const Datas
   for (std::size_t i = 0; i < spec.inputs.size(); ++i) {
     if (d.has(spec.inputs[i].name)) inputs[i] = &d.col(spec.inputs[i].name);
   }
-  Reads reads;
+  ReadsView reads;
   bool hit = false;
   if (cache && !fixed.empty()) {
     std::vector<int> slots;
@@ -283,22 +298,25 @@ Status add_derived(const ModelSpec& spec, const ParamValues& values, const Datas
         r.derived[fixed_rows[i]] = cache->entry->series[i];
     }
   }
-  std::vector<std::size_t> series_q;  // spec.derived index of each r.derived entry
+  // Per r.derived entry: its spec.derived index, and whether this run evaluates it.
+  std::vector<std::size_t> series_q;
+  std::vector<bool> evaluate;
   for (std::size_t q = 0; q < spec.derived.size(); ++q) {
-    if (spec.derived[q].series()) series_q.push_back(q);
+    if (!spec.derived[q].series()) continue;
+    series_q.push_back(q);
+    evaluate.push_back(!hit || (spec.derived[q].e.uses & kStateSymbol));
   }
   for (std::size_t k = 0; k < r.steps(); ++k) {
     set_row(spec, r, inputs, k, vars);
     live.eval();
     if (!hit) fixed.eval();
     for (std::size_t s = 0; s < series_q.size(); ++s) {
-      const bool is_fixed = !(spec.derived[series_q[s]].e.uses & kStateSymbol);
-      if (!hit || !is_fixed) r.derived[s][k] = out[series_q[s]];
+      if (evaluate[s]) r.derived[s][k] = out[series_q[s]];
     }
   }
   if (cache && !fixed.empty() && !hit) {
     auto e = std::make_unique<DerivedCache::Entry>();
-    e->reads = std::move(reads);
+    e->reads = copy_of(reads);
     for (std::size_t i : fixed_rows)
       e->series.push_back(r.derived[i]);
     std::lock_guard lock(cache->mu);

@@ -64,6 +64,9 @@ class ExportLook {
       text.replace('\n', ' ');
       t->setText(wrapText(text, t->font(), spec.layoutWidth() - 12));
     }
+    // The legend's columns for the figure's width.
+    legend_wrap_ = p_->legend ? p_->legend->wrap() : 0;
+    plot::fitLegend(p_, spec.layoutWidth());
   }
   ~ExportLook() {
     p_->setProperty(kExportingProperty, QVariant());
@@ -74,6 +77,10 @@ class ExportLook {
     for (const auto& [a, f] : ticks_)
       a->setTickLabelFont(f);
     setPlotLook(p_, before_);
+    if (p_->legend && p_->legend->wrap() != legend_wrap_) {
+      p_->legend->setWrap(legend_wrap_);
+      p_->legend->setFillOrder(p_->legend->fillOrder(), true);
+    }
     plot::setExportLook(p_, false);
     p_->replot(QCustomPlot::rpQueuedReplot);
   }
@@ -86,6 +93,7 @@ class ExportLook {
   std::vector<std::pair<QCPTextElement*, QString>> titles_;
   std::vector<std::pair<QCPAxis*, QFont>> ticks_;
   std::vector<std::pair<QSharedPointer<QCPAxisTicker>, int>> tick_counts_;
+  int legend_wrap_ = 0;
 };
 
 // The PDF's creation date: from SOURCE_DATE_EPOCH (reproducible builds), else none.

@@ -37,9 +37,7 @@ void removePlottables(std::initializer_list<QCPAbstractPlottable*> plottables) {
   }
 }
 
-namespace {
-// Wraps the legend into as many columns as the plot's width holds (entries fill rows first).
-void fitLegend(QCustomPlot* p) {
+void fitLegend(QCustomPlot* p, int width) {
   QCPLegend* l = p->legend;
   // Only the legend in makePlot's row (a view may have moved it beside the plot).
   if (!l || !l->visible() || l->layout() != p->plotLayout()) return;
@@ -48,14 +46,13 @@ void fitLegend(QCustomPlot* p) {
     if (QCPAbstractLegendItem* item = l->item(i))  // null: an empty cell of the grid
       widest = std::max(widest, item->minimumOuterSizeHint().width());
   }
-  const int room = std::max(1, p->width() - 16);
+  const int room = std::max(1, width - 16);
   const int cols = std::max(1, room / (widest + l->columnSpacing()));
   if (l->wrap() != cols || l->fillOrder() != QCPLayoutGrid::foColumnsFirst) {
     l->setWrap(cols);
     l->setFillOrder(QCPLayoutGrid::foColumnsFirst, true);
   }
 }
-}  // namespace
 
 QCustomPlot* makePlot(QWidget* parent, const QString& title, const QString& xLabel,
                       const QString& yLabel) {
@@ -98,7 +95,7 @@ QCustomPlot* makePlot(QWidget* parent, const QString& title, const QString& xLab
   p->plotLayout()->addElement(1, 0, p->legend);
   p->plotLayout()->setRowStretchFactor(1, 0.001);
   p->plotLayout()->setRowSpacing(0);
-  QObject::connect(p, &QCustomPlot::beforeReplot, p, [p] { fitLegend(p); });
+  QObject::connect(p, &QCustomPlot::beforeReplot, p, [p] { fitLegend(p, p->width()); });
   return p;
 }
 

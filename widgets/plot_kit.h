@@ -52,6 +52,10 @@ QCPGraph* addGraphRight(QCustomPlot* p, const QString& name, const QColor& c,
 // Exports draw antialiased, with vector dots; the screen draws without antialiasing and blits
 // dots (a slider drag redraws every plot). Switches a plot between the two looks.
 void setExportLook(QCustomPlot* p, bool exporting);
+// Wraps a makePlot legend (in its row under the title) into as many columns as `width` pixels
+// hold, entries filling rows first: before every replot at the plot's width, and by an export at
+// the figure's (a plot never drawn in the window has not been wrapped at all).
+void fitLegend(QCustomPlot* p, int width);
 // Log scale with decade ticks.
 void setLog(QCPAxis* axis);
 

@@ -184,5 +184,25 @@ TEST(PlotKit, ExportLookDrawsVectorDotsAndLeavesMarkersAlone) {
   EXPECT_TRUE(p.notAntialiasedElements().testFlag(QCP::aePlottables));
 }
 
+// A plot never drawn in the window (out of view, draw_batch.h) was exported with its legend in
+// one row: fifteen gain entries cut to "K[x, r". fitLegend wraps at any width it is given.
+TEST(PlotKit, LegendWrapsToTheWidthItIsGiven) {
+  QCustomPlot* p = plot::makePlot(nullptr, "gains", "time (s)", "gain (-)");
+  for (int i = 0; i < 15; ++i)
+    plot::addGraph(p, QString("K[x, range%1] (-)").arg(i), plot::color::cycle(i));
+  EXPECT_EQ(p->legend->wrap(), 0);  // never replotted: one row
+  int widest = 0;
+  for (int i = 0; i < p->legend->itemCount(); ++i)
+    widest = std::max(widest, p->legend->item(i)->minimumOuterSizeHint().width());
+  for (int width : {1200, 500}) {
+    plot::fitLegend(p, width);
+    const int cols = p->legend->wrap();
+    EXPECT_GE(cols, 1) << width;
+    EXPECT_LE(cols * widest, width) << width;  // every entry whole
+    EXPECT_GT((cols + 1) * (widest + p->legend->columnSpacing()), width - 16) << width;
+  }
+  delete p;
+}
+
 }  // namespace
 }  // namespace kfw

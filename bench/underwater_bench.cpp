@@ -3,6 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include "core/scenario.h"
+#include "document/preset.h"
 #include "scenarios/underwater/underwater_ekf.h"
 #include "scenarios/underwater/underwater_sim.h"
 #include "scenarios/underwater/underwater_stats.h"
@@ -62,5 +63,28 @@ void BM_SimulateAndRun3Min(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_SimulateAndRun3Min)->Unit(benchmark::kMillisecond);
+
+// The same run as presets/underwater.json (the model file that replaced the built-in, SC): what a
+// filter slider costs in the GUI before drawing; the built-in's BM_Ekf3Min/1 is the reference.
+void BM_ModelFileRun3Min(benchmark::State& state) {
+  auto p = kfw::load_preset(KFW_SOURCE_DIR "/presets/underwater.json");
+  if (!p) {
+    state.SkipWithError(p.error().c_str());
+    return;
+  }
+  const auto& sc = *p->instance;
+  auto d = sc.simulate(p->values);
+  if (!d) {
+    state.SkipWithError(d.error().c_str());
+    return;
+  }
+  for (auto _ : state) {
+    auto r = sc.run(*d, p->values);
+    if (!r) state.SkipWithError(r.error().c_str());
+    benchmark::DoNotOptimize(r);
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(d->rows()));
+}
+BENCHMARK(BM_ModelFileRun3Min)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -118,13 +118,29 @@ double min_eigenvalue(const MatX& M) {
 }
 
 bool is_psd(const MatX& M) {
-  if (!M.allFinite()) return false;
   if (M.size() == 0) return true;
+  // A diagonal matrix in one pass (a jittered clock checks Q = q² dt I at every row).
+  bool diagonal = true;
+  double lo = std::numeric_limits<double>::infinity(), scale = 0.0;
+  for (Eigen::Index j = 0; j < M.cols() && diagonal; ++j) {
+    for (Eigen::Index i = 0; i < M.rows(); ++i) {
+      const double v = M(i, j);
+      if (i == j) {
+        if (!std::isfinite(v)) return false;
+        lo = std::min(lo, v);
+        scale = std::max(scale, std::abs(v));
+      } else if (v != 0.0) {
+        diagonal = false;
+        break;
+      }
+    }
+  }
+  if (diagonal && M.rows() == M.cols()) return lo >= -1e-12 * scale;
+  if (!M.allFinite()) return false;
   if (!M.isApprox(M.transpose(), 1e-9) && (M - M.transpose()).cwiseAbs().maxCoeff() > 1e-300) {
     return false;
   }
-  const double scale = M.diagonal().cwiseAbs().maxCoeff();
-  return min_eigenvalue(M) >= -1e-12 * scale;
+  return min_eigenvalue(M) >= -1e-12 * M.diagonal().cwiseAbs().maxCoeff();
 }
 
 Status ModelEval::StepSubs::build(const Symbols& symbols, std::vector<double>& vars) {
@@ -249,6 +265,8 @@ Status ModelEval::bind(const ParamValues& values) {
     place_matrix(cs.H, ch.H, param, ch.dt, ch.step, &ch.H_state, &ch.subs.slots);
     place_matrix(cs.R, ch.R, param, ch.dt, ch.step, &ch.R_state, &ch.subs.slots);
     ch.R_varies = cs.R.dep() >= Dep::kStep;
+    ch.R_at_state = cs.R.dep() == Dep::kState;
+    ch.R_dt = cs.R.dep() == Dep::kDt;
     ch.every = cs.every;
     if (!cs.every_param.empty()) {
       const auto it = values.find(cs.every_param);
@@ -341,12 +359,12 @@ Status ModelEval::check_at(double dt, const std::function<std::string()>& where)
 
 const MatrixSpec* ModelEval::noise_not_psd(const MatX*& M) const {
   const ProcessSpec& pr = spec_.process;
-  if ((pr.form == ProcessForm::kContinuous || pr.Q.dep() == Dep::kDt) && !is_psd(Q)) {
+  if ((pr.form == ProcessForm::kContinuous || q_dt_) && !is_psd(Q)) {
     M = &Q;
     return pr.form == ProcessForm::kContinuous ? &pr.Qc : &pr.Q;
   }
   for (std::size_t c = 0; c < channels_.size(); ++c) {
-    if (spec_.channels[c].R.dep() == Dep::kDt && !is_psd(channels_[c].R)) {
+    if (channels_[c].R_dt && !is_psd(channels_[c].R)) {
       M = &channels_[c].R;
       return &spec_.channels[c].R;
     }

@@ -113,6 +113,8 @@ class ModelEval {
     double gate_nis = 0.0;    // reject when NIS exceeds this (0: no gate)
     double gate_sigma = 0.0;  // a distance gate d: gate_nis = d² (scalar channels)
     bool R_varies = false;    // R depends on t, inputs or states: checked where evaluated
+    bool R_at_state = false;  // R depends on states: evaluated at each linearisation
+    bool R_dt = false;        // R depends on dt (and nothing later): checked at each dt
     ExprGroup dt, step, h, H_state, R_state;
     StepSubs subs;
   };

@@ -97,23 +97,32 @@ std::vector<StateSeries> ModelResult::states() const {
 
 namespace {
 
-// errᵀ Ps⁻¹ err with fixed sizes (a position of 2 or 3 states: seed 004's NEES per row).
-template <int D>
-double nees_fixed(const detail::Dims<Eigen::Dynamic>::Meas& err,
-                  const detail::Dims<Eigen::Dynamic>::MeasCov& Ps) {
-  const Eigen::Matrix<double, D, D> P = Ps.topLeftCorner<D, D>();
-  const Eigen::Matrix<double, D, 1> e = err.head<D>();
-  Eigen::LLT<Eigen::Matrix<double, D, D>> llt(P);
-  if (llt.info() == Eigen::Success) return e.dot(llt.solve(e));
-  return kNoSample;
+// errᵀ Ps⁻¹ err for 2 or 3 states (seed 004's NEES of the position at every row), by an LDLᵀ
+// written out: NaN when a pivot is not positive, as the LLT fails. Eigen's fixed-size LLT and
+// solve cost ≈ 65 ns a row, 8 % of a run of seed 004's model file; this costs a tenth of that.
+double nees_small(const detail::Dims<Eigen::Dynamic>::Meas& e,
+                  const detail::Dims<Eigen::Dynamic>::MeasCov& P) {
+  const double d1 = P(0, 0);
+  if (!(d1 > 0.0)) return kNoSample;
+  const double l21 = P(1, 0) / d1;
+  const double d2 = P(1, 1) - l21 * P(1, 0);
+  if (!(d2 > 0.0)) return kNoSample;
+  const double w1 = e(0), w2 = e(1) - l21 * w1;
+  double sum = w1 * w1 / d1 + w2 * w2 / d2;
+  if (e.size() == 2) return sum;
+  const double l31 = P(2, 0) / d1;
+  const double l32 = (P(2, 1) - l31 * P(1, 0)) / d2;
+  const double d3 = P(2, 2) - l31 * P(2, 0) - l32 * l32 * d2;
+  if (!(d3 > 0.0)) return kNoSample;
+  const double w3 = e(2) - l31 * w1 - l32 * w2;
+  return sum + w3 * w3 / d3;
 }
 
 }  // namespace
 
 double detail::Context::nees(const detail::Dims<Eigen::Dynamic>::Meas& err,
                              const detail::Dims<Eigen::Dynamic>::MeasCov& Ps) {
-  if (err.size() == 2) return nees_fixed<2>(err, Ps);
-  if (err.size() == 3) return nees_fixed<3>(err, Ps);
+  if (err.size() == 2 || err.size() == 3) return nees_small(err, Ps);
   Eigen::LLT<detail::Dims<Eigen::Dynamic>::MeasCov> llt(Ps);
   if (llt.info() == Eigen::Success) return err.dot(llt.solve(err));
   return kNoSample;

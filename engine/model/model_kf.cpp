@@ -53,7 +53,7 @@ struct KalmanFilter {
     const ChannelSpec& cs = ctx.spec.channels[c];
     ModelEval& ev = ctx.ev;
     ModelEval::Channel& ch = ev.channel(c);
-    const bool r_state = cs.R.dep() == Dep::kState;
+    const bool r_state = ch.R_at_state;
     if (!cs.linear || r_state) ev.set_state(x.data());
     if (!cs.linear) {
       ev.channel_h(c);
@@ -89,7 +89,7 @@ struct KalmanFilter {
         ev.channel_h(c);
         ev.channel_jacobian(c);
       }
-      if (cs.R.dep() == Dep::kState) ev.channel_noise(c);
+      if (ev.channel(c).R_at_state) ev.channel_noise(c);
       if (ev.channel(c).R_varies) {
         if (auto st = ctx.check_channel_noise(c, k); !st) return st;
       }

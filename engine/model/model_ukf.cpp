@@ -65,7 +65,7 @@ struct UnscentedFilter {
     const ChannelSpec& cs = ctx.spec.channels[c];
     ModelEval& ev = ctx.ev;
     ModelEval::Channel& ch = ev.channel(c);
-    if (cs.R.dep() == Dep::kState) {
+    if (ch.R_at_state) {
       ev.set_state(x.data());
       ev.channel_noise(c);
     }

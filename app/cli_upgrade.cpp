@@ -8,6 +8,7 @@
 
 #include "cli_commands.h"
 #include "core/suggest.h"
+#include "data/input_file.h"
 #include "data/json_io.h"
 #include "data/output.h"
 #include "document/document.h"
@@ -27,26 +28,10 @@ struct Upgrade {
   std::string note;  // said either way ("a model file", "its preset is old too")
 };
 
-// The file's bytes. A missing file, a directory, a FIFO or a device is refused before it is
-// opened (opening a FIFO would wait for a writer).
+// The file's bytes, under the input policy (data/input_file.h): a directory, a FIFO or a device
+// is refused before it is read (reading a FIFO would wait for a writer).
 Expected<std::string> read_input(const std::string& path) {
-  std::error_code ec;
-  const fs::file_status st = fs::status(path, ec);
-  if (ec || !fs::exists(st)) return Error{path + ": no such file"};
-  if (fs::is_directory(st)) return Error{path + ": is a directory, not a preset or session"};
-  if (!fs::is_regular_file(st)) {
-    return Error{path + ": not a regular file (a FIFO, socket or device), not a preset or session"};
-  }
-  const auto size = fs::file_size(path, ec);
-  if (!ec && size > kMaxJsonBytes) {
-    return Error{path + ": " + std::to_string(size) + " bytes: larger than the " +
-                 std::to_string(kMaxJsonBytes / (1024 * 1024)) + " MB limit for a JSON file"};
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path + ": cannot open"};
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
+  return read_input_file(path, limits::Input::kPreset);
 }
 
 std::string joined(const std::vector<std::string>& keys) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/suggest.h"
+#include "data/input_file.h"
 
 namespace kfw {
 
@@ -219,21 +220,16 @@ class OrderedBuilder final : public nlohmann::json_sax<nlohmann::ordered_json> {
   }
 };
 
+limits::Input json_kind(std::string_view what) {
+  if (what == "session") return limits::Input::kSession;
+  if (what == "mapping") return limits::Input::kMapping;
+  if (what == "part") return limits::Input::kPart;
+  if (what == "model") return limits::Input::kModel;
+  return limits::Input::kPreset;
+}
+
 Expected<std::string> read_json_text(const std::string& path, const char* what) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    return Error{path + ": is a directory, not a " + std::string(what) + " file"};
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path + ": cannot open " + std::string(what)};
-  const auto size = std::filesystem::file_size(path, ec);
-  if (!ec && size > kMaxJsonBytes) {
-    return Error{path + ": " + std::to_string(size) + " bytes: larger than the " +
-                 std::to_string(kMaxJsonBytes / (1024 * 1024)) + " MB limit for a JSON file"};
-  }
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
+  return read_input_file(path, json_kind(what));
 }
 
 }  // namespace

@@ -9,16 +9,18 @@
 #include <string_view>
 
 #include "core/expected.h"
+#include "core/limits.h"
 
 namespace kfw {
 
-inline constexpr std::size_t kMaxJsonBytes = 10u * 1024u * 1024u;
+inline constexpr std::size_t kMaxJsonBytes = limits::kJsonBytes;
 inline constexpr std::size_t kMaxJsonDepth = 256;
 
 // Parses `text` (from `path`). Errors: invalid syntax, a number that overflows a double, a file
 // over 10 MB, nesting deeper than 256 — each with line:column and the key path where known.
 Expected<nlohmann::json> parse_json_document(const std::string& text, const std::string& path);
-// Reads a file (refusing directories and files over 10 MB) and parses it.
+// Reads a file under the input policy (data/input_file.h: regular files only, 10 MB) and parses
+// it. `what` names the kind in messages: "preset", "model", "mapping", "session", "part".
 Expected<nlohmann::json> read_json_document(const std::string& path, const char* what);
 // The same, every object's keys kept in the file's order (a model file's parameters are listed,
 // and its sliders laid out, in the order the file declares them).

@@ -1,4 +1,5 @@
 // The hand-written reader behind every CSV kfw opens (docs/architecture.md says why no library):
+
 // one pass over the file's bytes, fields split with memchr, numbers read with fast_float.
 #include "data/table.h"
 
@@ -16,6 +17,7 @@
 #include "core/dataset.h"
 #include "core/suggest.h"
 #include "data/csv.h"
+#include "data/input_file.h"
 
 namespace kfw {
 
@@ -424,28 +426,7 @@ Expected<Table> parse_table(std::string text, const std::string& source, const T
 }
 
 Expected<std::string> read_file_bytes(const std::string& path, std::size_t max_line) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    return Error{path + ": is a directory, not a CSV file"};
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) return Error{path + ": cannot open file"};
-  std::string text;
-  const auto size = std::filesystem::file_size(path, ec);
-  if (!ec) text.reserve(static_cast<std::size_t>(size));
-  char buf[1 << 16];
-  std::size_t n = 0, since_newline = 0;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) {
-    text.append(buf, n);
-    if (!max_line) continue;
-    const void* nl = ::memrchr(buf, '\n', n);
-    since_newline = nl ? n - static_cast<std::size_t>(static_cast<const char*>(nl) - buf) - 1
-                       : since_newline + n;
-    if (since_newline > max_line) break;  // the text ends inside a line the parser refuses
-  }
-  const bool bad = std::ferror(f) != 0;
-  std::fclose(f);
-  if (bad) return Error{path + ": read error"};
-  return text;
+  return read_input_file(path, limits::Input::kData, max_line);
 }
 
 Expected<Table> read_table(const std::string& path, const TableOptions& opt) {

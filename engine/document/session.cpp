@@ -1,6 +1,9 @@
 #include "document/session.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
@@ -9,6 +12,7 @@
 
 #include "core/suggest.h"
 #include "data/csv.h"
+#include "data/input_file.h"
 #include "data/json_io.h"
 
 namespace kfw {
@@ -210,16 +214,19 @@ Status save_session(const std::string& path, const Session& s) {
 }
 
 Expected<std::string> file_hash(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path + ": cannot open file"};
+  auto fd = open_input_file(path, limits::Input::kData);
+  if (!fd) return fd.err();
   std::uint64_t h = 1469598103934665603ull;
   char buf[65536];
-  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
-    for (std::streamsize i = 0; i < in.gcount(); ++i) {
+  ssize_t n = 0;
+  while ((n = ::read(*fd, buf, sizeof buf)) > 0 || (n < 0 && errno == EINTR)) {
+    for (ssize_t i = 0; i < n; ++i) {
       h ^= static_cast<unsigned char>(buf[i]);
       h *= 1099511628211ull;
     }
   }
+  ::close(*fd);
+  if (n < 0) return Error{path + ": read error"};
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
   return std::string(hex);

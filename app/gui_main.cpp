@@ -6,6 +6,7 @@
 #include <QRegularExpression>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
 
 #include <sys/stat.h>
@@ -55,6 +56,18 @@ void quiet_platform_notices(QtMsgType type, const QMessageLogContext& ctx, const
   } else {
     std::fprintf(stderr, "%s\n", qPrintable(msg));
   }
+}
+
+// The interactive window needs a display; Qt aborts without one (SIGABRT, a core dump). Say so in
+// one line first, with the headless ways to run.
+bool display_missing() {
+  const QByteArray platform = qgetenv("QT_QPA_PLATFORM");
+  const bool x11 = qEnvironmentVariableIsEmpty("DISPLAY");
+  const bool wayland = qEnvironmentVariableIsEmpty("WAYLAND_DISPLAY");
+  if (platform.isEmpty()) return x11 && wayland;
+  if (platform.startsWith("xcb")) return x11;
+  if (platform.startsWith("wayland")) return wayland;
+  return false;  // offscreen, minimal, eglfs, vnc: no display server needed
 }
 
 int fail(const kfw::Error& e) {
@@ -133,6 +146,11 @@ int main(int argc, char** argv) {
   if (offscreen || (headless && qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM"))) {
     qputenv("QT_QPA_PLATFORM", "offscreen");
   }
+  if (!headless && display_missing()) {
+    return fail(kfw::Error{
+        "no display to open the window on (DISPLAY is not set); run headless with --export DIR "
+        "or --screenshot FILE, or set QT_QPA_PLATFORM=offscreen"});
+  }
   ensure_runtime_dir();
   if (offscreen) {
     g_previous = qInstallMessageHandler(quiet_platform_notices);
@@ -144,6 +162,9 @@ int main(int argc, char** argv) {
   QApplication::setApplicationName("kfw");
   QApplication::setApplicationVersion(KFW_VERSION);  // Help → About reads it
   QApplication::setFont(QFont("DejaVu Sans", 9));
+  if (opt->screenshot) {  // checked before any work, as every output path is
+    if (auto st = kfw::checkScreenshotPath(*opt->screenshot); !st) return fail(st.err());
+  }
 
   kfw::MainWindow w;
   auto loaded = w.loadPreset(opt->preset, opt->data, opt->sets);
@@ -156,13 +177,29 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "kfw: %s\n", kfw::one_line(st.error()).c_str());
     return st.exit_code();
   }
+  // A session applies to the headless modes as to the window (its values, data and view).
+  if (opt->session && headless) {
+    if (auto st = w.loadSession(*opt->session); !st) return fail(st.err());
+  }
+  // A run that broke down or was refused: the headless modes exit as kfw-cli does for the same
+  // input (2 refused, 1 broke down), with its message.
+  const auto run_failed = [&w]() -> std::optional<kfw::Error> {
+    if (!w.waitForRun()) return kfw::failure("the run did not finish");
+    if (const int code = w.lastRunExitCode(); code != 0 || !w.result()) {
+      const std::string why =
+          w.lastError().isEmpty() ? "the run failed" : w.lastError().toStdString();
+      return kfw::Error{why, code != 0 ? code : kfw::kExitFailed};
+    }
+    return std::nullopt;
+  };
   if (opt->list_plots) {
-    if (!w.waitForRun() || !w.result()) return fail(kfw::failure("the run did not finish"));
+    if (auto e = run_failed()) return fail(*e);
     for (const QString& n : w.plotNames())
       std::printf("%s\n", qPrintable(n));
     return 0;
   }
   if (opt->export_dir) {
+    if (auto e = run_failed()) return fail(*e);
     auto files = w.exportAll(*opt->export_dir, *formats, *spec, opt->plots);
     if (!files) return fail(files.err());
     for (const auto& f : *files)
@@ -177,15 +214,10 @@ int main(int argc, char** argv) {
     w.resize(*shot_size);
     if (opt->present) w.setPresentation(true);
     w.show();
-    if (!w.waitForRun()) {
-      std::fprintf(stderr, "kfw: the run did not finish\n");
-      return 1;
-    }
+    if (auto e = run_failed()) return fail(*e);
     QApplication::processEvents();
-    if (!w.grab().save(*opt->screenshot)) {
-      std::fprintf(stderr, "kfw: %s: cannot write the screenshot\n", qPrintable(*opt->screenshot));
-      return 1;
-    }
+    if (auto st = kfw::saveScreenshot(w.grab().toImage(), *opt->screenshot); !st)
+      return fail(st.err());
     std::printf("%s\n", qPrintable(*opt->screenshot));
     return 0;
   }

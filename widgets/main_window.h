@@ -178,6 +178,8 @@ class MainWindow : public QMainWindow {
   std::string primaryParameter() const;
   // Request → plots replotted, for the last run, ms.
   double lastLatencyMs() const { return runs_->lastLatencyMs(); }
+  // The last settled run's exit code (0 ran; 2 refused; 1 broke down), as kfw-cli's.
+  int lastRunExitCode() const { return runs_->lastExitCode(); }
   // The metrics table (metrics_panel.h).
   MetricsPanel* metricsPanel() const { return metrics_; }
   // The metric shown first in the table (the last tuning's objective); "" for the default.

@@ -8,6 +8,7 @@
 #include <QFileInfo>
 #include <QFontMetricsF>
 #include <QImage>
+#include <QImageWriter>
 #include <QPageSize>
 #include <QPdfWriter>
 #include <QRegularExpression>
@@ -297,6 +298,38 @@ Status exportPlot(QCustomPlot* plot, const QString& path, const ExportSpec& spec
   auto bytes = renderPlot(plot, QFileInfo(path).suffix().toLower(), spec);
   if (!bytes) return Error{path.toStdString() + ": " + bytes.error(), bytes.err().exit_code};
   return write_file_atomic(path.toStdString(), bytes->toStdString());
+}
+
+namespace {
+
+QByteArray imageFormat(const QString& path) {
+  const QByteArray suffix = QFileInfo(path).suffix().toLower().toLatin1();
+  return QImageWriter::supportedImageFormats().contains(suffix) ? suffix : QByteArray();
+}
+
+}  // namespace
+
+Status checkScreenshotPath(const QString& path) {
+  if (imageFormat(path).isEmpty()) {
+    return Error{"--screenshot: " + truncate_token(path.toStdString()) +
+                 ": not an image name Qt writes (end it in .png, .jpg or .bmp)"};
+  }
+  OutputSet out;
+  return out.add(path.toStdString(), "--screenshot");
+}
+
+Status saveScreenshot(const QImage& image, const QString& path) {
+  if (auto st = checkScreenshotPath(path); !st) return st;
+  QByteArray bytes;
+  QBuffer buffer(&bytes);
+  buffer.open(QIODevice::WriteOnly);
+  if (image.isNull() || !image.save(&buffer, imageFormat(path).constData())) {
+    return failure(truncate_token(path.toStdString()) + ": cannot encode the screenshot");
+  }
+  OutputSet out;
+  if (auto st = out.add(path.toStdString(), "--screenshot"); !st) return st;
+  if (auto st = out.stage(path.toStdString(), bytes.toStdString()); !st) return st;
+  return out.commit();
 }
 
 Expected<QStringList> parseFormats(const QString& list) {

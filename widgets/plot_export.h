@@ -7,6 +7,7 @@
 #pragma once
 
 #include <QByteArray>
+#include <QImage>
 #include <QList>
 #include <QString>
 #include <QStringList>
@@ -60,6 +61,12 @@ Expected<QStringList> exportItems(const QList<ExportItem>& items, const QString&
                                   const ExportSpec& spec = {});
 // Parses "png,pdf,svg"; the message names an unknown format.
 Expected<QStringList> parseFormats(const QString& list);
+
+// kfw --screenshot: the path checked before the run as every output is (data/output.h: not a
+// directory, device or input; its folder writable) and its suffix a format Qt writes (png, jpg,
+// bmp, …), exit 2; then the image written through the one atomic writer (old or new file).
+Status checkScreenshotPath(const QString& path);
+Status saveScreenshot(const QImage& image, const QString& path);
 // The items whose name is one of `wanted` (or "wanted.<anything>": consistency_nis selects every
 // channel's). An unknown name is an Error (exit 2) with the nearest known name.
 Expected<QList<ExportItem>> selectItems(const QList<ExportItem>& items, const QStringList& wanted);

@@ -25,6 +25,7 @@ struct RunController::Outcome {
   bool simulated = false;
   std::shared_ptr<const RunResult> result;
   std::string error;
+  int exit_code = 0;  // the failed run's (core/expected.h: 2 refused, 1 broke down)
   double ms = 0.0;
 };
 
@@ -102,6 +103,7 @@ void RunController::start(const ParamValues& values) {
           out->simulated = true;
         } else {
           out->error = sim.error();
+          out->exit_code = sim.exit_code();
         }
       }
     }
@@ -114,6 +116,7 @@ void RunController::start(const ParamValues& values) {
         out->result = *r;
       } else {
         out->error = r.error();
+        out->exit_code = r.exit_code();
       }
     }
     out->ms =
@@ -134,6 +137,7 @@ void RunController::onDone(const std::shared_ptr<Outcome>& out) {
       sim_cache_ = out->dataset;
       sim_key_ = out->sim_key;
     }
+    last_exit_code_ = out->result ? 0 : out->exit_code;
     if (out->result) {
       last_dataset_ = out->dataset;
       result_ = out->result;

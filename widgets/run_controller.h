@@ -56,6 +56,9 @@ class RunController : public QObject {
   // has drawn it. The latency is request → drawn, of the last settled run.
   bool settled() const { return settled_; }
   double lastLatencyMs() const { return last_latency_ms_; }
+  // The exit code of the last settled request: 0 when it ran, else its Error's (2: refused
+  // before any work, 1: the run broke down) — what kfw-cli exits with for the same input.
+  int lastExitCode() const { return last_exit_code_; }
   double sinceRequestMs() const { return static_cast<double>(since_request_.nsecsElapsed()) / 1e6; }
   // Background drawing that waitSettled() also waits for (the view's gain curve); it signals
   // drawingFinished() when done.
@@ -107,6 +110,7 @@ class RunController : public QObject {
   std::optional<ParamValues> pending_;
   bool busy_ = false;
   double last_wall_ms_ = 0.0;
+  int last_exit_code_ = 0;
   std::uint64_t generation_ = 0;
   std::shared_ptr<std::atomic<bool>> cancel_;
   bool settled_ = true;

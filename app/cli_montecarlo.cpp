@@ -53,6 +53,11 @@ Status merge_montecarlo(const std::vector<nlohmann::json>& docs, const MergeArgs
   }
   auto merged = merge_montecarlo_parts(parts, a.parts);
   if (!merged) return merged.err();
+  // --out: the merged part itself (one shard of all the seeds), mergeable again.
+  if (a.output.out) {
+    if (auto st = outs.add(*a.output.out, "--out"); !st) return st;
+    if (auto st = outs.stage(*a.output.out, part_to_json(*merged).dump(2) + "\n"); !st) return st;
+  }
   const MonteCarloSummary s = summarize_monte_carlo(*merged);
   if (auto st = require_completed(s); !st) return st;
   return report(s, a.output.metrics, a.table, outs, out, err);
@@ -168,7 +173,11 @@ int cmd_merge(const MergeArgs& a, std::ostream& out, std::ostream& err) {
   for (const auto& path : a.parts) {
     auto doc = read_json_document(path, "part");
     if (!doc) return fail(err, doc.err());
-    const std::string k = doc->is_object() ? doc->value("kind", std::string()) : std::string();
+    const auto kv = doc->is_object() ? doc->find("kind") : doc->end();
+    if (doc->is_object() && kv != doc->end() && !kv->is_string()) {
+      return fail(err, Error{path + ": kind: expected a string, found " + json_type_name(*kv)});
+    }
+    const std::string k = doc->is_object() && kv != doc->end() ? kv->get<std::string>() : "";
     if (!merge_handlers().count(k)) {
       return fail(err,
                   Error{path + ": kind: " +

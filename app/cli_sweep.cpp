@@ -13,6 +13,7 @@
 #include "core/metrics.h"
 #include "core/suggest.h"
 #include "data/csv.h"
+#include "data/json_check.h"
 #include "experiment/grammar.h"
 #include "experiment/monte_carlo.h"
 #include "experiment/sweep.h"
@@ -215,12 +216,92 @@ int cmd_sweep(const SweepArgs& a, std::ostream& out, std::ostream& err) {
 
 namespace {
 
+namespace jc = json_check;
+
+Status check_axis(const Doc& a, const std::string& where) {
+  if (auto st = jc::object(a, where); !st) return st;
+  if (auto st = jc::member(a, where, "key", jc::string); !st) return st;
+  for (const char* k : {"lo", "hi"}) {
+    if (auto st = jc::member(a, where, k,
+                             [](const Doc& v, const std::string& w) { return jc::finite(v, w); });
+        !st)
+      return st;
+  }
+  if (auto st = jc::member(a, where, "n",
+                           [](const Doc& v, const std::string& w) {
+                             return jc::integer(v, w, 1, static_cast<double>(kMaxGridPoints));
+                           });
+      !st)
+    return st;
+  return jc::member(a, where, "log", jc::boolean);
+}
+
+// A sweep part against its schema (what sweep_document writes), before any value is read: a
+// corrupted point is refused naming the file and key, never copied into the merged --out.
+Status check_sweep_part(const Doc& j, const std::string& where) {
+  if (auto st = jc::member(j, where, "version",
+                           [](const Doc& v, const std::string& w) {
+                             return jc::integer(v, w, kSweepPartVersion, kSweepPartVersion);
+                           });
+      !st)
+    return st;
+  for (const char* k : {"scenario", "metric", "direction"}) {
+    if (auto st = jc::member(j, where, k, jc::string); !st) return st;
+  }
+  const auto finite = [](const Doc& v, const std::string& w) { return jc::finite(v, w); };
+  if (auto st = jc::member(j, where, "target", finite, true); !st) return st;
+  if (auto st = jc::member(j, where, "axes", jc::each_of(check_axis)); !st) return st;
+  const auto base = [](const Doc& v, const std::string& w) { return jc::number_map(v, w); };
+  if (auto st = jc::member(j, where, "base", base); !st) return st;
+  const auto positive = [](const Doc& v, const std::string& w) { return jc::integer(v, w, 1); };
+  if (auto st = jc::member(j, where, "shard",
+                           [&](const Doc& v, const std::string& w) -> Status {
+                             if (auto st2 = jc::object(v, w); !st2) return st2;
+                             if (auto st2 = jc::member(v, w, "index", positive); !st2) return st2;
+                             return jc::member(v, w, "count", positive);
+                           });
+      !st)
+    return st;
+  const auto points = [](const Doc& v, const std::string& w) {
+    return jc::integer(v, w, 0, static_cast<double>(kMaxGridPoints));
+  };
+  if (auto st = jc::member(j, where, "total_points", points); !st) return st;
+  const double total = j.at("total_points").get<double>();
+  const std::size_t dims = j.at("axes").size();
+  const auto point = [&](const Doc& p, const std::string& w) -> Status {
+    if (auto st2 = jc::object(p, w); !st2) return st2;
+    if (auto st2 = jc::member(
+            p, w, "index",
+            [&](const Doc& v, const std::string& w2) { return jc::integer(v, w2, 0, total - 1); });
+        !st2)
+      return st2;
+    if (auto st2 =
+            jc::member(p, w, "at",
+                       [](const Doc& v, const std::string& w2) { return jc::finite_array(v, w2); });
+        !st2)
+      return st2;
+    if (p.at("at").size() != dims) {
+      return Error{jc::at(w, "at") + ": " + std::to_string(p.at("at").size()) +
+                   " coordinates for " + std::to_string(dims) + " axes"};
+    }
+    if (p.contains("error")) return jc::member(p, w, "error", jc::string);
+    const auto value = [](const Doc& v, const std::string& w2) -> Status {
+      return v.is_null() ? Status(Ok{}) : jc::finite(v, w2);
+    };
+    return jc::member(p, w, "value", value, true);
+  };
+  return jc::member(j, where, "points", jc::each_of(point));
+}
+
 // Merges the parts of a sharded sweep: the same grid, metric and base values, every shard once.
 Status merge_sweep_impl(const std::vector<nlohmann::json>& parts, const MergeArgs& a,
                         OutputSet& outs, std::ostream& out, std::ostream& err) {
   const std::vector<std::string>& paths = a.parts;
   if (a.output.out) {
     if (auto st = outs.add(*a.output.out, "--out"); !st) return st;
+  }
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    if (auto st = check_sweep_part(parts[i], paths[i]); !st) return st;
   }
   const Doc& first = parts.front();
   const auto count = first.at("shard").at("count").get<std::size_t>();
@@ -282,7 +363,7 @@ Status merge_sweep_parts(const std::vector<nlohmann::json>& parts, const MergeAr
   try {
     return merge_sweep_impl(parts, a, outs, out, err);
   } catch (const nlohmann::json::exception& e) {
-    // A part edited by hand: a key missing or of the wrong type.
+    // Past the schema (check_sweep_part): a bug, not the part; still no abort.
     return Error{"merge: a part is malformed (" + std::string(e.what()) + ")"};
   }
 }

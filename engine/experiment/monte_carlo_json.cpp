@@ -5,6 +5,8 @@
 #include <set>
 #include <sstream>
 
+#include "data/json_check.h"
+#include "data/json_io.h"
 #include "experiment/monte_carlo.h"
 
 namespace kfw {
@@ -96,14 +98,87 @@ nlohmann::ordered_json part_to_json(const MonteCarloPart& p) {
   return j;
 }
 
+namespace {
+
+namespace jc = json_check;
+
+// Per-step sums (NEES, NIS, error, variance): counts ≥ 0, sums finite, sums of squares ≥ 0.
+Status check_sums(const Json& j, const std::string& where) {
+  if (auto st = jc::object(j, where); !st) return st;
+  if (auto st = jc::member(j, where, "name", jc::string); !st) return st;
+  if (auto st = jc::member(j, where, "label", jc::string, true); !st) return st;
+  const auto positive = [](const Json& v, const std::string& w) {
+    return jc::finite(v, w, 1e-300);
+  };
+  if (auto st = jc::member(j, where, "dof", positive); !st) return st;
+  const auto any = [](const Json& v, const std::string& w) { return jc::finite_array(v, w); };
+  const auto squares = [](const Json& v, const std::string& w) {
+    return jc::finite_array(v, w, 0.0);
+  };
+  if (auto st = jc::member(j, where, "sum", any); !st) return st;
+  if (auto st = jc::member(j, where, "sum_sq", squares); !st) return st;
+  return jc::member(j, where, "count", jc::count_array);
+}
+
+// A run's metric: finite, and small enough that its square sums without overflow.
+Status check_metrics(const Json& j, const std::string& where) {
+  if (auto st = jc::number_map(j, where); !st) return st;
+  for (const auto& [k, v] : j.items()) {
+    if (std::abs(v.get<double>()) > 1e150) {
+      return Error{jc::at(where, k) + ": " + v.dump() +
+                   " is too large to average (|value| > 1e150)"};
+    }
+  }
+  return Ok{};
+}
+
+Status check_seed(const Json& v, const std::string& where) {
+  return jc::integer(v, where, 0.0, 1e15);
+}
+
+Status check_run(const Json& r, const std::string& where) {
+  if (auto st = jc::object(r, where); !st) return st;
+  if (auto st = jc::member(r, where, "seed", check_seed); !st) return st;
+  if (r.contains("error")) return jc::member(r, where, "error", jc::string);
+  if (auto st = jc::member(r, where, "metrics", check_metrics); !st) return st;
+  if (auto st = jc::member(r, where, "undefined", jc::string_map, true); !st) return st;
+  return jc::member(r, where, "warnings", jc::each_of(jc::string), true);
+}
+
+Status check_version(const Json& v, const std::string& where) {
+  return jc::integer(v, where, kMonteCarloPartVersion, kMonteCarloPartVersion);
+}
+
+// The whole part against its schema (what part_to_json writes), before any value is read.
+Status check_part(const Json& j, const std::string& where) {
+  if (auto st = jc::object(j, where); !st) return st;
+  if (auto st = jc::member(j, where, "version", check_version); !st) return st;
+  for (const char* key : {"scenario", "shard"}) {
+    if (auto st = jc::member(j, where, key, jc::string); !st) return st;
+  }
+  if (auto st = jc::member(j, where, "source", jc::string, true); !st) return st;
+  if (auto st = jc::member(j, where, "seeds", jc::each_of(check_seed)); !st) return st;
+  if (auto st = jc::member(j, where, "t", jc::increasing_array); !st) return st;
+  if (auto st = jc::member(j, where, "runs", jc::each_of(check_run)); !st) return st;
+  if (auto n = j.find("nees"); n != j.end() && !n->is_null()) {
+    if (auto st = check_sums(*n, jc::at(where, "nees")); !st) return st;
+  }
+  for (const char* key : {"error", "variance"}) {
+    if (auto st = jc::member(j, where, key, check_sums, true); !st) return st;
+  }
+  if (auto st = jc::member(j, where, "error_unit", jc::string, true); !st) return st;
+  return jc::member(j, where, "nis", jc::each_of(check_sums), true);
+}
+
+}  // namespace
+
 Expected<MonteCarloPart> part_from_json(const nlohmann::json& j, const std::string& where) {
   if (!j.is_object()) return Error{where + ": a Monte Carlo part must be a JSON object"};
-  if (j.value("kind", std::string()) != kMonteCarloKind) {
+  const auto kind = j.find("kind");
+  if (kind == j.end() || !kind->is_string() || *kind != kMonteCarloKind) {
     return Error{where + ": kind: expected \"" + std::string(kMonteCarloKind) + "\""};
   }
-  if (j.value("version", 0) != kMonteCarloPartVersion) {
-    return Error{where + ": version: expected " + std::to_string(kMonteCarloPartVersion)};
-  }
+  if (auto st = check_part(j, where); !st) return st.err();
   MonteCarloPart p;
   try {
     p.scenario = j.at("scenario").get<std::string>();

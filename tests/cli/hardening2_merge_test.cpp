@@ -1,0 +1,137 @@
+// Hardening round 2 (issue 29): `merge` validates every Monte Carlo part against its schema
+// before combining — a type-confused node is refused with the file and the JSON path (before:
+// SIGABRT on an uncaught type error, or a silent merge of negative counts, a seed of `true`, a
+// time axis that does not increase, or a 1e308 metric that averaged to null) — and honours
+// --out with the merged part, which merges again.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <tuple>
+#include <vector>
+
+#include "common/cli_runner.h"
+
+namespace kfw {
+namespace {
+
+using nlohmann::json;
+using testing::cli;
+
+const std::string kMergeCv1d = std::string(KFW_SOURCE_DIR) + "/presets/models/cv1d.json";
+
+class MergeSchema : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char tmpl[] = "/tmp/kfwmgXXXXXX";
+    ASSERT_NE(::mkdtemp(tmpl), nullptr);
+    dir_ = tmpl;
+    for (int s : {1, 2}) {
+      auto r = cli("run " + kMergeCv1d + " --seeds 1..4 --shard " + std::to_string(s) +
+                   "/2 --set sim.duration=3 --out " + part(s));
+      ASSERT_EQ(r.code, 0) << r.text;
+    }
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string part(int s) const { return dir_ + "/c" + std::to_string(s) + ".json"; }
+  json second() const {
+    std::ifstream in(part(2));
+    return json::parse(in);
+  }
+  // Part 2 edited by `edit`, merged with part 1: exit 2 naming the file and `key`.
+  void refused(const std::string& name, const std::function<void(json&)>& edit,
+               const std::string& key) {
+    json j = second();
+    edit(j);
+    const std::string p = dir_ + "/" + name + ".json";
+    std::ofstream(p) << j.dump();
+    auto r = cli("merge " + part(1) + " " + p);
+    EXPECT_EQ(r.code, 2) << name << ": " << r.text;
+    EXPECT_NE(r.text.find(p + ": " + key), std::string::npos) << name << ": " << r.text;
+  }
+  std::string dir_;
+};
+
+TEST_F(MergeSchema, TypeConfusedNodesAreRefusedNamingTheFileAndKey) {
+  refused(
+      "version_null", [](json& j) { j["version"] = nullptr; }, "version");
+  refused(
+      "version_text", [](json& j) { j["version"] = ""; }, "version");
+  refused(
+      "kind_number", [](json& j) { j["kind"] = 0; }, "kind");
+  refused(
+      "unit_number", [](json& j) { j["error_unit"] = 2.5; }, "error_unit");
+  refused(
+      "seed_true", [](json& j) { j["runs"][0]["seed"] = true; }, "runs[0].seed");
+  refused(
+      "seed_huge", [](json& j) { j["seeds"][0] = 1e308; }, "seeds[0]");
+  refused(
+      "metric_text", [](json& j) { j["runs"][0]["metrics"]["rmse"] = "x"; },
+      "runs[0].metrics.rmse");
+}
+
+TEST_F(MergeSchema, InconsistentStatisticsAreRefused) {
+  refused(
+      "negative_count", [](json& j) { j["nis"][0]["count"][2] = -1; }, "nis[0].count[2]");
+  refused(
+      "fractional_count", [](json& j) { j["nis"][0]["count"][2] = 1.5; }, "nis[0].count[2]");
+  refused(
+      "negative_squares", [](json& j) { j["nis"][0]["sum_sq"][2] = -4.0; }, "nis[0].sum_sq[2]");
+  refused(
+      "time_back", [](json& j) { j["t"][3] = j["t"][2]; }, "t[3]");
+  refused(
+      "huge_metric", [](json& j) { j["runs"][0]["metrics"]["rmse"] = 1e308; },
+      "runs[0].metrics.rmse");
+}
+
+TEST_F(MergeSchema, OutWritesTheMergedPartWhichMergesAgain) {
+  const std::string all = dir_ + "/all.json";
+  auto r = cli("merge " + part(1) + " " + part(2) + " --out " + all, "2>/dev/null");
+  ASSERT_EQ(r.code, 0) << r.text;
+  ASSERT_TRUE(std::filesystem::exists(all));
+  auto again = cli("merge " + all, "2>/dev/null");
+  ASSERT_EQ(again.code, 0) << again.text;
+  EXPECT_EQ(again.text, r.text);  // the same summary from the merged part alone
+}
+
+// Sweep parts: the same schema check (before: a corrupted point was copied into a JSON --out,
+// and the message of a wrong type named no file and no key).
+TEST_F(MergeSchema, CorruptedSweepPartsAreRefusedNotCopiedThrough) {
+  const std::string grid = " --param sigma_a=0.1:10:4 --metric rmse --set sim.duration=3";
+  for (int s : {1, 2}) {
+    auto r = cli("sweep " + kMergeCv1d + grid + " --shard " + std::to_string(s) + "/2 --out " +
+                 dir_ + "/s" + std::to_string(s) + ".json");
+    ASSERT_EQ(r.code, 0) << r.text;
+  }
+  const auto edited = [&](const std::string& name, const std::function<void(json&)>& edit) {
+    std::ifstream in(dir_ + "/s2.json");
+    json j = json::parse(in);
+    edit(j);
+    const std::string p = dir_ + "/" + name + ".json";
+    std::ofstream(p) << j.dump();
+    return p;
+  };
+  const std::string out = dir_ + "/merged.json";
+  for (const auto& [name, edit, key] :
+       std::vector<std::tuple<std::string, std::function<void(json&)>, std::string>>{
+           {"at_object",
+            [](json& j) {
+              j["points"][0]["at"] = json::array({21.5, json::object()});
+            },
+            "points[0].at"},
+           {"at_null", [](json& j) { j["points"][0]["at"] = nullptr; }, "points[0].at"},
+           {"index_negative", [](json& j) { j["points"][0]["index"] = -1; }, "points[0].index"},
+           {"kind_number", [](json& j) { j["kind"] = 0; }, "kind"},
+           {"n_huge", [](json& j) { j["axes"][0]["n"] = 1e308; }, "axes[0].n"}}) {
+    const std::string p = edited(name, edit);
+    auto r = cli("merge " + dir_ + "/s1.json " + p + " --out " + out);
+    EXPECT_EQ(r.code, 2) << name << ": " << r.text;
+    EXPECT_NE(r.text.find(p + ": " + key), std::string::npos) << name << ": " << r.text;
+    EXPECT_FALSE(std::filesystem::exists(out)) << name;
+  }
+}
+
+}  // namespace
+}  // namespace kfw

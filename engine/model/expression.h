@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "core/expected.h"
@@ -63,7 +64,8 @@ struct Expr {
 struct Symbols {
   std::vector<std::string> names;
   std::vector<SymbolKind> kinds;
-  std::vector<Expr> subs;  // per slot: the sub-expression (kSubSymbol only)
+  std::vector<Expr> subs;                      // per slot: the sub-expression (kSubSymbol only)
+  std::unordered_map<std::string, int> index;  // name -> first slot (add keeps it; find reads it)
   int add(const std::string& name, SymbolKind kind);
   int add_sub(const std::string& name, Expr e);
   int find(std::string_view name) const;  // the slot, or -1

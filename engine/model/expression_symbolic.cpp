@@ -9,6 +9,7 @@
 #include <mutex>
 #include <regex>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "model/expression_detail.h"
 
@@ -56,17 +57,30 @@ std::mutex& ginac_mutex() {
   return m;
 }
 
+// The symbols of the texts read in one call (and of `extra` slots), each a GiNaC realsymbol named
+// as the model's symbol: only those, not every symbol of the model — a scope of every symbol
+// per expression made loading quadratic in the model's size.
 struct SymbolicScope {
   GiNaC::symtab table;
-  std::vector<GiNaC::realsymbol> symbols;  // by slot
+  std::unordered_map<int, GiNaC::realsymbol> symbols;  // by slot
+  const GiNaC::realsymbol& symbol(int slot) const { return symbols.at(slot); }
 };
 
-SymbolicScope make_scope(const Symbols& s) {
+SymbolicScope make_scope(const Symbols& s, std::initializer_list<const std::string*> texts,
+                         const std::vector<int>& extra = {}) {
   SymbolicScope scope;
-  for (const auto& name : s.names) {
-    scope.symbols.emplace_back(name);
-    scope.table[name] = scope.symbols.back();
+  const auto add = [&](int slot) {
+    if (slot < 0 || scope.symbols.count(slot)) return;
+    const std::string& name = s.names[static_cast<std::size_t>(slot)];
+    const auto it = scope.symbols.emplace(slot, GiNaC::realsymbol(name)).first;
+    scope.table[name] = it->second;
+  };
+  for (const std::string* text : texts) {
+    for (const auto& id : identifiers(*text))
+      add(s.find(id));
   }
+  for (int slot : extra)
+    add(slot);
   scope.table["pi"] = GiNaC::Pi;
   return scope;
 }
@@ -218,7 +232,7 @@ Status check_symbolic(const std::string& text, const std::string& expanded, cons
                       const Symbols& symbols) {
   std::lock_guard lock(ginac_mutex());
   try {
-    const auto scope = make_scope(symbols);
+    const auto scope = make_scope(symbols, {&expanded});
     (void)parse_symbolic(expanded, scope);
   } catch (const std::exception& e) {
     // GiNaC's message: its first line (the rest is the reader's call stack).
@@ -249,10 +263,10 @@ Expected<std::vector<Expr>> derivatives(const Expr& e, const std::string& key,
   {
     std::lock_guard lock(ginac_mutex());
     try {
-      const auto scope = make_scope(symbols);
+      const auto scope = make_scope(symbols, {&e.text}, wrt);
       const GiNaC::ex f = parse_symbolic(e.text, scope);
       for (std::size_t i = 0; i < wrt.size(); ++i) {
-        const GiNaC::ex d = f.diff(scope.symbols[static_cast<std::size_t>(wrt[i])]);
+        const GiNaC::ex d = f.diff(scope.symbol(wrt[i]));
         if (GiNaC::is_a<GiNaC::numeric>(d)) {
           out[i].dep = Dep::kConst;
           out[i].value = GiNaC::ex_to<GiNaC::numeric>(d).to_double();
@@ -280,7 +294,7 @@ bool same_function(const Expr& a, const Expr& b, const Symbols& symbols) {
   if (a.text == b.text) return true;
   std::lock_guard lock(ginac_mutex());
   try {
-    const auto scope = make_scope(symbols);
+    const auto scope = make_scope(symbols, {&a.text, &b.text});
     const GiNaC::ex d = parse_symbolic(a.text, scope) - parse_symbolic(b.text, scope);
     return d.expand().normal().is_zero();
   } catch (const std::exception&) {

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <unordered_set>
 
+#include "core/limits.h"
 #include "core/statistics.h"
 #include "filter/discretize.h"
 
@@ -271,9 +272,10 @@ Status ModelEval::bind(const ParamValues& values) {
     if (!cs.every_param.empty()) {
       const auto it = values.find(cs.every_param);
       const double v = it == values.end() ? std::numeric_limits<double>::quiet_NaN() : it->second;
-      if (!(v >= 1.0) || v != std::round(v) || v > 1e9) {
+      if (!(v >= 1.0) || v != std::round(v) || v > limits::kMaxEvery) {
         return Error{path + ": model.measurements." + cs.name + ".every: parameter '" +
-                     cs.every_param + "' = " + number(v) + " must be a whole number ≥ 1"};
+                     cs.every_param + "' = " + number(v) + " must be a whole number from 1 to " +
+                     number(limits::kMaxEvery) + " (docs/limits.md)"};
       }
       ch.every = static_cast<int>(v);
     }

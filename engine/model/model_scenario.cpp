@@ -63,6 +63,26 @@ std::vector<ParamSpec> standard_params(const std::vector<std::string>& filters,
   };
 }
 
+// The m-step model of a channel updated every m-th step: F^m and Σ_{i<m} F^i Q F^iᵀ, by squaring
+// (log₂ m products: `every` may be up to limits::kMaxEvery). Steps a then b compose as
+// F_b F_a, F_b Q_a F_bᵀ + Q_b.
+void m_step(const MatX& F, const MatX& Q, int m, MatX& Fm, MatX& Qm) {
+  const Eigen::Index n = F.rows();
+  Fm = MatX::Identity(n, n);
+  Qm = MatX::Zero(n, n);
+  MatX Fp = F, Qp = Q;  // the 2^k-step model
+  for (unsigned bits = static_cast<unsigned>(m); bits; bits >>= 1) {
+    if (bits & 1u) {
+      Qm = (Fp * Qm * Fp.transpose()).eval() + Qp;
+      Fm = (Fp * Fm).eval();
+    }
+    if (bits > 1) {
+      Qp = (Fp * Qp * Fp.transpose()).eval() + Qp;
+      Fp = (Fp * Fp).eval();
+    }
+  }
+}
+
 // True when a unit needs parentheses as one side of a ratio ("m/s", "m s⁻¹"; not "m²", "(m/s)²").
 bool compound_unit(const std::string& u) {
   int depth = 0;
@@ -365,12 +385,8 @@ Expected<Metrics> ModelScenario::gain(const ParamValues& v, const Dataset* data)
     for (const auto& role : s.channels[c].roles)
       roles.push_back(role.name);
   }
-  const MatX& F = (*ev)->F;
-  MatX Fm = MatX::Identity(n, n), Qm = MatX::Zero(n, n);
-  for (int i = 0; i < every; ++i) {
-    Qm = (F * Qm * F.transpose()).eval() + (*ev)->Q;
-    Fm = (F * Fm).eval();
-  }
+  MatX Fm, Qm;
+  m_step((*ev)->F, (*ev)->Q, every, Fm, Qm);
   auto ss = solve_dare(Fm, H, Qm, R);
   if (!ss) return Error{s.path + ": " + ss.error()};
   Metrics g = derived_scalars(v, dt);  // β and the like: a gain curve's other axis

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "core/limits.h"
 #include "core/suggest.h"
 #include "model/model_derived.h"
 #include "model/model_expressions.h"
@@ -133,7 +134,13 @@ Expected<ChannelSpec> parse_channel(const Reader& p, const std::string& name, co
   if (auto st = p.symmetric(c.R); !st) return st.err();
   if (auto it = j.find("every"); it != j.end()) {
     if (it->is_number_integer() && it->get<long long>() >= 1) {
-      c.every = static_cast<int>(std::min<long long>(it->get<long long>(), 1 << 30));
+      if (it->get<long long>() > static_cast<long long>(limits::kMaxEvery)) {
+        return p.error(key + ".every",
+                       std::to_string(it->get<long long>()) + " is more than " + "the limit of " +
+                           std::to_string(static_cast<long long>(limits::kMaxEvery)) +
+                           " steps between updates (docs/limits.md)");
+      }
+      c.every = static_cast<int>(it->get<long long>());
     } else if (it->is_string()) {
       c.every_param = it->get<std::string>();
       if (!params.find(c.every_param)) {
@@ -231,6 +238,11 @@ Status parse_sim_keys(const Reader& p, const json& j, const ParamTable& params, 
 Status parse_states(const Reader& p, const json& j, ModelSpec& m) {
   if (!j.contains("states") || !j["states"].is_array() || j["states"].empty()) {
     return p.error("model.states", "expected a non-empty list of states");
+  }
+  if (j["states"].size() > limits::kMaxStates) {
+    return p.error("model.states", std::to_string(j["states"].size()) + " states: more than the " +
+                                       "limit of " + std::to_string(limits::kMaxStates) +
+                                       " (docs/limits.md)");
   }
   for (std::size_t i = 0; i < j["states"].size(); ++i) {
     const json& s = j["states"][i];
@@ -547,6 +559,12 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
 
   if (!j.contains("measurements") || !j["measurements"].is_object() || j["measurements"].empty()) {
     return p.error("model.measurements", "expected an object of one or more channels");
+  }
+  if (j["measurements"].size() > limits::kMaxChannels) {
+    return p.error("model.measurements", std::to_string(j["measurements"].size()) +
+                                             " channels: more than the limit of " +
+                                             std::to_string(limits::kMaxChannels) +
+                                             " (docs/limits.md)");
   }
   for (auto it = j["measurements"].begin(); it != j["measurements"].end(); ++it) {
     if (!is_identifier(it.key())) {

@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 
+#include "core/limits.h"
 #include "core/random.h"
 #include "filter/angle.h"
 #include "model/model_eval.h"
@@ -41,7 +42,26 @@ bool psd_sqrt(const MatX& M, MatX& L) {
 
 namespace {
 
-constexpr std::size_t kMaxRows = 50'000'000;
+// The doubles a row of a run holds: the simulated dataset's columns (time, inputs, sensor
+// components, truth, outlier flags) and the filter's results (x, P's upper triangle, NEES; per
+// channel y, S, K, NIS, log det S).
+std::size_t doubles_per_row(const ModelSpec& s) {
+  const std::size_t n = s.states.size();
+  std::size_t c = 2 + s.inputs.size() + 2 * n + n * (n + 1) / 2 + 1;
+  for (const auto& ch : s.channels) {
+    const auto m = static_cast<std::size_t>(ch.size());
+    c += m + 1 + m * (2 + n) + 2;
+  }
+  return c;
+}
+// "N rows; a simulation of this model may have at most M here (...)", for messages.
+std::string too_many_rows(std::size_t rows, std::size_t max_rows, const ModelSpec& s) {
+  return std::to_string(rows) + " rows; a simulation of this model may have at most " +
+         std::to_string(max_rows) + " here (a quarter of the " +
+         limits::bytes_text(limits::memory_bytes()) + " memory limit at " +
+         std::to_string(8 * doubles_per_row(s)) + " bytes a row; docs/limits.md)";
+}
+
 // Instants closer than this are one: two rows, or a row and a grid step (a tick rounded to 1 µs
 // whose k·dt differs from it in the last bit).
 constexpr double kSameInstant = 1e-9;
@@ -57,8 +77,10 @@ VecX draw(RandomStream& r, Eigen::Index m) {
 // grid (`every`) or on their clocks' ticks, a row wherever something is sampled.
 class Simulation {
  public:
-  Simulation(const ModelSpec& spec, ModelEval& ev, double dt, std::uint64_t seed)
-      : spec_(spec),
+  Simulation(const ModelSpec& spec, ModelEval& ev, double dt, std::uint64_t seed,
+             std::size_t max_rows)
+      : max_rows_(max_rows),
+        spec_(spec),
         ev_(ev),
         dt_(dt),
         seed_(seed),
@@ -92,6 +114,7 @@ class Simulation {
   Status sample(std::size_t c, std::size_t row, double t, Dataset& d);
   Status add_outliers(Dataset& d);
 
+  std::size_t max_rows_;
   const ModelSpec& spec_;
   ModelEval& ev_;
   const double dt_;
@@ -145,7 +168,7 @@ Status Simulation::prepare(double duration, std::size_t grid_rows) {
   for (std::size_t i = 0; i < spec_.inputs.size(); ++i)
     input_sim_.add(spec_.inputs[i].sim.text, &u_[i]);
   if (auto st = input_sim_.bind(spec_.symbols, vars_.data()); !st) return st;
-  auto noise = detail::NoiseSources::create(spec_, vars_, seed_, dt_, duration, kMaxRows);
+  auto noise = detail::NoiseSources::create(spec_, vars_, seed_, dt_, duration, max_rows_);
   if (!noise) return noise.err();
   noise_ = std::move(*noise);
   for (const auto& c : spec_.channels) {
@@ -172,12 +195,14 @@ Status Simulation::prepare(double duration, std::size_t grid_rows) {
         sensor_clock_.end()) {
       continue;  // no sensor samples on it this run: it adds no rows
     }
-    auto ticks = detail::clock_ticks(spec_.clocks[c], spec_, vars_, seed_, duration, kMaxRows);
+    auto ticks = detail::clock_ticks(spec_.clocks[c], spec_, vars_, seed_, duration, max_rows_);
     if (!ticks) return ticks.err();
     for (double t : *ticks)
       times.emplace_back(t, static_cast<long long>(c));
   }
-  if (times.size() > kMaxRows) return Error{"sim.duration: more than 50 million rows"};
+  if (times.size() > max_rows_) {
+    return Error{"sim.duration: " + too_many_rows(times.size(), max_rows_, spec_)};
+  }
   std::stable_sort(times.begin(), times.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   clock_rows_.assign(spec_.clocks.size(), {});
@@ -437,11 +462,14 @@ Expected<Dataset> simulate_model(const ModelSpec& spec, const ParamValues& value
   // duration shorter than dt, both inside their ranges, still gives a run).
   const auto rows =
       std::max<std::size_t>(static_cast<std::size_t>(std::floor(duration / dt + 1e-9)) + 1, 2);
-  if (rows > kMaxRows) return Error{"sim.duration / " + dt_key + ": more than 50 million rows"};
+  const std::size_t max_rows = limits::max_sim_rows(doubles_per_row(spec));
+  if (rows > max_rows) {
+    return Error{"sim.duration / " + dt_key + ": " + too_many_rows(rows, max_rows, spec)};
+  }
   auto evr = ModelEval::create(spec, values);
   if (!evr) return evr.err();
   if (auto st = (*evr)->check_dt(dt, dt_key); !st) return st.err();
-  Simulation sim(spec, **evr, dt, static_cast<std::uint64_t>(seed));
+  Simulation sim(spec, **evr, dt, static_cast<std::uint64_t>(seed), max_rows);
   if (auto st = sim.prepare(duration, rows); !st) return st.err();
   return sim.run("simulated " + name + ", seed " + std::to_string(static_cast<long long>(seed)));
 }

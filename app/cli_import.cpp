@@ -74,12 +74,21 @@ Status apply_format_args(const ImportArgs& imp, Mapping& m) {
 }
 
 // --mapping FILE: the preset's "mapping" block, alone or inside {"mapping": ...}.
-Status apply_mapping_file(const std::string& path, Mapping& m) {
+// A mapping file (or a preset's "mapping" block in one): each role it names must be one of
+// `roles` (a misspelt role was reported as "column mapped to both").
+Status apply_mapping_file(const std::string& path, const std::vector<std::string>& roles,
+                          Mapping& m) {
   auto j = read_json_document(path, "mapping");
   if (!j) return j.err();
   const nlohmann::json& block = j->is_object() && j->contains("mapping") ? (*j)["mapping"] : *j;
   auto file = mapping_from_json(block, path + ": mapping");
   if (!file) return file.err();
+  for (const auto& [role, r] : *file) {
+    if (std::find(roles.begin(), roles.end(), role) == roles.end()) {
+      return Error{path + ": mapping." + truncate_token(role) + ": " +
+                   unknown_message("role", role, roles)};
+    }
+  }
   m.override_with(*file);
   return Ok{};
 }
@@ -169,20 +178,35 @@ Status apply_role_args(const ImportArgs& imp, const std::vector<std::string>& ro
 }  // namespace
 
 Status apply_import_args(const ImportArgs& imp, const std::vector<ColumnSpec>& roles, Mapping& m) {
+  std::vector<std::string> names;
+  for (const auto& c : roles_with_time(roles))
+    names.push_back(c.name);
   if (imp.mapping_file) {
-    if (auto st = apply_mapping_file(*imp.mapping_file, m); !st) return st;
+    if (auto st = apply_mapping_file(*imp.mapping_file, names, m); !st) return st;
   }
   if (auto st = apply_format_args(imp, m); !st) return st;
   if (imp.time) {
     if (auto st = apply_time_arg(*imp.time, m); !st) return st;
   }
-  std::vector<std::string> names;
-  for (const auto& c : roles_with_time(roles))
-    names.push_back(c.name);
   return apply_role_args(imp, names, m);
 }
 
 Status apply_import_args(const ImportArgs& imp, Workspace& ws) {
+  // They say how to read a file: with none in force (the run simulates) they would be ignored.
+  if (!ws.data_path && imp.any()) {
+    const char* opt = !imp.map.empty()      ? "--map"
+                      : imp.time            ? "--time"
+                      : !imp.unit.empty()   ? "--unit"
+                      : !imp.scale.empty()  ? "--scale"
+                      : !imp.offset.empty() ? "--offset"
+                      : !imp.flip.empty()   ? "--flip"
+                      : imp.mapping_file    ? "--mapping"
+                      : imp.sep             ? "--sep"
+                                            : "--header";
+    return Error{std::string(opt) +
+                 ": applies to file data (--data FILE, or a preset's \"data\"), " +
+                 "and this run simulates its data"};
+  }
   if (auto st = apply_import_args(imp, ws.scenario->columns(), ws.mapping); !st) return st;
   if (imp.mapping_file) ws.mapping_path = imp.mapping_file;
   return Ok{};

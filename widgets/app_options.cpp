@@ -2,6 +2,8 @@
 
 #include <CLI/CLI.hpp>
 #include <QRegularExpression>
+#include <cmath>
+#include <cstdlib>
 #include <memory>
 #include <vector>
 
@@ -31,6 +33,19 @@ struct Declaration {
   CLI::App app{"kfw: the Kalman filter tuning workbench.", "kfw"};
   Parsed p;
 };
+
+// NaN and infinities are refused by name: CLI::Range lets NaN through (it compares false).
+CLI::Validator finite_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || !std::isfinite(v))
+          return "'" + text + "' is not a finite number";
+        return {};
+      },
+      "");
+}
 
 void add_path(CLI::App& app, const std::string& name, std::optional<std::string>& dst,
               const std::string& type, const std::string& help) {
@@ -65,9 +80,11 @@ std::unique_ptr<Declaration> declare() {
          "--dpi", [&p](double v) { p.dpi = v; },
          "PNG pixels per inch (default: 300 for a size in in, mm or a named size, else 96)")
       ->type_name("N")
+      ->check(finite_number())
       ->check(CLI::Range(24.0, 1200.0).description(""));
   app.add_option("--font-scale", p.font_scale, "every text of an exported plot x this")
       ->type_name("X")
+      ->check(finite_number())
       ->check(CLI::Range(0.25, 4.0).description(""))
       ->capture_default_str();
   app.add_option("--plot", p.plots, "export only this plot (repeatable; see --list-plots)")

@@ -51,6 +51,11 @@ DataController::DataController(DocumentController* doc, RunController* runs, QWi
     std::shared_ptr<const Dataset> file;
     if (d.data()) {
       auto ds = load_dataset_file(d.scenario(), d.data()->path, d.data()->mapping);
+      // The preset's own data file: name the preset and its key, as kfw-cli does.
+      const auto& own = d.preset().data_path;
+      if (!ds && own && *own == d.data()->path && !d.preset().path.empty()) {
+        return Error{d.preset().path + ": data: " + ds.error(), ds.err().exit_code};
+      }
       if (!ds) return ds.err();
       file = std::make_shared<const Dataset>(std::move(*ds));
     }

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/limits.h"
 #include "core/suggest.h"
 #include "data/output.h"
 #include "plot_kit.h"
@@ -273,6 +274,16 @@ Status parseSize(const QString& text, double dpi, ExportSpec& spec) {
     return Error{"--size: '" + truncate_token(text.toStdString()) +
                  "' is outside 0.5 in to 40 in on a side (at --dpi " +
                  std::to_string(static_cast<int>(dpi)) + ")"};
+  }
+  // Pixels of one image: a 40 in × 40 in figure at 1 200 dpi would be 2.3 G (QImage fails on it).
+  const double px = std::round(w * dpi) * std::round(h * dpi);
+  if (px > static_cast<double>(limits::kMaxExportPixels)) {
+    return Error{"--size: '" + truncate_token(text.toStdString()) + "' at --dpi " +
+                 std::to_string(static_cast<int>(dpi)) + " is " +
+                 std::to_string(static_cast<long long>(std::round(w * dpi))) + " × " +
+                 std::to_string(static_cast<long long>(std::round(h * dpi))) +
+                 " pixels, more than the limit of " + std::to_string(limits::kMaxExportPixels) +
+                 " (docs/limits.md); lower --dpi or the size"};
   }
   spec.width_in = w;
   spec.height_in = h;

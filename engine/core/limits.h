@@ -29,6 +29,8 @@ const char* input_name(Input kind);
 inline constexpr std::size_t kMaxStates = 1000;
 inline constexpr std::size_t kMaxChannels = 1000;
 inline constexpr std::size_t kMaxExpressionChars = 100'000;
+// A name the model declares (state, input, parameter, channel, sub-expression).
+inline constexpr std::size_t kMaxNameChars = 100;
 // A channel's `every` (an m-step model raises F to this power by squaring).
 inline constexpr double kMaxEvery = 1'000'000;
 // An exported plot: pixels of one image (a 40 in × 40 in figure at 1 200 dpi is 2.3 G).

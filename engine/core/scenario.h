@@ -52,6 +52,9 @@ struct StateSeries {
 struct NeesSeries {
   double dof = 1.0;
   std::vector<double> nees;  // per step; NaN where unknown
+  // Some step has a truth value for every state of the NEES: a NEES undefined everywhere then
+  // means a singular covariance (a noise-free sensor), not a missing truth column.
+  bool truth = false;
 };
 
 // The per-step arrays of one run plus its metrics. Each scenario derives its own result with the

@@ -4,6 +4,7 @@
 #include <date/tz.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cctype>
 #include <chrono>
 #include <cmath>
@@ -224,7 +225,24 @@ Expected<long long> parse_iso_time_ns(std::string_view text, const std::string& 
                    " (the clocks jump forward then)"};
     }
   }
-  if (sign != std::string::npos) fmt += s.find(':', sign) != std::string::npos ? "%Ez" : "%z";
+  // A leap second (…T23:59:60Z) has no place on a time axis counted without them (POSIX time).
+  if (s.size() >= 19 && s[10] == 'T' && s.compare(16, 3, ":60") == 0) {
+    return Error{"'" + shown_field(text) + "' is a leap second (seconds = 60), which a time axis " +
+                 "in seconds since 1970 does not have; write it as the next second"};
+  }
+  if (sign != std::string::npos) {
+    // date.h reads any hh:mm offset; a real one is −12:00 … +14:00 (hours ≤ 14, minutes < 60).
+    const std::string off = s.substr(sign + 1);
+    const bool colon = off.find(':') != std::string::npos;
+    const int hh = off.size() >= 2 ? std::atoi(off.substr(0, 2).c_str()) : -1;
+    const int mm =
+        off.size() >= (colon ? 5u : 4u) ? std::atoi(off.substr(colon ? 3 : 2, 2).c_str()) : 0;
+    if (hh > 14 || mm > 59) {
+      return Error{"'" + shown_field(text) + "': the UTC offset " + s.substr(sign) +
+                   " is out of range (-12:00 to +14:00)"};
+    }
+    fmt += colon ? "%Ez" : "%z";
+  }
   date::sys_time<std::chrono::nanoseconds> tp;
   in >> date::parse(fmt, tp);
   if (in.fail() || in.peek() != std::char_traits<char>::eof()) return bad;

@@ -55,8 +55,16 @@ Expected<Dataset> import_dataset(const Scenario& scenario, const Table& table,
     if (!c.meaning.empty()) msg += " (" + c.meaning + (c.unit.empty() ? "" : ", " + c.unit) + ")";
     msg += table.has_header() ? "; columns present:"
                               : "; no header (the first row is numbers), columns by position:";
-    for (const auto& n : table.names)
-      msg += " " + n;
+    bool spaced = false;
+    for (const auto& n : table.names) {
+      msg += " " + (n.find_first_of(" \t") == std::string::npos ? n : "'" + n + "'");
+      spaced = spaced || n.find_first_of(" \t") != std::string::npos;
+    }
+    // A name with blanks inside: the file is likely separated by spaces, or by tabs and spaces
+    // mixed, and read with one separator.
+    if (spaced && mapping.separator != kWhitespaceSeparator) {
+      return Error{msg + "; a column name holds blanks: read the file with --sep whitespace"};
+    }
     Mapping guess = guess_mapping(table, columns);
     guess.override_with(mapping);
     if (guess.count(c.name)) msg += "; map them, e.g. " + mapping_options(guess);

@@ -182,8 +182,13 @@ void add_consistency_metrics(const std::vector<InnovationChannel>& channels, con
     put("nees_mean", mean_finite(nees.nees) / nees.dof);
     put("nees_in_bounds", fraction_inside(nees.nees, nees.dof));
   } else {
-    undefined.emplace("nees_mean", "no truth column");
-    undefined.emplace("nees_in_bounds", "no truth column");
+    // No finite NEES: no truth, or (NeesSeries::truth) a covariance singular wherever truth is
+    // known — a noise-free sensor, R = 0, pins the state; not a missing column.
+    const std::string why = !nees.truth ? "no truth column"
+                                        : "the covariance of the states with truth is singular "
+                                          "wherever truth is known (a noise-free sensor, R = 0?)";
+    undefined.emplace("nees_mean", why);
+    undefined.emplace("nees_in_bounds", why);
   }
 }
 

@@ -534,6 +534,12 @@ Expected<Expr> compile_expr(const std::string& text, const std::string& key, con
     }
   }
 
+  // A constant is the same at every step: not finite means never usable (found at load, not at
+  // the first step of a simulation).
+  if (dep == Dep::kConst && !std::isfinite(out.value)) {
+    return Error{key + ": " + quoted(text) + " is the constant " + std::to_string(out.value) +
+                 ", not a finite number"};
+  }
   // The same text must mean the same to GiNaC (e.g. a^b^c is ambiguous there).
   if (auto st = detail::check_symbolic(text, out.text, key, symbols); !st) return st.err();
   return out;

@@ -353,6 +353,7 @@ Status ModelEval::check_at(double dt, const std::function<std::string()>& where)
   if (auto st = eval_dt(dt, false); !st) return Error{st.error() + at()};
   const MatX* M = nullptr;
   if (const MatrixSpec* s = noise_not_psd(M)) {
+    if (!M->allFinite()) return Error{spec_.path + ": " + s->key + ": not finite" + at()};
     return Error{spec_.path + ": " + s->key + ": not positive semidefinite" + at() +
                  " (smallest eigenvalue " + number(min_eigenvalue(*M)) + ")"};
   }

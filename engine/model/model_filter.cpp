@@ -83,7 +83,14 @@ std::vector<InnovationChannel> ModelResult::channels() const {
 
 NeesSeries ModelResult::nees_series() const {
   if (nees_dof <= 0) return {};
-  return {nees_dof, nees};
+  NeesSeries s{nees_dof, nees, false};
+  for (std::size_t k = 0; k < steps() && !s.truth; ++k) {
+    bool all = true;
+    for (const auto& tr : truth)
+      all = all && (tr.empty() || std::isfinite(tr[k]));
+    s.truth = all;
+  }
+  return s;
 }
 
 std::vector<StateSeries> ModelResult::states() const {

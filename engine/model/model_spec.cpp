@@ -32,6 +32,10 @@ using detail::Reader;
 // A new symbol name must be an identifier, not reserved, not yet taken.
 Status check_name(const Reader& p, const Symbols& symbols, const std::string& name,
                   const std::string& key) {
+  if (name.size() > limits::kMaxNameChars) {
+    return p.error(key, "a name of " + std::to_string(name.size()) + " characters (at most " +
+                            std::to_string(limits::kMaxNameChars) + ", docs/limits.md)");
+  }
   if (!is_identifier(name)) {
     return p.error(key,
                    quote_token(name) + " is not a name (letters, digits and _, not first a digit)");

@@ -111,6 +111,28 @@ TEST(HeadlessHardening, SessionAppliesToTheHeadlessModes) {
   EXPECT_NE(bad.text.find("cut.json"), std::string::npos) << bad.text;
 }
 
+TEST(HeadlessHardening, ExportOptionsAndAPresetsMissingDataAreNamed) {
+  QTemporaryDir dir;
+  const std::string out = dir.filePath("x").toStdString();
+  auto nan = headless("--export " + out + " " + kHeadlessHeli + " --dpi nan");
+  EXPECT_EQ(nan.code, 2) << nan.text;
+  EXPECT_NE(nan.text.find("--dpi: 'nan' is not a finite number"), std::string::npos) << nan.text;
+  auto huge = headless("--export " + out + " " + kHeadlessHeli +
+                       " --size 40inx40in --dpi 1200 --plot state.theta");
+  EXPECT_EQ(huge.code, 2) << huge.text;
+  EXPECT_NE(huge.text.find("48000 × 48000 pixels, more than the limit"), std::string::npos)
+      << huge.text;
+  EXPECT_FALSE(QFileInfo::exists(QString::fromStdString(out)));
+
+  std::ifstream in(kHeadlessHeli);
+  nlohmann::json p = nlohmann::json::parse(in);
+  p["data"] = dir.filePath("nonexistent.csv").toStdString();
+  const std::string preset = write_in(dir, "p.json", p.dump());
+  auto missing = headless("--export " + out + " " + preset);
+  EXPECT_EQ(missing.code, 2) << missing.text;
+  EXPECT_NE(missing.text.find(preset + ": data: "), std::string::npos) << missing.text;
+}
+
 TEST(HeadlessHardening, TheWindowWithoutADisplayExits2WithOneLine) {
   auto r = testing::run_command("env -u WAYLAND_DISPLAY QT_QPA_PLATFORM=xcb DISPLAY= " +
                                 std::string(KFW_GUI) + " " + kHeadlessHeli + " 2>&1");

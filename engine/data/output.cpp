@@ -1,12 +1,14 @@
 #include "data/output.h"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
+#include <ctime>
 #include <fstream>
 #include <system_error>
 #include <thread>
@@ -20,7 +22,8 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr int kMaxSymlinkHops = 40;
-constexpr std::size_t kMaxTempStem = 100;  // keeps ".NAME.kfw-XXXXXX" under NAME_MAX
+constexpr std::size_t kMaxTempStem = 100;
+constexpr std::size_t kMaxHeldLocks = 256;  // keeps ".NAME.kfw-XXXXXX" under NAME_MAX
 
 std::string errno_text(int e) {
   return std::generic_category().message(e);
@@ -83,17 +86,44 @@ void sync_directory(const fs::path& dir) {
   ::close(fd);
 }
 
-// Writes `text` to a new ".NAME.kfw-XXXXXX" beside `target`, fsynced and closed.
-Expected<fs::path> write_temporary(const fs::path& target, const std::string& path,
-                                   const std::string& text) {
+std::string temp_prefix(const fs::path& target) {
   std::string stem = target.filename().string();
   if (stem.size() > kMaxTempStem) stem.resize(kMaxTempStem);
-  std::string name = (directory_of(target) / ("." + stem + ".kfw-XXXXXX")).string();
+  return "." + stem + ".kfw-";
+}
+
+// Temporaries of earlier writes to `target` whose writer died (SIGKILL, power loss) before the
+// rename: a live writer holds flock on its temporary until the rename, so one whose lock can be
+// taken, and older than a second (a writer between mkstemp and flock is younger), is removed.
+void remove_stale_temporaries(const fs::path& target) {
+  const std::string prefix = temp_prefix(target);
+  std::error_code ec;
+  for (fs::directory_iterator it(directory_of(target), ec), end; !ec && it != end;
+       it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() != prefix.size() + 6 || name.compare(0, prefix.size(), prefix) != 0) continue;
+    const int fd = ::open(it->path().c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) continue;
+    struct stat st {};
+    const bool stale = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) &&
+                       std::time(nullptr) - st.st_mtime >= 1 && ::flock(fd, LOCK_EX | LOCK_NB) == 0;
+    if (stale) ::unlink(it->path().c_str());
+    ::close(fd);  // releases the lock
+  }
+}
+
+// Writes `text` to a new ".NAME.kfw-XXXXXX" beside `target`, fsynced, and returns it still open
+// and locked (flock) until the caller has renamed it: the lock tells later writers it is live.
+Expected<std::pair<fs::path, int>> write_temporary(const fs::path& target, const std::string& path,
+                                                   const std::string& text) {
+  remove_stale_temporaries(target);
+  std::string name = (directory_of(target) / (temp_prefix(target) + "XXXXXX")).string();
   const int fd = ::mkstemp(name.data());
   if (fd < 0) {
     return failure(truncate_token(path) + ": cannot create a temporary file in " +
                    shown(directory_of(target)) + ": " + errno_text(errno));
   }
+  ::flock(fd, LOCK_EX | LOCK_NB);  // a new file: nobody else holds it
   auto fail = [&](const std::string& what) -> Error {
     const int e = errno;
     ::close(fd);
@@ -113,12 +143,7 @@ Expected<fs::path> write_temporary(const fs::path& target, const std::string& pa
     left -= static_cast<std::size_t>(n);
   }
   if (::fsync(fd) != 0) return fail("fsync failed");
-  if (::close(fd) != 0) {
-    const int e = errno;
-    ::unlink(name.c_str());
-    return failure(truncate_token(path) + ": write failed: " + errno_text(e));
-  }
-  return fs::path(name);
+  return std::pair<fs::path, int>(fs::path(name), fd);
 }
 
 }  // namespace
@@ -168,7 +193,8 @@ Status OutputSet::add(const std::string& path, std::string_view option) {
     return Error{at + "cannot write in " + shown(dir) +
                  probe.error().substr(probe.error().rfind(':'))};
   } else {
-    ::unlink(probe->c_str());
+    ::unlink(probe->first.c_str());
+    ::close(probe->second);
   }
   for (const auto& in : inputs_) {
     if (same_file(*target, in)) {
@@ -198,6 +224,7 @@ Status OutputSet::stage(const std::string& path, std::string text) {
 Status OutputSet::commit() {
   struct Pending {
     fs::path temp;
+    int fd;  // open and locked until renamed
     const Entry* entry;
   };
   std::vector<Pending> pending;
@@ -205,25 +232,40 @@ Status OutputSet::commit() {
     for (std::size_t i = first; i < pending.size(); ++i)
       ::unlink(pending[i].temp.c_str());
   };
+  auto close_all = [&] {
+    for (const auto& p : pending) {
+      if (p.fd >= 0) ::close(p.fd);
+    }
+  };
   for (const auto& e : entries_) {
     if (!e.text) continue;
     auto temp = write_temporary(e.target, e.path, *e.text);
     if (!temp) {
       remove_from(0);
+      close_all();
       return temp.err();
     }
-    pending.push_back({*temp, &e});
+    // Locks are held for the first kMaxHeldLocks files (a Monte Carlo --out-dir may write
+    // thousands; each later one is unlocked at once, protected by its age alone).
+    int fd = temp->second;
+    if (pending.size() >= kMaxHeldLocks) {
+      ::close(fd);
+      fd = -1;
+    }
+    pending.push_back({temp->first, fd, &e});
   }
   pause_before_rename();
   for (std::size_t i = 0; i < pending.size(); ++i) {
     if (::rename(pending[i].temp.c_str(), pending[i].entry->target.c_str()) != 0) {
       const int e = errno;
       remove_from(i);
+      close_all();
       return failure(truncate_token(pending[i].entry->path) +
                      ": cannot replace the file: " + errno_text(e));
     }
     sync_directory(directory_of(pending[i].entry->target));
   }
+  close_all();
   return Ok{};
 }
 

@@ -144,6 +144,10 @@ void declare_simulate(CLI::App& app, SimulateArgs& a) {
   add_required_path(c, "--out", a.out, "FILE.csv", "where to write the dataset");
 }
 
+constexpr const char* kProgressHelp =
+    "progress on stderr even when it is not a terminal (a line every 10 %, for CI logs); "
+    "SIGINT/SIGTERM stop the job: nothing written, exit 130/143";
+
 void declare_run(CLI::App& app, RunArgs& a) {
   CLI::App* c =
       app.add_subcommand("run", "run the filter over a dataset and print its metrics (JSON)");
@@ -157,6 +161,7 @@ void declare_run(CLI::App& app, RunArgs& a) {
   add_path(c, "--shard", a.seeds.shard, "i/N", "with --seeds: run seeds i, i+N, ... into --out");
   add_path(c, "--out-dir", a.seeds.out_dir, "DIR", "with --seeds: one estimates file per seed");
   c->add_flag("--table", a.seeds.table, "with --seeds: a readable table instead of JSON");
+  c->add_flag("--progress", a.seeds.progress, kProgressHelp);
 }
 
 void declare_merge(CLI::App& app, MergeArgs& a) {
@@ -238,6 +243,7 @@ void declare_tune(CLI::App& app, TuneArgs& a) {
   add_path(c, "--seeds", a.seeds, "SET",
            "tune over the datasets of these simulator seeds (a tuning set, like --data)");
   add_path(c, "--out", a.out, "FILE.json", "write the tuned preset");
+  c->add_flag("--progress", a.progress, kProgressHelp);
 }
 
 void declare_sweep(CLI::App& app, SweepArgs& a) {
@@ -268,6 +274,7 @@ void declare_sweep(CLI::App& app, SweepArgs& a) {
       "without either, log-scale parameters are spaced in log10.");
   add_path(c, "--shard", a.shard, "i/N",
            "run only shard i of N (grid points k with k mod N = i-1)");
+  c->add_flag("--progress", a.progress, kProgressHelp);
 }
 
 void declare_params(CLI::App& app, ParamsArgs& a) {

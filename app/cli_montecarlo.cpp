@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cli_commands.h"
+#include "cli_job.h"
 #include "core/suggest.h"
 #include "data/csv.h"
 #include "data/json_io.h"
@@ -128,7 +129,12 @@ int cmd_run_seeds(const RunArgs& a, std::ostream& out, std::ostream& err) {
   }
   MonteCarloOptions opt;
   opt.keep_results = mc.out_dir.has_value();
+  CliJob job(err, mc.progress, "seeds");
+  opt.cancel = job.cancel();
+  opt.progress = [&job](std::size_t done, std::size_t total) { job.progress(done, total); };
   auto part = run_monte_carlo(*ws->scenario, ws->values, *seeds, shard, opt);
+  job.finish();
+  if (const int code = job.interrupted()) return fail(err, Error{job.interrupted_message(), code});
   if (!part) return fail(err, part.err());
   part->source = a.target.preset;
   for (const auto& [seed, path] : per_seed) {

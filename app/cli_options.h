@@ -56,6 +56,7 @@ struct RunSeedsArgs {
   std::optional<std::string> shard;    // --shard i/N: a part into --out
   std::optional<std::string> out_dir;  // --out-dir DIR: one estimates file per seed
   bool table = false;                  // --table: a readable table instead of JSON
+  bool progress = false;               // --progress: progress on stderr even when not a terminal
 };
 
 struct RunArgs {
@@ -92,6 +93,7 @@ struct TuneArgs {
   double tol = 1e-6;
   std::optional<std::string> seeds;  // --seeds SET: a tuning set of simulated datasets
   std::optional<std::string> out;    // --out FILE.json: the tuned preset
+  bool progress = false;             // --progress
 };
 
 struct SweepArgs {
@@ -103,6 +105,7 @@ struct SweepArgs {
   std::optional<std::string> seeds;  // --seeds SET: each point scored by the mean over seeds
   std::size_t max_points = kDefaultMaxPoints;
   std::optional<std::string> shard;  // --shard i/N
+  bool progress = false;             // --progress
 };
 
 struct ParamsArgs {

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "cli_commands.h"
+#include "cli_job.h"
 #include "core/dataset.h"
 #include "core/metrics.h"
 #include "core/suggest.h"
@@ -205,8 +206,13 @@ int cmd_sweep(const SweepArgs& a, std::ostream& out, std::ostream& err) {
   }
   const MetricSpec spec = describe_metric(*ws->scenario, metric, base);
   // With --seeds each point is scored by the metric's mean over the seeds.
+  CliJob job(err, a.progress, "points");
+  const std::size_t in_part = shard_size(*total, shard);
   auto r = seeds ? sweep_over_seeds(*ws->scenario, ws->values, axes, *seeds)
-                 : sweep(*ws->scenario, *d, ws->values, axes, 0, nullptr, shard);
+                 : sweep(*ws->scenario, *d, ws->values, axes, 0, job.cancel(), shard,
+                         [&job, in_part](std::size_t done) { job.progress(done, in_part); });
+  job.finish();
+  if (const int code = job.interrupted()) return fail(err, Error{job.interrupted_message(), code});
   if (!r) return fail(err, r.err());
   Doc doc = sweep_document(*ws, axes, spec, *r, shard, *total);
   if (seeds) doc["seeds"] = seeds->size();

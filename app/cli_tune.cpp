@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_commands.h"
+#include "cli_job.h"
 #include "core/dataset.h"
 #include "core/metrics.h"
 #include "core/suggest.h"
@@ -323,7 +324,15 @@ int cmd_tune(const TuneArgs& a, std::ostream& out, std::ostream& err) {
   std::vector<TuneLog> logs;
   for (std::size_t i = 0; i < set->data.size(); ++i)
     logs.push_back({set->names[i], &set->data[i], set->fixed[i]});
+  CliJob job(err, a.progress, "evaluations");
+  opt->cancel = job.cancel();
+  const auto budget = static_cast<std::size_t>(opt->budget);
+  opt->progress = [&job, budget](int evaluations, double best) {
+    job.progress(static_cast<std::size_t>(evaluations), budget, "best " + std::to_string(best));
+  };
   auto r = tune(*ws->scenario, logs, ws->values, *params, objective->objective, *opt);
+  job.finish();
+  if (const int code = job.interrupted()) return fail(err, Error{job.interrupted_message(), code});
   if (!r) return fail(err, r.err());
   const Json j = tune_report(a, *ws, *set, *params, *opt, *objective, *r, err);
   if (a.out) {

@@ -12,6 +12,8 @@
 #include "core/suggest.h"
 #include "data/csv.h"
 #include "data/output.h"
+#include "document/preset.h"
+#include "document/session.h"
 #include "document/workspace.h"
 #include "experiment/gain_curve.h"
 #include "experiment/monte_carlo.h"
@@ -87,6 +89,13 @@ Expected<Workspace> open_workspace_for_cli(const TargetArgs& target, const DataA
   if (!ws) return ws;
   if (auto st = apply_import_args(data.import, *ws); !st) return st.err();
   return ws;
+}
+
+std::string preset_content_hash(const Workspace& ws) {
+  if (!ws.preset.path.empty()) {
+    if (auto h = file_hash(ws.preset.path)) return *h;
+  }
+  return text_hash(preset_to_json(ws.preset));
 }
 
 void print_notices(const std::vector<std::string>& notices, std::ostream& err) {

@@ -52,6 +52,9 @@ void print_notices(const std::vector<std::string>& notices, std::ostream& err);
 int cmd_upgrade(const UpgradeArgs& a, std::ostream& out, std::ostream& err);
 // The files a command on this workspace reads: an output may not be one of them.
 OutputSet outputs_for(const Workspace& ws);
+// The preset's content hash for parts (FNV-1a 64 of its file; of its JSON when it has none): a
+// preset edited between two shards makes their parts differ.
+std::string preset_content_hash(const Workspace& ws);
 // merge's handler for sweep parts ("kind": "sweep", app/cli_sweep.cpp).
 Status merge_sweep_parts(const std::vector<nlohmann::json>& docs, const MergeArgs& a,
                          OutputSet& outs, std::ostream& out, std::ostream& err);

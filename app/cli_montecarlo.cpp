@@ -52,8 +52,11 @@ Status merge_montecarlo(const std::vector<nlohmann::json>& docs, const MergeArgs
     if (!p) return p.err();
     parts.push_back(std::move(*p));
   }
-  auto merged = merge_montecarlo_parts(parts, a.parts);
+  std::vector<std::string> notes;
+  auto merged = merge_montecarlo_parts(parts, a.parts, &notes);
   if (!merged) return merged.err();
+  for (const auto& n : notes)
+    err << "kfw-cli: warning: " << one_line(n) << "\n";
   // --out: the merged part itself (one shard of all the seeds), mergeable again.
   if (a.output.out) {
     if (auto st = outs.add(*a.output.out, "--out"); !st) return st;
@@ -137,6 +140,7 @@ int cmd_run_seeds(const RunArgs& a, std::ostream& out, std::ostream& err) {
   if (const int code = job.interrupted()) return fail(err, Error{job.interrupted_message(), code});
   if (!part) return fail(err, part.err());
   part->source = a.target.preset;
+  part->preset_hash = preset_content_hash(*ws);
   for (const auto& [seed, path] : per_seed) {
     for (const auto& r : part->runs) {
       if (r.seed != seed || !r.result) continue;

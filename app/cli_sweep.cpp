@@ -28,7 +28,7 @@ using Json = nlohmann::ordered_json;
 // is then byte for byte the one an unsharded sweep writes.
 using Doc = nlohmann::json;
 
-constexpr int kSweepPartVersion = 1;
+constexpr int kSweepPartVersion = 2;  // written; 1 and 2 are read (2: preset_hash)
 
 }  // namespace
 
@@ -43,6 +43,7 @@ Doc sweep_document(const Workspace& ws, const std::vector<SweepAxis>& axes, cons
   j["kind"] = "sweep";
   j["version"] = kSweepPartVersion;
   j["scenario"] = ws.scenario->name();
+  j["preset_hash"] = preset_content_hash(ws);
   j["metric"] = spec.key;
   j["direction"] = direction_name(spec.direction);
   if (spec.direction == Direction::kTarget) j["target"] = spec.target;
@@ -247,12 +248,15 @@ Status check_axis(const Doc& a, const std::string& where) {
 Status check_sweep_part(const Doc& j, const std::string& where) {
   if (auto st = jc::member(j, where, "version",
                            [](const Doc& v, const std::string& w) {
-                             return jc::integer(v, w, kSweepPartVersion, kSweepPartVersion);
+                             return jc::integer(v, w, 1, kSweepPartVersion);
                            });
       !st)
     return st;
   for (const char* k : {"scenario", "metric", "direction"}) {
     if (auto st = jc::member(j, where, k, jc::string); !st) return st;
+  }
+  if (j.at("version").get<double>() >= 2) {
+    if (auto st = jc::member(j, where, "preset_hash", jc::string); !st) return st;
   }
   const auto finite = [](const Doc& v, const std::string& w) { return jc::finite(v, w); };
   if (auto st = jc::member(j, where, "target", finite, true); !st) return st;
@@ -320,6 +324,10 @@ Status merge_sweep_impl(const std::vector<nlohmann::json>& parts, const MergeArg
         return Error{paths[i] + ": " + key + ": differs from " + paths.front() +
                      " (parts of different sweeps)"};
       }
+    }
+    if (p.contains("preset_hash") && p.at("preset_hash") != first.at("preset_hash")) {
+      return Error{paths[i] + ": preset_hash: differs from " + paths.front() +
+                   " (the preset changed between the shards)"};
     }
     if (p.at("shard").at("count") != first.at("shard").at("count")) {
       return Error{paths[i] + ": shard: split into a different number of shards"};

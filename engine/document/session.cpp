@@ -213,23 +213,43 @@ Status save_session(const std::string& path, const Session& s) {
   return write_text_file_atomic(path, session_to_json(s));
 }
 
+namespace {
+
+constexpr std::uint64_t kFnvOffset = 1469598103934665603ull, kFnvPrime = 1099511628211ull;
+
+void fnv_add(std::uint64_t& h, const char* p, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) {
+    h ^= static_cast<unsigned char>(p[i]);
+    h *= kFnvPrime;
+  }
+}
+
+std::string hex(std::uint64_t h) {
+  char out[17];
+  std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
+  return out;
+}
+
+}  // namespace
+
 Expected<std::string> file_hash(const std::string& path) {
   auto fd = open_input_file(path, limits::Input::kData);
   if (!fd) return fd.err();
-  std::uint64_t h = 1469598103934665603ull;
+  std::uint64_t h = kFnvOffset;
   char buf[65536];
   ssize_t n = 0;
   while ((n = ::read(*fd, buf, sizeof buf)) > 0 || (n < 0 && errno == EINTR)) {
-    for (ssize_t i = 0; i < n; ++i) {
-      h ^= static_cast<unsigned char>(buf[i]);
-      h *= 1099511628211ull;
-    }
+    if (n > 0) fnv_add(h, buf, static_cast<std::size_t>(n));
   }
   ::close(*fd);
   if (n < 0) return Error{path + ": read error"};
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-  return std::string(hex);
+  return hex(h);
+}
+
+std::string text_hash(std::string_view text) {
+  std::uint64_t h = kFnvOffset;
+  fnv_add(h, text.data(), text.size());
+  return hex(h);
 }
 
 Expected<Dataset> apply_column_map(Dataset d, const ColumnMap& map) {

@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/dataset.h"
@@ -50,6 +51,8 @@ Status save_session(const std::string& path, const Session& s);
 
 // FNV-1a 64-bit hash of a file's bytes, as 16 hex digits.
 Expected<std::string> file_hash(const std::string& path);
+// The same hash of bytes in memory (a preset without a file).
+std::string text_hash(std::string_view text);
 
 // Renames the mapped file columns to their roles. Errors name a mapped column the file lacks.
 Expected<Dataset> apply_column_map(Dataset d, const ColumnMap& map);

@@ -205,6 +205,8 @@ Expected<MonteCarloPart> run_monte_carlo(const Scenario& s, const ParamValues& b
   std::sort(part.seeds.begin(), part.seeds.end());
   part.seeds.erase(std::unique(part.seeds.begin(), part.seeds.end()), part.seeds.end());
   part.shard = shard;
+  part.values = base;
+  part.values.erase("sim.seed");  // the one value that differs between the runs
   std::vector<long long> mine;
   for (std::size_t i = 0; i < part.seeds.size(); ++i) {
     if (!in_shard(i, shard)) continue;

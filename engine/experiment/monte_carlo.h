@@ -30,7 +30,7 @@ namespace kfw {
 
 // The "kind" of a Monte Carlo part file (`kfw-cli merge` dispatches on it).
 inline constexpr const char* kMonteCarloKind = "montecarlo";
-inline constexpr int kMonteCarloPartVersion = 1;
+inline constexpr int kMonteCarloPartVersion = 2;  // written; 1 and 2 are read
 
 // Σ v_k, Σ v_k² and the number of runs with a finite v_k, per step k.
 struct StepSums {
@@ -69,6 +69,12 @@ struct MonteCarloPart {
   // The primary state's error x̂ − x and the filter's variance P, per step (when it has truth).
   std::optional<StepSums> error, variance;
   std::string error_unit;
+  // Version 2: what makes two parts parts of one run — the preset's content hash (FNV-1a 64 of
+  // its file, hex) and every parameter value but sim.seed. Empty in a version-1 part (then merge
+  // cannot check sameness, and says so).
+  int version = kMonteCarloPartVersion;
+  std::string preset_hash;
+  ParamValues values;
 };
 
 struct MetricSummary {
@@ -129,8 +135,11 @@ MonteCarloSummary summarize_monte_carlo(const MonteCarloPart& part, double alpha
 // Combines the parts of one seed set (one per shard, any order) into the part of the whole set.
 // Parts of different scenarios, seed sets or shard counts, or a shard given twice or missing,
 // are refused with a message naming the part (`names[i]`, e.g. its file).
+// Version-2 parts must agree on preset_hash and values (an Error naming the part and the key);
+// `notes` (may be null) gets one line when a version-1 part makes that check impossible.
 Expected<MonteCarloPart> merge_montecarlo_parts(const std::vector<MonteCarloPart>& parts,
-                                                const std::vector<std::string>& names = {});
+                                                const std::vector<std::string>& names = {},
+                                                std::vector<std::string>* notes = nullptr);
 
 // Each metric's mean over the seeds where it is defined (the seeds' typical result): what
 // `sweep --seeds` scores a grid point by, and what a tuner can score an evaluation by. A metric

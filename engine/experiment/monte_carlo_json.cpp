@@ -68,6 +68,8 @@ nlohmann::ordered_json part_to_json(const MonteCarloPart& p) {
   j["version"] = kMonteCarloPartVersion;
   j["scenario"] = p.scenario;
   j["source"] = p.source;
+  j["preset_hash"] = p.preset_hash;
+  j["values"] = p.values;
   j["seeds"] = p.seeds;
   j["shard"] = shard_text(p.shard);
   OJson runs = OJson::array();
@@ -146,7 +148,7 @@ Status check_run(const Json& r, const std::string& where) {
 }
 
 Status check_version(const Json& v, const std::string& where) {
-  return jc::integer(v, where, kMonteCarloPartVersion, kMonteCarloPartVersion);
+  return jc::integer(v, where, 1, kMonteCarloPartVersion);
 }
 
 // The whole part against its schema (what part_to_json writes), before any value is read.
@@ -157,6 +159,11 @@ Status check_part(const Json& j, const std::string& where) {
     if (auto st = jc::member(j, where, key, jc::string); !st) return st;
   }
   if (auto st = jc::member(j, where, "source", jc::string, true); !st) return st;
+  if (j.at("version").get<double>() >= 2) {  // what makes parts parts of one run
+    if (auto st = jc::member(j, where, "preset_hash", jc::string); !st) return st;
+    const auto values = [](const Json& v, const std::string& w) { return jc::number_map(v, w); };
+    if (auto st = jc::member(j, where, "values", values); !st) return st;
+  }
   if (auto st = jc::member(j, where, "seeds", jc::each_of(check_seed)); !st) return st;
   if (auto st = jc::member(j, where, "t", jc::increasing_array); !st) return st;
   if (auto st = jc::member(j, where, "runs", jc::each_of(check_run)); !st) return st;
@@ -181,6 +188,11 @@ Expected<MonteCarloPart> part_from_json(const nlohmann::json& j, const std::stri
   if (auto st = check_part(j, where); !st) return st.err();
   MonteCarloPart p;
   try {
+    p.version = j.at("version").get<int>();
+    if (p.version >= 2) {
+      p.preset_hash = j.at("preset_hash").get<std::string>();
+      p.values = j.at("values").get<ParamValues>();
+    }
     p.scenario = j.at("scenario").get<std::string>();
     p.source = j.value("source", std::string());
     p.seeds = j.at("seeds").get<std::vector<long long>>();
@@ -231,14 +243,81 @@ Expected<MonteCarloPart> part_from_json(const nlohmann::json& j, const std::stri
   return p;
 }
 
+namespace {
+
+// Parts of one run: the same preset content and values (version 2); a version-1 part records
+// neither, so the check is impossible — said in `notes`.
+std::string number_text(double v) {
+  std::ostringstream os;
+  os << std::setprecision(10) << v;
+  return os.str();
+}
+
+template <class Name>
+Status check_same_run(const std::vector<MonteCarloPart>& parts, const Name& name,
+                      std::vector<std::string>* notes) {
+  const MonteCarloPart* ref = nullptr;
+  std::size_t ref_i = 0;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const MonteCarloPart& p = parts[i];
+    if (p.version < 2) {
+      if (notes && parts.size() > 1) {
+        notes->push_back(name(i) +
+                         ": a version-1 part records no preset hash or values: "
+                         "cannot check that it comes from the same run as the others");
+      }
+      continue;
+    }
+    if (!ref) {
+      ref = &p;
+      ref_i = i;
+      continue;
+    }
+    if (p.preset_hash != ref->preset_hash) {
+      return Error{name(i) + ": preset_hash: " + p.preset_hash + " differs from " + name(ref_i) +
+                   "'s " + ref->preset_hash + " (the preset changed between the shards)"};
+    }
+    for (const auto& [k, v] : ref->values) {
+      const auto it = p.values.find(k);
+      if (it == p.values.end() || it->second != v) {
+        std::ostringstream os;
+        os << name(i) << ": values." << k << ": "
+           << (it == p.values.end() ? std::string("missing") : number_text(it->second))
+           << " differs from " << name(ref_i) << "'s " << number_text(v)
+           << " (parts of different runs)";
+        return Error{os.str()};
+      }
+    }
+    for (const auto& [k, v] : p.values) {
+      if (!ref->values.count(k))
+        return Error{name(i) + ": values." + k + ": not in " + name(ref_i) +
+                     " (parts of different runs)"};
+    }
+  }
+  return Ok{};
+}
+
+}  // namespace
+
 Expected<MonteCarloPart> merge_montecarlo_parts(const std::vector<MonteCarloPart>& parts,
-                                                const std::vector<std::string>& names) {
+                                                const std::vector<std::string>& names,
+                                                std::vector<std::string>* notes) {
   auto name = [&](std::size_t i) {
     return i < names.size() ? names[i] : "part " + std::to_string(i + 1);
   };
   if (parts.empty()) return Error{"merge: no parts"};
   const MonteCarloPart& first = parts.front();
+  if (auto st = check_same_run(parts, name, notes); !st) return st.err();
   MonteCarloPart out;
+  out.version = first.version;
+  out.preset_hash = first.preset_hash;
+  out.values = first.values;
+  for (const auto& p : parts)
+    out.version = std::min(out.version, p.version);
+  if (out.version < 2) {
+    out.preset_hash.clear();
+    out.values.clear();
+  }
   out.scenario = first.scenario;
   out.source = first.source;
   out.seeds = first.seeds;

@@ -96,6 +96,48 @@ TEST_F(MergeSchema, OutWritesTheMergedPartWhichMergesAgain) {
   EXPECT_EQ(again.text, r.text);  // the same summary from the merged part alone
 }
 
+// Part version 2: the preset's content hash and every value; parts of different runs are refused
+// naming the key (before, a KF half and a UKF half merged into one summary, exit 0).
+TEST_F(MergeSchema, PartsOfDifferentRunsAreRefused) {
+  const auto shard2 = [&](const std::string& preset, const std::string& sets,
+                          const std::string& out) {
+    auto r = cli("run " + preset + " --seeds 1..4 --shard 2/2 --set sim.duration=3" + sets +
+                 " --out " + out);
+    EXPECT_EQ(r.code, 0) << r.text;
+    return out;
+  };
+  const auto refused = [&](const std::string& other, const std::string& fragment) {
+    auto r = cli("merge " + part(1) + " " + other);
+    EXPECT_EQ(r.code, 2) << r.text;
+    EXPECT_NE(r.text.find(other + ": " + fragment), std::string::npos) << r.text;
+  };
+  refused(shard2(kMergeCv1d, " --set filter=ukf", dir_ + "/ukf.json"), "values.filter: ");
+  refused(shard2(kMergeCv1d, " --set sigma_a=5", dir_ + "/q.json"), "values.sigma_a: 5 differs");
+  // The same file content elsewhere is the same preset; an edited one is not.
+  const std::string copy = dir_ + "/copy.json";
+  std::filesystem::copy_file(kMergeCv1d, copy);
+  auto same = cli("merge " + part(1) + " " + shard2(copy, "", dir_ + "/same.json"), "2>&1");
+  EXPECT_EQ(same.code, 0) << same.text;
+  json edited = json::parse(std::ifstream(kMergeCv1d));
+  edited["title"] = "edited between the shards";
+  std::ofstream(copy) << edited.dump();
+  refused(shard2(copy, "", dir_ + "/edited.json"), "preset_hash: ");
+}
+
+TEST_F(MergeSchema, AVersion1PartMergesWithAWarningThatSamenessIsUnchecked) {
+  json old = second();
+  old["version"] = 1;
+  old.erase("preset_hash");
+  old.erase("values");
+  const std::string p = dir_ + "/old.json";
+  std::ofstream(p) << old.dump();
+  auto r = cli("merge " + part(1) + " " + p, "2>&1 >/dev/null");
+  EXPECT_EQ(r.code, 0) << r.text;
+  EXPECT_NE(r.text.find(p + ": a version-1 part records no preset hash or values"),
+            std::string::npos)
+      << r.text;
+}
+
 // Sweep parts: the same schema check (before: a corrupted point was copied into a JSON --out,
 // and the message of a wrong type named no file and no key).
 TEST_F(MergeSchema, CorruptedSweepPartsAreRefusedNotCopiedThrough) {
@@ -131,6 +173,22 @@ TEST_F(MergeSchema, CorruptedSweepPartsAreRefusedNotCopiedThrough) {
     EXPECT_NE(r.text.find(p + ": " + key), std::string::npos) << name << ": " << r.text;
     EXPECT_FALSE(std::filesystem::exists(out)) << name;
   }
+}
+
+TEST_F(MergeSchema, SweepPartsOfAnEditedPresetAreRefused) {
+  const std::string copy = dir_ + "/sweep_preset.json";
+  std::filesystem::copy_file(kMergeCv1d, copy);
+  const std::string grid = " --param sigma_a=0.1:10:4 --metric rmse --set sim.duration=3";
+  auto a = cli("sweep " + copy + grid + " --shard 1/2 --out " + dir_ + "/w1.json");
+  ASSERT_EQ(a.code, 0) << a.text;
+  json edited = json::parse(std::ifstream(kMergeCv1d));
+  edited["title"] = "edited between the shards";
+  std::ofstream(copy) << edited.dump();
+  auto b = cli("sweep " + copy + grid + " --shard 2/2 --out " + dir_ + "/w2.json");
+  ASSERT_EQ(b.code, 0) << b.text;
+  auto r = cli("merge " + dir_ + "/w1.json " + dir_ + "/w2.json");
+  EXPECT_EQ(r.code, 2) << r.text;
+  EXPECT_NE(r.text.find("w2.json: preset_hash: differs"), std::string::npos) << r.text;
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
@@ -22,6 +23,7 @@
 #include "document/session.h"
 #include "document/workspace.h"
 #include "experiment/grammar.h"
+#include "experiment/monte_carlo.h"
 #include "filter/covariance_check.h"
 #include "model/model_result.h"
 #include "model/model_scenario.h"
@@ -30,8 +32,9 @@
 namespace kfw::fuzz {
 
 // The harnesses by name: the libFuzzer target names and the corpus folders.
-inline constexpr const char* kHarnesses[] = {"csv",     "csv_mapped", "preset",
-                                             "session", "set",        "model_expr"};
+inline constexpr const char* kHarnesses[] = {"csv",        "csv_mapped", "preset",
+                                             "session",    "set",        "model_expr",
+                                             "model_file", "montecarlo_part"};
 
 // An error is allowed when it is one line, says something, and has a defined exit code.
 inline std::string check_error(const Error& e, const char* what) {
@@ -228,6 +231,47 @@ inline std::string model_expr(std::string_view data) {
   return check_run((*s)->run(*d, p));
 }
 
+// A whole model file (issue 29): loaded as the app loads a preset; one that loads is simulated
+// for at most 2 000 rows and run, and the run keeps its promises (check_run).
+inline std::string model_file(std::string_view data) {
+  auto p = parse_preset(std::string(data), "fuzz_model.json");
+  if (!p) {
+    if (p.exit_code() != kExitInvalid) return "a bad model file did not exit 2: " + p.error();
+    return check_error(p.err(), "model file");
+  }
+  if (!p->instance || p->scenario != "model") return "";
+  ParamValues v = p->values;
+  const double dt = v.count("sim.dt") ? v["sim.dt"] : 0.0;
+  if (v.count("sim.duration") && dt > 0.0) v["sim.duration"] = std::min(v["sim.duration"], 2000 * dt);
+  auto d = p->instance->simulate(v);
+  if (!d) return check_error(d.err(), "simulate");
+  if (d->rows() > 20000) return "";
+  return check_run(p->instance->run(*d, v));
+}
+
+// A Monte Carlo part (issue 29), as `merge` reads it: part_from_json validates it against the
+// schema (no exception escapes, one-line errors naming the key); a part that reads summarises to
+// finite numbers and survives a write and a re-read.
+inline std::string montecarlo_part(std::string_view data) {
+  const auto j = nlohmann::json::parse(data, nullptr, false);
+  if (j.is_discarded()) return "";  // not JSON: read_json_document's, not the part's
+  auto p = part_from_json(j, "fuzz_part.json");
+  if (!p) {
+    if (p.exit_code() != kExitInvalid) return "a bad part did not exit 2: " + p.error();
+    return check_error(p.err(), "part");
+  }
+  auto merged = merge_montecarlo_parts({*p}, {"fuzz_part.json"});
+  if (!merged) return check_error(merged.err(), "merge");
+  const MonteCarloSummary s = summarize_monte_carlo(*merged);
+  for (const auto& [k, m] : s.metrics) {
+    if (m.n && !(std::isfinite(m.mean) && std::isfinite(m.sd)))
+      return "the summary of " + k + " is not finite";
+  }
+  auto again = part_from_json(nlohmann::json::parse(part_to_json(*p).dump()), "again.json");
+  if (!again) return "a part does not re-read: " + again.error();
+  return "";
+}
+
 // Dispatch by harness name (fuzz_main.cpp, the corpus replay).
 inline std::string run_harness(std::string_view name, std::string_view data) {
   if (name == "csv") return csv(data, false);
@@ -236,6 +280,8 @@ inline std::string run_harness(std::string_view name, std::string_view data) {
   if (name == "session") return session(data);
   if (name == "set") return set(data);
   if (name == "model_expr") return model_expr(data);
+  if (name == "model_file") return model_file(data);
+  if (name == "montecarlo_part") return montecarlo_part(data);
   return "no harness '" + std::string(name) + "'";
 }
 

@@ -159,7 +159,9 @@ std::string one_line(std::string_view message) {
     out += ' ';
     i = space + 1;
   }
-  return out;
+  // A control byte that reached the message untruncated (a NUL in a preset's "format", a
+  // mapping's column, a part's scenario) is written as \xNN, as everywhere else.
+  return printable(out);
 }
 
 }  // namespace kfw

@@ -41,7 +41,8 @@ inline std::string shown_field(std::string_view s) {
 }
 
 // A message as one line: newlines become spaces, and any word longer than 160 characters keeps
-// its first 100 and last 40 around "…" (so FILE:LINE:COL at the end of a long path survives).
+// its first 100 and last 40 around "…" (so FILE:LINE:COL at the end of a long path survives),
+// and control bytes are written as \xNN (a NUL from a file never reaches a terminal raw).
 std::string one_line(std::string_view message);
 
 }  // namespace kfw

@@ -106,5 +106,19 @@ TEST_F(Messages, ANoiseFreeSensorIsNotCalledAMissingTruthColumn) {
   EXPECT_NE(why.find("R = 0"), std::string::npos) << why;
 }
 
+TEST_F(Messages, ControlBytesFromAFileAreNeverEchoedRaw) {
+  std::ifstream in(kMsgHeli);
+  json p = json::parse(in);
+  p["format"] = std::string("kfw-pre\0set", 11);
+  auto r = cli("run " + write("nul.json", p.dump()));
+  EXPECT_EQ(r.code, 2) << r.text;
+  EXPECT_NE(r.text.find("'kfw-pre\\x00set'"), std::string::npos) << r.text;
+  EXPECT_EQ(r.text.find('\0'), std::string::npos);
+  const std::string m = write("nulmap.json", json{{"gyro", std::string("gy\0ro", 5)}}.dump());
+  auto mr = cli("run " + kMsgHeli + " --data " + kMsgHeliCsv + " --mapping " + m);
+  EXPECT_EQ(mr.code, 2) << mr.text;
+  EXPECT_NE(mr.text.find("'gy\\x00ro'"), std::string::npos) << mr.text;
+}
+
 }  // namespace
 }  // namespace kfw

@@ -383,7 +383,11 @@ Expected<MonteCarloPart> merge_montecarlo_parts(const std::vector<MonteCarloPart
     }
   }
   if (out.runs.size() != out.seeds.size()) {
-    return Error{"merge: the parts hold " + std::to_string(out.runs.size()) + " runs of a set of " +
+    std::string which;
+    for (std::size_t i = 0; i < parts.size(); ++i)
+      which += (i ? ", " : "") + name(i);
+    return Error{"merge: " + which + (parts.size() == 1 ? " holds " : " hold ") +
+                 std::to_string(out.runs.size()) + " runs of a set of " +
                  std::to_string(out.seeds.size()) + " seeds"};
   }
   return out;

@@ -4,10 +4,10 @@
 #include <date/tz.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <cctype>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <locale>
 #include <map>

@@ -565,10 +565,9 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
     return p.error("model.measurements", "expected an object of one or more channels");
   }
   if (j["measurements"].size() > limits::kMaxChannels) {
-    return p.error("model.measurements", std::to_string(j["measurements"].size()) +
-                                             " channels: more than the limit of " +
-                                             std::to_string(limits::kMaxChannels) +
-                                             " (docs/limits.md)");
+    return p.error("model.measurements",
+                   std::to_string(j["measurements"].size()) + " channels: more than the limit of " +
+                       std::to_string(limits::kMaxChannels) + " (docs/limits.md)");
   }
   for (auto it = j["measurements"].begin(); it != j["measurements"].end(); ++it) {
     if (!is_identifier(it.key())) {

@@ -32,9 +32,8 @@
 namespace kfw::fuzz {
 
 // The harnesses by name: the libFuzzer target names and the corpus folders.
-inline constexpr const char* kHarnesses[] = {"csv",        "csv_mapped", "preset",
-                                             "session",    "set",        "model_expr",
-                                             "model_file", "montecarlo_part"};
+inline constexpr const char* kHarnesses[] = {"csv", "csv_mapped", "preset",     "session",
+                                             "set", "model_expr", "model_file", "montecarlo_part"};
 
 // An error is allowed when it is one line, says something, and has a defined exit code.
 inline std::string check_error(const Error& e, const char* what) {
@@ -242,7 +241,8 @@ inline std::string model_file(std::string_view data) {
   if (!p->instance || p->scenario != "model") return "";
   ParamValues v = p->values;
   const double dt = v.count("sim.dt") ? v["sim.dt"] : 0.0;
-  if (v.count("sim.duration") && dt > 0.0) v["sim.duration"] = std::min(v["sim.duration"], 2000 * dt);
+  if (v.count("sim.duration") && dt > 0.0)
+    v["sim.duration"] = std::min(v["sim.duration"], 2000 * dt);
   auto d = p->instance->simulate(v);
   if (!d) return check_error(d.err(), "simulate");
   if (d->rows() > 20000) return "";

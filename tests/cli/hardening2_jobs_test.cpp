@@ -15,20 +15,15 @@
 #include <thread>
 
 #include "common/cli_runner.h"
+#include "common/short_temp_dir.h"
 
 namespace kfw {
 namespace {
 
 namespace fs = std::filesystem;
 
-class LongJobs : public ::testing::Test {
+class LongJobs : public testing::ShortTempDir {
  protected:
-  void SetUp() override {
-    char tmpl[] = "/tmp/kfwjbXXXXXX";
-    ASSERT_NE(::mkdtemp(tmpl), nullptr);
-    dir_ = tmpl;
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   std::string stderr_text() const {
     std::ifstream in(dir_ + "/err.txt");
     std::stringstream ss;
@@ -67,7 +62,6 @@ class LongJobs : public ::testing::Test {
             "--out",
             dir_ + "/part.json"};
   }
-  std::string dir_;
 };
 
 TEST_F(LongJobs, SigintStopsAMonteCarloRunWritingNothing) {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/cli_runner.h"
+#include "common/short_temp_dir.h"
 
 namespace kfw {
 namespace {
@@ -22,19 +23,16 @@ using testing::cli;
 
 const std::string kMergeCv1d = std::string(KFW_SOURCE_DIR) + "/presets/models/cv1d.json";
 
-class MergeSchema : public ::testing::Test {
+class MergeSchema : public testing::ShortTempDir {
  protected:
   void SetUp() override {
-    char tmpl[] = "/tmp/kfwmgXXXXXX";
-    ASSERT_NE(::mkdtemp(tmpl), nullptr);
-    dir_ = tmpl;
+    ShortTempDir::SetUp();
     for (int s : {1, 2}) {
       auto r = cli("run " + kMergeCv1d + " --seeds 1..4 --shard " + std::to_string(s) +
                    "/2 --set sim.duration=3 --out " + part(s));
       ASSERT_EQ(r.code, 0) << r.text;
     }
   }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
   std::string part(int s) const { return dir_ + "/c" + std::to_string(s) + ".json"; }
   json second() const {
     std::ifstream in(part(2));
@@ -51,7 +49,6 @@ class MergeSchema : public ::testing::Test {
     EXPECT_EQ(r.code, 2) << name << ": " << r.text;
     EXPECT_NE(r.text.find(p + ": " + key), std::string::npos) << name << ": " << r.text;
   }
-  std::string dir_;
 };
 
 TEST_F(MergeSchema, TypeConfusedNodesAreRefusedNamingTheFileAndKey) {

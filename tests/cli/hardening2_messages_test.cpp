@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/cli_runner.h"
+#include "common/short_temp_dir.h"
 
 namespace kfw {
 namespace {
@@ -20,19 +21,8 @@ const std::string kMsgHeli = std::string(KFW_SOURCE_DIR) + "/presets/helicopter.
 const std::string kMsgCv1d = std::string(KFW_SOURCE_DIR) + "/presets/models/cv1d.json";
 const std::string kMsgHeliCsv = std::string(KFW_SOURCE_DIR) + "/data/helicopter.csv";
 
-class Messages : public ::testing::Test {
+class Messages : public testing::ShortTempDir {
  protected:
-  void SetUp() override {
-    char tmpl[] = "/tmp/kfwmsXXXXXX";
-    ASSERT_NE(::mkdtemp(tmpl), nullptr);
-    dir_ = tmpl;
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& text) const {
-    const std::string p = dir_ + "/" + name;
-    std::ofstream(p) << text;
-    return p;
-  }
   std::string cv1d_with(const std::string& name, const std::function<void(json&)>& edit) const {
     std::ifstream in(kMsgCv1d);
     json j = json::parse(in);
@@ -45,7 +35,6 @@ class Messages : public ::testing::Test {
     EXPECT_NE(r.text.find(fragment), std::string::npos)
         << "'" << fragment << "' not in: " << r.text;
   }
-  std::string dir_;
 };
 
 TEST_F(Messages, ImportOptionsWithoutFileDataAreRefused) {

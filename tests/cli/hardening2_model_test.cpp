@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "common/cli_runner.h"
+#include "common/short_temp_dir.h"
 
 namespace kfw {
 namespace {
@@ -21,19 +22,8 @@ using testing::cli;
 
 const std::string kLimitsCv1d = std::string(KFW_SOURCE_DIR) + "/presets/models/cv1d.json";
 
-class ModelLimits : public ::testing::Test {
+class ModelLimits : public testing::ShortTempDir {
  protected:
-  void SetUp() override {
-    char tmpl[] = "/tmp/kfwmlXXXXXX";
-    ASSERT_NE(::mkdtemp(tmpl), nullptr);
-    dir_ = tmpl;
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& text) const {
-    const std::string p = dir_ + "/" + name;
-    std::ofstream(p) << text;
-    return p;
-  }
   std::string diagonal(int n) const {
     const std::string p = dir_ + "/diag" + std::to_string(n) + ".json";
     auto r = testing::run_command("python3 " + std::string(KFW_SOURCE_DIR) +
@@ -45,7 +35,6 @@ class ModelLimits : public ::testing::Test {
     std::ifstream in(kLimitsCv1d);
     return json::parse(in);
   }
-  std::string dir_;
 };
 
 TEST_F(ModelLimits, ALargeDiagonalModelLoadsAndTooManyStatesAreRefused) {

@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "common/cli_runner.h"
+#include "common/short_temp_dir.h"
 #include "data/output.h"
 
 namespace kfw {
@@ -23,15 +24,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class StaleTemporaries : public ::testing::Test {
+class StaleTemporaries : public testing::ShortTempDir {
  protected:
   void SetUp() override {
-    char tmpl[] = "/tmp/kfwtmXXXXXX";
-    ASSERT_NE(::mkdtemp(tmpl), nullptr);
-    dir_ = tmpl;
+    ShortTempDir::SetUp();
     out_ = dir_ + "/est.csv";
   }
-  void TearDown() override { fs::remove_all(dir_); }
   // A temporary as a writer leaves it; `age_s` seconds old.
   std::string temporary(const std::string& suffix, int age_s) const {
     const std::string p = dir_ + "/.est.csv.kfw-" + suffix;
@@ -48,7 +46,7 @@ class StaleTemporaries : public ::testing::Test {
                                 "/presets/helicopter.json --set sim.duration=2 --out " + out_ +
                                 " 2>&1");
   }
-  std::string dir_, out_;
+  std::string out_;
 };
 
 TEST_F(StaleTemporaries, TheNextWriteRemovesOnlyDeadWritersTemporaries) {

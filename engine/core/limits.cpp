@@ -63,7 +63,9 @@ const char* input_name(Input kind) {
   return "file";
 }
 
-std::uint64_t memory_bytes() {
+namespace {
+
+std::uint64_t read_memory_bytes() {
   if (const char* e = std::getenv(kMemoryLimitEnv); e && *e) {
     char* end = nullptr;
     const unsigned long long v = std::strtoull(e, &end, 10);
@@ -79,6 +81,14 @@ std::uint64_t memory_bytes() {
   if (::getrlimit(RLIMIT_AS, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY)
     m = std::min<std::uint64_t>(m, rl.rlim_cur);  // ulimit -v
   return m;
+}
+
+}  // namespace
+
+// Read once per process: a Monte Carlo run simulates thousands of times.
+std::uint64_t memory_bytes() {
+  static const std::uint64_t bytes = read_memory_bytes();
+  return bytes;
 }
 
 std::size_t max_sim_rows(std::size_t columns) {

@@ -38,7 +38,7 @@ inline constexpr std::uint64_t kMaxExportPixels = 100'000'000;
 
 // The memory a run may plan for: the smallest of the machine's, the cgroup's limit (memory.max,
 // v2; memory.limit_in_bytes, v1) and the address-space limit (ulimit -v); KFW_MEMORY_LIMIT
-// (bytes) overrides them (tests).
+// (bytes) overrides them (tests). Read once per process.
 inline constexpr const char* kMemoryLimitEnv = "KFW_MEMORY_LIMIT";
 std::uint64_t memory_bytes();
 // Rows of a model simulation whose run (dataset and filter results) holds `columns` doubles a

@@ -28,12 +28,6 @@ struct Upgrade {
   std::string note;  // said either way ("a model file", "its preset is old too")
 };
 
-// The file's bytes, under the input policy (data/input_file.h): a directory, a FIFO or a device
-// is refused before it is read (reading a FIFO would wait for a writer).
-Expected<std::string> read_input(const std::string& path) {
-  return read_input_file(path, limits::Input::kPreset);
-}
-
 std::string joined(const std::vector<std::string>& keys) {
   std::string s;
   for (const auto& k : keys)
@@ -120,7 +114,8 @@ Expected<Upgrade> upgrade_document(const std::string& text, const std::string& p
 }  // namespace
 
 int cmd_upgrade(const UpgradeArgs& a, std::ostream& out, std::ostream& err) {
-  auto text = read_input(a.file);
+  // Under the input policy (data/input_file.h): a directory, FIFO or device is refused unread.
+  auto text = read_input_file(a.file, limits::Input::kPreset);
   if (!text) return fail(err, text.err());
   const std::string dest = a.out ? *a.out : a.file;
   auto u = upgrade_document(*text, a.file, dest);

@@ -34,7 +34,6 @@ std::uint64_t physical_bytes() {
 std::uint64_t max_bytes(Input kind) {
   switch (kind) {
     case Input::kData:
-    case Input::kTable:
       return kDataBytes;
     case Input::kPart:
       return kPartBytes;
@@ -47,8 +46,6 @@ const char* input_name(Input kind) {
   switch (kind) {
     case Input::kData:
       return "data file";
-    case Input::kTable:
-      return "table";
     case Input::kPreset:
       return "preset";
     case Input::kModel:

@@ -14,7 +14,7 @@ inline constexpr std::uint64_t kGiB = 1024u * kMiB;
 
 // The files the programs read, each kind with its byte cap (checked before reading, and again
 // while reading a file that grows).
-enum class Input { kData, kPreset, kModel, kMapping, kSession, kPart, kTable };
+enum class Input { kData, kPreset, kModel, kMapping, kSession, kPart };
 // A data file: 10 M rows of the widest seed preset's CSV (radome, ≈ 245 bytes a row) fit.
 inline constexpr std::uint64_t kDataBytes = 4 * kGiB;
 // Presets, model files, mappings, sessions: JSON written by hand or by kfw.

@@ -247,12 +247,6 @@ namespace {
 
 // Parts of one run: the same preset content and values (version 2); a version-1 part records
 // neither, so the check is impossible — said in `notes`.
-std::string number_text(double v) {
-  std::ostringstream os;
-  os << std::setprecision(10) << v;
-  return os.str();
-}
-
 template <class Name>
 Status check_same_run(const std::vector<MonteCarloPart>& parts, const Name& name,
                       std::vector<std::string>* notes) {
@@ -282,8 +276,8 @@ Status check_same_run(const std::vector<MonteCarloPart>& parts, const Name& name
       if (it == p.values.end() || it->second != v) {
         std::ostringstream os;
         os << name(i) << ": values." << k << ": "
-           << (it == p.values.end() ? std::string("missing") : number_text(it->second))
-           << " differs from " << name(ref_i) << "'s " << number_text(v)
+           << (it == p.values.end() ? std::string("missing") : fixed(it->second, 10))
+           << " differs from " << name(ref_i) << "'s " << fixed(v, 10)
            << " (parts of different runs)";
         return Error{os.str()};
       }

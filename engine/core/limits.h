@@ -36,6 +36,21 @@ inline constexpr double kMaxEvery = 1'000'000;
 // An exported plot: pixels of one image (a 40 in × 40 in figure at 1 200 dpi is 2.3 G).
 inline constexpr std::uint64_t kMaxExportPixels = 100'000'000;
 
+// Data files: one CSV line (reading stops there), columns of a table.
+inline constexpr std::size_t kMaxCsvLineBytes = 1024u * 1024u;
+inline constexpr std::size_t kMaxCsvColumns = 10000;
+// JSON documents: levels of nesting.
+inline constexpr std::size_t kMaxJsonDepth = 256;
+// Grammars: points n of one grid axis lo:hi:n, members of a set of integers (--seeds).
+inline constexpr std::size_t kMaxGridPoints = 1'000'000;
+inline constexpr std::size_t kMaxSetMembers = 1'000'000;
+// Model files: components of one channel, sub-expressions and their nesting, a sub-expression's
+// expanded text.
+inline constexpr int kMaxChannelSize = 8;
+inline constexpr std::size_t kMaxSubExpressions = 1000;
+inline constexpr std::size_t kMaxSubExpressionDepth = 100;
+inline constexpr std::size_t kMaxExpandedText = 100'000;
+
 // The memory a run may plan for: the smallest of the machine's, the cgroup's limit (memory.max,
 // v2; memory.limit_in_bytes, v1) and the address-space limit (ulimit -v); KFW_MEMORY_LIMIT
 // (bytes) overrides them (tests). Read once per process.

@@ -12,13 +12,14 @@
 
 #include "core/dataset.h"
 #include "core/expected.h"
+#include "core/limits.h"
 
 namespace kfw {
 
 // Limits (README "Missing and invalid data"; docs/hardening.md "Limits"): refused at once with a
 // message, in bounded time and memory.
-inline constexpr std::size_t kMaxCsvLineBytes = 1024u * 1024u;
-inline constexpr std::size_t kMaxCsvColumns = 10000;
+inline constexpr std::size_t kMaxCsvLineBytes = limits::kMaxCsvLineBytes;
+inline constexpr std::size_t kMaxCsvColumns = limits::kMaxCsvColumns;
 
 struct CsvOptions {
   std::string time_column = "t";

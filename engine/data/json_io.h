@@ -14,7 +14,7 @@
 namespace kfw {
 
 inline constexpr std::size_t kMaxJsonBytes = limits::kJsonBytes;
-inline constexpr std::size_t kMaxJsonDepth = 256;
+inline constexpr std::size_t kMaxJsonDepth = limits::kMaxJsonDepth;
 
 // Parses `text` (from `path`). Errors: invalid syntax, a number that overflows a double, a file
 // over 10 MB, nesting deeper than 256 — each with line:column and the key path where known.

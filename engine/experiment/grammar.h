@@ -13,11 +13,12 @@
 #include <vector>
 
 #include "core/expected.h"
+#include "core/limits.h"
 
 namespace kfw {
 
-inline constexpr std::size_t kMaxGridPoints = 1'000'000;
-inline constexpr std::size_t kMaxSetMembers = 1'000'000;
+inline constexpr std::size_t kMaxGridPoints = limits::kMaxGridPoints;
+inline constexpr std::size_t kMaxSetMembers = limits::kMaxSetMembers;
 
 enum class Spacing {
   kDefault,  // no suffix: the caller decides (sweep: the parameter's scale)

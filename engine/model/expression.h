@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/expected.h"
+#include "core/limits.h"
 
 namespace mu {
 class Parser;
@@ -76,7 +77,7 @@ struct Symbols {
 std::vector<std::string> identifiers(const std::string& text);
 // A sub-expression's expanded text beyond this many characters is refused (a chain of
 // sub-expressions that each use the previous one twice doubles at every link).
-inline constexpr std::size_t kMaxExpandedText = 100'000;
+inline constexpr std::size_t kMaxExpandedText = limits::kMaxExpandedText;
 
 // sin(x)/x (1 at 0) and its derivative (cos x − sinc x)/x (0 at 0): the language's function for
 // removable singularities, as muparser evaluates it.

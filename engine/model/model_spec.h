@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/expected.h"
+#include "core/limits.h"
 #include "core/param_spec.h"
 #include "filter/angle.h"
 #include "model/expression.h"
@@ -20,7 +21,8 @@ namespace kfw::model {
 // The model format this build reads up to; a version-1 file loads unchanged (version 2 adds
 // sub-expressions and the continuous nonlinear process).
 inline constexpr int kModelVersion = 2;
-inline constexpr int kMaxChannelSize = 8;  // components of one measurement channel
+inline constexpr int kMaxChannelSize =
+    limits::kMaxChannelSize;  // components of one measurement channel
 
 // A matrix of expressions, row-major, with the key that names it in messages.
 struct MatrixSpec {

@@ -79,6 +79,7 @@ MeasurementUpdate<N, M, MaxM> update(Vec<N>& x, Covariance<N>& P,
     u.log_det_S = log_det;
   }
   u.K = llt.solve(C.transpose()).transpose();
+  const double prior_scale = debug_prior_scale(P);
   x.noalias() += u.K * u.y;
   if (H) {
     const Eigen::Index n = x.rows();
@@ -94,7 +95,7 @@ MeasurementUpdate<N, M, MaxM> update(Vec<N>& x, Covariance<N>& P,
     P.noalias() -= u.K * S * u.K.transpose();
   }
   P = 0.5 * (P + P.transpose()).eval();
-  debug_check_covariance(P, H ? "a Joseph-form update" : "an update from P_xz");
+  debug_check_covariance(P, H ? "a Joseph-form update" : "an update from P_xz", prior_scale);
   u.status = UpdateStatus::kUpdated;
   return u;
 }
@@ -125,6 +126,26 @@ MeasurementUpdate<N, M, MaxM> update(Vec<N>& x, Covariance<N>& P,
   return update_detail::update<N, M, MaxM, MatR>(x, P, y, S, C, rules, &H, &R);
 }
 
+// P ← P − K Cᵀ − C Kᵀ + S K Kᵀ (the Joseph form of a scalar measurement, C = P Hᵀ, K = C/S)
+// on the upper triangle, mirrored into the lower: P stays exactly symmetric. The three products
+// of the full matrix round differently above and below the diagonal, and that asymmetry adds up
+// where P grows by many orders and collapses again (an unstable process; found by the model-file
+// fuzzer). The upper triangle is what the full form computes, in the same order.
+template <int N>
+[[gnu::always_inline]] inline void joseph_scalar(Covariance<N>& P, const Vec<N>& K, const Vec<N>& C,
+                                                 double S) {
+  const Eigen::Index n = P.rows();
+  for (Eigen::Index j = 0; j < n; ++j) {
+    for (Eigen::Index i = 0; i <= j; ++i) {
+      double v = P(i, j) - K(i) * C(j);
+      v -= C(i) * K(j);
+      v += (S * K(i)) * K(j);
+      P(i, j) = v;
+      P(j, i) = v;
+    }
+  }
+}
+
 // The same for a scalar measurement, without factorisation: K = C / S, NIS = y² / S, and the
 // Joseph form as P⁻ − K Cᵀ − C Kᵀ + K S Kᵀ, which needs neither H nor R (the hot path of 1-D
 // sensors; y stays in a register until the end).
@@ -144,12 +165,11 @@ template <int N>
     return u;
   }
   u.K = C / S;
+  const double prior_scale = debug_prior_scale(P);
   x.noalias() += u.K * y;
-  P.noalias() -= u.K * C.transpose();
-  P.noalias() -= C * u.K.transpose();
-  P.noalias() += (S * u.K) * u.K.transpose();
+  joseph_scalar(P, u.K, C, S);
   if (rules.log_det) u.log_det_S = std::log(S);
-  debug_check_covariance(P, "a scalar Kalman update");
+  debug_check_covariance(P, "a scalar Kalman update", prior_scale);
   u.status = UpdateStatus::kUpdated;
   return u;
 }

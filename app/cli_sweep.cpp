@@ -14,10 +14,10 @@
 #include "core/metrics.h"
 #include "core/suggest.h"
 #include "data/csv.h"
-#include "data/json_check.h"
 #include "experiment/grammar.h"
 #include "experiment/monte_carlo.h"
 #include "experiment/sweep.h"
+#include "experiment/sweep_part.h"
 
 namespace kfw {
 
@@ -27,12 +27,6 @@ using Json = nlohmann::ordered_json;
 // Sweep documents keep their keys sorted (nlohmann::json), as they read back: a merged document
 // is then byte for byte the one an unsharded sweep writes.
 using Doc = nlohmann::json;
-
-constexpr int kSweepPartVersion = 2;  // written; 1 and 2 are read (2: preset_hash)
-
-}  // namespace
-
-namespace {
 
 // A sweep as a JSON document: the grid, the metric and each point's value or why it stopped.
 // Parts (one shard) and whole sweeps share it; no timings, no host names, so merging the parts
@@ -88,7 +82,7 @@ Status finish_sweep(const Doc& doc, const MetricSpec& spec, const std::optional<
       stopped.push_back({{"at", at}, {"error", p.at("error").get<std::string>()}});
       continue;
     }
-    if (!p.contains("value")) continue;
+    if (!p.contains("value") || p.at("value").is_null()) continue;
     ++defined;
     if (best == points.size() ||
         better(spec, p.at("value").get<double>(), points[best].at("value").get<double>())) {
@@ -120,7 +114,9 @@ Status finish_sweep(const Doc& doc, const MetricSpec& spec, const std::optional<
         for (std::size_t k = 0; k < axes.size(); ++k)
           table.columns[k][i] = points[i].at("at").at(k).get<double>();
         table.columns[axes.size()][i] =
-            points[i].contains("value") ? points[i].at("value").get<double>() : std::nan("");
+            points[i].contains("value") && !points[i].at("value").is_null()
+                ? points[i].at("value").get<double>()
+                : std::nan("");
       }
       std::ostringstream csv;
       write_csv(csv, table);
@@ -223,138 +219,16 @@ int cmd_sweep(const SweepArgs& a, std::ostream& out, std::ostream& err) {
 
 namespace {
 
-namespace jc = json_check;
-
-Status check_axis(const Doc& a, const std::string& where) {
-  if (auto st = jc::object(a, where); !st) return st;
-  if (auto st = jc::member(a, where, "key", jc::string); !st) return st;
-  for (const char* k : {"lo", "hi"}) {
-    if (auto st = jc::member(a, where, k,
-                             [](const Doc& v, const std::string& w) { return jc::finite(v, w); });
-        !st)
-      return st;
-  }
-  if (auto st = jc::member(a, where, "n",
-                           [](const Doc& v, const std::string& w) {
-                             return jc::integer(v, w, 1, static_cast<double>(kMaxGridPoints));
-                           });
-      !st)
-    return st;
-  return jc::member(a, where, "log", jc::boolean);
-}
-
-// A sweep part against its schema (what sweep_document writes), before any value is read: a
-// corrupted point is refused naming the file and key, never copied into the merged --out.
-Status check_sweep_part(const Doc& j, const std::string& where) {
-  if (auto st = jc::member(j, where, "version",
-                           [](const Doc& v, const std::string& w) {
-                             return jc::integer(v, w, 1, kSweepPartVersion);
-                           });
-      !st)
-    return st;
-  for (const char* k : {"scenario", "metric", "direction"}) {
-    if (auto st = jc::member(j, where, k, jc::string); !st) return st;
-  }
-  if (j.at("version").get<double>() >= 2) {
-    if (auto st = jc::member(j, where, "preset_hash", jc::string); !st) return st;
-  }
-  const auto finite = [](const Doc& v, const std::string& w) { return jc::finite(v, w); };
-  if (auto st = jc::member(j, where, "target", finite, true); !st) return st;
-  if (auto st = jc::member(j, where, "axes", jc::each_of(check_axis)); !st) return st;
-  const auto base = [](const Doc& v, const std::string& w) { return jc::number_map(v, w); };
-  if (auto st = jc::member(j, where, "base", base); !st) return st;
-  const auto positive = [](const Doc& v, const std::string& w) { return jc::integer(v, w, 1); };
-  if (auto st = jc::member(j, where, "shard",
-                           [&](const Doc& v, const std::string& w) -> Status {
-                             if (auto st2 = jc::object(v, w); !st2) return st2;
-                             if (auto st2 = jc::member(v, w, "index", positive); !st2) return st2;
-                             return jc::member(v, w, "count", positive);
-                           });
-      !st)
-    return st;
-  const auto points = [](const Doc& v, const std::string& w) {
-    return jc::integer(v, w, 0, static_cast<double>(kMaxGridPoints));
-  };
-  if (auto st = jc::member(j, where, "total_points", points); !st) return st;
-  const double total = j.at("total_points").get<double>();
-  const std::size_t dims = j.at("axes").size();
-  const auto point = [&](const Doc& p, const std::string& w) -> Status {
-    if (auto st2 = jc::object(p, w); !st2) return st2;
-    if (auto st2 = jc::member(
-            p, w, "index",
-            [&](const Doc& v, const std::string& w2) { return jc::integer(v, w2, 0, total - 1); });
-        !st2)
-      return st2;
-    if (auto st2 =
-            jc::member(p, w, "at",
-                       [](const Doc& v, const std::string& w2) { return jc::finite_array(v, w2); });
-        !st2)
-      return st2;
-    if (p.at("at").size() != dims) {
-      return Error{jc::at(w, "at") + ": " + std::to_string(p.at("at").size()) +
-                   " coordinates for " + std::to_string(dims) + " axes"};
-    }
-    if (p.contains("error")) return jc::member(p, w, "error", jc::string);
-    const auto value = [](const Doc& v, const std::string& w2) -> Status {
-      return v.is_null() ? Status(Ok{}) : jc::finite(v, w2);
-    };
-    return jc::member(p, w, "value", value, true);
-  };
-  return jc::member(j, where, "points", jc::each_of(point));
-}
-
-// Merges the parts of a sharded sweep: the same grid, metric and base values, every shard once.
+// Merges the parts of a sharded sweep (experiment/sweep_part.h) and prints and writes the result
+// as an unsharded sweep does.
 Status merge_sweep_impl(const std::vector<nlohmann::json>& parts, const MergeArgs& a,
                         OutputSet& outs, std::ostream& out, std::ostream& err) {
-  const std::vector<std::string>& paths = a.parts;
   if (a.output.out) {
     if (auto st = outs.add(*a.output.out, "--out"); !st) return st;
   }
-  for (std::size_t i = 0; i < parts.size(); ++i) {
-    if (auto st = check_sweep_part(parts[i], paths[i]); !st) return st;
-  }
-  const Doc& first = parts.front();
-  const auto count = first.at("shard").at("count").get<std::size_t>();
-  std::vector<int> seen(count + 1, 0);
-  std::map<std::size_t, Doc> points;
-  for (std::size_t i = 0; i < parts.size(); ++i) {
-    const Doc& p = parts[i];
-    for (const char* key : {"version", "scenario", "metric", "axes", "base", "total_points"}) {
-      if (p.at(key) != first.at(key)) {
-        return Error{paths[i] + ": " + key + ": differs from " + paths.front() +
-                     " (parts of different sweeps)"};
-      }
-    }
-    if (p.contains("preset_hash") && p.at("preset_hash") != first.at("preset_hash")) {
-      return Error{paths[i] + ": preset_hash: differs from " + paths.front() +
-                   " (the preset changed between the shards)"};
-    }
-    if (p.at("shard").at("count") != first.at("shard").at("count")) {
-      return Error{paths[i] + ": shard: split into a different number of shards"};
-    }
-    const auto index = p.at("shard").at("index").get<std::size_t>();
-    if (index < 1 || index > count || seen[index]++) {
-      return Error{paths[i] + ": shard " + std::to_string(index) + "/" + std::to_string(count) +
-                   " given twice or out of range"};
-    }
-    for (const auto& pt : p.at("points"))
-      points[pt.at("index").get<std::size_t>()] = pt;
-  }
-  for (std::size_t k = 1; k <= count; ++k) {
-    if (!seen[k]) {
-      return Error{"merge: shard " + std::to_string(k) + "/" + std::to_string(count) +
-                   " is missing"};
-    }
-  }
-  Doc doc = first;
-  doc["shard"] = {{"index", 1}, {"count", 1}};
-  doc["points"] = Doc::array();
-  for (auto& [index, pt] : points)
-    doc["points"].push_back(std::move(pt));
-  if (doc.at("points").size() != first.at("total_points").get<std::size_t>()) {
-    return Error{"merge: the parts hold " + std::to_string(doc.at("points").size()) + " of " +
-                 first.at("total_points").dump() + " points"};
-  }
+  auto doc = merge_sweep_documents(parts, a.parts);
+  if (!doc) return doc.err();
+  const Doc& first = *doc;
   auto s = make_scenario(first.at("scenario").get<std::string>());
   MetricSpec spec;
   if (s) {
@@ -367,7 +241,7 @@ Status merge_sweep_impl(const std::vector<nlohmann::json>& parts, const MergeArg
     if (first.at("direction") == direction_name(d)) spec.direction = d;
   }
   if (first.contains("target")) spec.target = first.at("target").get<double>();
-  return finish_sweep(doc, spec, a.output.out, outs, out, err);
+  return finish_sweep(first, spec, a.output.out, outs, out, err);
 }
 
 }  // namespace

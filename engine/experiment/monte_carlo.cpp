@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <thread>
 #include <tuple>
 
 #include "core/statistics.h"
+#include "core/suggest.h"
 
 namespace kfw {
 
@@ -176,8 +178,14 @@ void StepSums::add(const std::vector<double>& v) {
 
 Status StepSums::merge(const StepSums& o) {
   if (o.name != name || o.dof != dof) {
-    return Error{"'" + o.name + "' (dof " + std::to_string(o.dof) + ") does not match '" + name +
-                 "' (dof " + std::to_string(dof) + ")"};
+    const auto text = [](const std::string& n, double d) {
+      std::ostringstream os;
+      os << quote_token(n) << " (dof " << d << ")";
+      return os.str();
+    };
+    return Error{std::string(o.name != name ? "name" : "dof") + ": " + text(o.name, o.dof) +
+                 " differs from the parts before it: " + text(name, dof) +
+                 " (parts of different runs)"};
   }
   if (o.sum.size() > sum.size()) {
     sum.resize(o.sum.size(), 0.0);

@@ -4,7 +4,9 @@
 #include <iomanip>
 #include <set>
 #include <sstream>
+#include <tuple>
 
+#include "core/suggest.h"
 #include "data/json_check.h"
 #include "data/json_io.h"
 #include "experiment/monte_carlo.h"
@@ -104,8 +106,9 @@ namespace {
 
 namespace jc = json_check;
 
-// Per-step sums (NEES, NIS, error, variance): counts ≥ 0, sums finite, sums of squares ≥ 0.
-Status check_sums(const Json& j, const std::string& where) {
+// Per-step sums (NEES, NIS, error, variance): counts whole, 0 ≤ count ≤ the part's runs, sums
+// finite, sums of squares ≥ 0, the three arrays of one length.
+Status check_sums(const Json& j, const std::string& where, std::size_t runs) {
   if (auto st = jc::object(j, where); !st) return st;
   if (auto st = jc::member(j, where, "name", jc::string); !st) return st;
   if (auto st = jc::member(j, where, "label", jc::string, true); !st) return st;
@@ -119,7 +122,21 @@ Status check_sums(const Json& j, const std::string& where) {
   };
   if (auto st = jc::member(j, where, "sum", any); !st) return st;
   if (auto st = jc::member(j, where, "sum_sq", squares); !st) return st;
-  return jc::member(j, where, "count", jc::count_array);
+  if (auto st = jc::member(j, where, "count", jc::count_array); !st) return st;
+  const std::size_t n = j.at("count").size();
+  for (const char* k : {"sum", "sum_sq"}) {
+    if (j.at(k).size() != n)
+      return Error{jc::at(where, k) + ": " + std::to_string(j.at(k).size()) +
+                   " values, \"count\" has " + std::to_string(n)};
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    if (j.at("count")[k].get<double>() > static_cast<double>(runs)) {
+      return Error{jc::at(where, "count") + "[" + std::to_string(k) +
+                   "]: " + j.at("count")[k].dump() + " is more than the part's " +
+                   std::to_string(runs) + " runs"};
+    }
+  }
+  return Ok{};
 }
 
 // A run's metric: finite, and small enough that its square sums without overflow.
@@ -167,14 +184,16 @@ Status check_part(const Json& j, const std::string& where) {
   if (auto st = jc::member(j, where, "seeds", jc::each_of(check_seed)); !st) return st;
   if (auto st = jc::member(j, where, "t", jc::increasing_array); !st) return st;
   if (auto st = jc::member(j, where, "runs", jc::each_of(check_run)); !st) return st;
+  const std::size_t runs = j.at("runs").size();
+  const auto sums = [runs](const Json& v, const std::string& w) { return check_sums(v, w, runs); };
   if (auto n = j.find("nees"); n != j.end() && !n->is_null()) {
-    if (auto st = check_sums(*n, jc::at(where, "nees")); !st) return st;
+    if (auto st = sums(*n, jc::at(where, "nees")); !st) return st;
   }
   for (const char* key : {"error", "variance"}) {
-    if (auto st = jc::member(j, where, key, check_sums, true); !st) return st;
+    if (auto st = jc::member(j, where, key, sums, true); !st) return st;
   }
   if (auto st = jc::member(j, where, "error_unit", jc::string, true); !st) return st;
-  return jc::member(j, where, "nis", jc::each_of(check_sums), true);
+  return jc::member(j, where, "nis", jc::each_of(sums), true);
 }
 
 }  // namespace
@@ -291,6 +310,39 @@ Status check_same_run(const std::vector<MonteCarloPart>& parts, const Name& name
   return Ok{};
 }
 
+// What a part's runs produced: NEES, error and variance, the NIS channels, e.g.
+// "nees, error, variance, nis angle"; "" for a part without a completed run (nothing to compare).
+std::string blocks_of(const MonteCarloPart& p) {
+  if (std::none_of(p.runs.begin(), p.runs.end(), [](const SeedRun& r) { return r.error.empty(); }))
+    return "";
+  std::string b = p.nees ? "nees" : "no nees";
+  b += p.error ? ", error" : "";
+  b += p.variance ? ", variance" : "";
+  b += p.nis.empty() ? ", no nis" : ", nis";
+  for (const auto& s : p.nis)
+    b += " " + quote_token(s.name);
+  return b;
+}
+
+// Parts of one run hold the same blocks (a shard without a completed run holds none).
+template <class Name>
+Status check_same_blocks(const std::vector<MonteCarloPart>& parts, const Name& name) {
+  std::size_t ref = parts.size();
+  std::string ref_blocks;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const std::string b = blocks_of(parts[i]);
+    if (b.empty()) continue;
+    if (ref == parts.size()) {
+      ref = i;
+      ref_blocks = b;
+    } else if (b != ref_blocks) {
+      return Error{name(i) + ": holds " + b + "; " + name(ref) + " holds " + ref_blocks +
+                   " (parts of different runs)"};
+    }
+  }
+  return Ok{};
+}
+
 }  // namespace
 
 Expected<MonteCarloPart> merge_montecarlo_parts(const std::vector<MonteCarloPart>& parts,
@@ -302,6 +354,7 @@ Expected<MonteCarloPart> merge_montecarlo_parts(const std::vector<MonteCarloPart
   if (parts.empty()) return Error{"merge: no parts"};
   const MonteCarloPart& first = parts.front();
   if (auto st = check_same_run(parts, name, notes); !st) return st.err();
+  if (auto st = check_same_blocks(parts, name); !st) return st.err();
   MonteCarloPart out;
   out.version = first.version;
   out.preset_hash = first.preset_hash;
@@ -343,14 +396,14 @@ Expected<MonteCarloPart> merge_montecarlo_parts(const std::vector<MonteCarloPart
         return Error{name(i) + ": nees: " + st.error()};
       }
     }
-    for (auto [mine, theirs] :
-         {std::pair{&out.error, &p.error}, std::pair{&out.variance, &p.variance}}) {
+    for (auto [mine, theirs, key] : {std::tuple{&out.error, &p.error, "error"},
+                                     std::tuple{&out.variance, &p.variance, "variance"}}) {
       if (!*theirs) continue;
       if (!*mine) {
         *mine = **theirs;
         out.error_unit = p.error_unit;
       } else if (auto st = (*mine)->merge(**theirs); !st) {
-        return Error{name(i) + ": error: " + st.error()};
+        return Error{name(i) + ": " + key + ": " + st.error()};
       }
     }
     for (const auto& s : p.nis) {

@@ -25,6 +25,16 @@ std::vector<double> SweepAxis::values() const {
   return v;
 }
 
+std::vector<double> grid_point(const std::vector<std::vector<double>>& values, std::size_t index) {
+  std::vector<double> row(values.size());
+  for (std::size_t a = values.size(); a-- > 0;) {
+    const auto na = values[a].size();
+    row[a] = values[a][index % na];
+    index /= na;
+  }
+  return row;
+}
+
 std::optional<std::size_t> grid_size(const std::vector<SweepAxis>& axes, std::size_t limit) {
   std::size_t points = 1;
   for (const auto& ax : axes) {
@@ -94,15 +104,10 @@ Expected<SweepResult> sweep(const Scenario& s, const Dataset& d, const ParamValu
   out.points.resize(n);
   out.metrics.resize(n);
   out.errors.resize(n);
-  // Row-major: the last axis fastest.
   for (std::size_t k = 0; k < n; ++k) {
-    std::size_t rest = out.indices[k];
-    std::vector<double> row(axes.size());
-    for (std::size_t a = axes.size(); a-- > 0;) {
-      const auto na = values[a].size();
-      const double v = values[a][rest % na];
-      rest /= na;
-      row[a] = s.params().find(axes[a].key)->scale == Scale::kInteger ? std::round(v) : v;
+    std::vector<double> row = grid_point(values, out.indices[k]);
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+      if (s.params().find(axes[a].key)->scale == Scale::kInteger) row[a] = std::round(row[a]);
     }
     out.points[k] = std::move(row);
   }

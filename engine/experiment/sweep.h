@@ -33,6 +33,9 @@ struct SweepResult {
 };
 
 // The number of points of a grid, or nullopt when it exceeds `limit`.
+// The coordinates of the point with row-major `index` (the last axis fastest) on a grid of the
+// axes' `values`.
+std::vector<double> grid_point(const std::vector<std::vector<double>>& values, std::size_t index);
 std::optional<std::size_t> grid_size(const std::vector<SweepAxis>& axes, std::size_t limit);
 // How many of `total` work items fall in a shard.
 std::size_t shard_size(std::size_t total, const Shard& shard);

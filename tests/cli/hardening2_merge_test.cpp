@@ -81,6 +81,32 @@ TEST_F(MergeSchema, InconsistentStatisticsAreRefused) {
   refused(
       "huge_metric", [](json& j) { j["runs"][0]["metrics"]["rmse"] = 1e308; },
       "runs[0].metrics.rmse");
+  // A count above the part's runs (was merged: 4294967297 of 2 runs); the three arrays of one
+  // length.
+  refused(
+      "count_above_runs", [](json& j) { j["nees"]["count"][1] = 4294967297LL; },
+      "nees.count[1]: 4294967297 is more than the part's 2 runs");
+  refused(
+      "short_sums", [](json& j) { j["nis"][0]["sum"].erase(0); }, "nis[0].sum: ");
+}
+
+// Parts of one run hold the same blocks: a part whose NIS block was emptied merged with one
+// that has the channel (exit 0 before); a block renamed in one part names the block and key.
+TEST_F(MergeSchema, PartsWithDifferentBlocksAreRefused) {
+  json j = second();
+  j["nis"] = json::array();
+  const std::string p = dir_ + "/no_nis.json";
+  std::ofstream(p) << j.dump();
+  auto r = cli("merge " + part(1) + " " + p);
+  EXPECT_EQ(r.code, 2) << r.text;
+  EXPECT_NE(r.text.find(p + ": holds nees, error, variance, no nis"), std::string::npos) << r.text;
+  json renamed = second();
+  renamed["variance"]["name"] = "other";
+  const std::string q = dir_ + "/renamed.json";
+  std::ofstream(q) << renamed.dump();
+  auto s = cli("merge " + part(1) + " " + q);
+  EXPECT_EQ(s.code, 2) << s.text;
+  EXPECT_NE(s.text.find(q + ": variance: name: 'other'"), std::string::npos) << s.text;
 }
 
 TEST_F(MergeSchema, OutWritesTheMergedPartWhichMergesAgain) {
@@ -163,13 +189,37 @@ TEST_F(MergeSchema, CorruptedSweepPartsAreRefusedNotCopiedThrough) {
            {"at_null", [](json& j) { j["points"][0]["at"] = nullptr; }, "points[0].at"},
            {"index_negative", [](json& j) { j["points"][0]["index"] = -1; }, "points[0].index"},
            {"kind_number", [](json& j) { j["kind"] = 0; }, "kind"},
-           {"n_huge", [](json& j) { j["axes"][0]["n"] = 1e308; }, "axes[0].n"}}) {
+           {"n_huge", [](json& j) { j["axes"][0]["n"] = 1e308; }, "axes[0].n"},
+           // Coordinates and indices against the part's own grid (merged before, copied into
+           // --out): off the grid, another shard's point, a point twice, a grid of another size.
+           {"off_grid", [](json& j) { j["points"][0]["at"][0] = 2.5; }, "points[0].at[0]: 2.5"},
+           {"other_shard", [](json& j) { j["points"][0]["index"] = 0; }, "points[0].index"},
+           {"twice", [](json& j) { j["points"].push_back(j["points"][0]); },
+            "points[2].index: point 1 given twice"},
+           {"total", [](json& j) { j["total_points"] = 5; }, "total_points: 5"}}) {
     const std::string p = edited(name, edit);
     auto r = cli("merge " + dir_ + "/s1.json " + p + " --out " + out);
     EXPECT_EQ(r.code, 2) << name << ": " << r.text;
     EXPECT_NE(r.text.find(p + ": " + key), std::string::npos) << name << ": " << r.text;
     EXPECT_FALSE(std::filesystem::exists(out)) << name;
   }
+}
+
+// A point whose metric is undefined (null, as a sweep writes NaN) merges as undefined (before:
+// "a part is malformed ([json.exception.type_error.302] …)", no file, no key).
+TEST_F(MergeSchema, ASweepPointWithANullValueMergesAsUndefined) {
+  const std::string grid = " --param sigma_a=0.1:10:4 --metric rmse --set sim.duration=3";
+  for (int s : {1, 2}) {
+    auto r = cli("sweep " + kMergeCv1d + grid + " --shard " + std::to_string(s) + "/2 --out " +
+                 dir_ + "/n" + std::to_string(s) + ".json");
+    ASSERT_EQ(r.code, 0) << r.text;
+  }
+  json j = json::parse(std::ifstream(dir_ + "/n2.json"));
+  j["points"][0]["value"] = nullptr;
+  std::ofstream(dir_ + "/n2.json") << j.dump();
+  auto r = cli("merge " + dir_ + "/n1.json " + dir_ + "/n2.json", "2>/dev/null");
+  ASSERT_EQ(r.code, 0) << r.text;
+  EXPECT_EQ(json::parse(r.text).at("points_defined"), 3) << r.text;
 }
 
 TEST_F(MergeSchema, SweepPartsOfAnEditedPresetAreRefused) {

@@ -24,6 +24,7 @@
 #include "document/workspace.h"
 #include "experiment/grammar.h"
 #include "experiment/monte_carlo.h"
+#include "experiment/sweep_part.h"
 #include "filter/covariance_check.h"
 #include "model/model_result.h"
 #include "model/model_scenario.h"
@@ -32,8 +33,9 @@
 namespace kfw::fuzz {
 
 // The harnesses by name: the libFuzzer target names and the corpus folders.
-inline constexpr const char* kHarnesses[] = {"csv", "csv_mapped", "preset",     "session",
-                                             "set", "model_expr", "model_file", "montecarlo_part"};
+inline constexpr const char* kHarnesses[] = {
+    "csv",        "csv_mapped", "preset",          "session",   "set",
+    "model_expr", "model_file", "montecarlo_part", "sweep_part"};
 
 // An error is allowed when it is one line, says something, and has a defined exit code.
 inline std::string check_error(const Error& e, const char* what) {
@@ -272,6 +274,30 @@ inline std::string montecarlo_part(std::string_view data) {
   return "";
 }
 
+// A sweep part through merge's schema check and combination (experiment/sweep_part.h): a part
+// that passes is read as merge's summary and --out read it — every point's coordinates as
+// numbers, its value a number or null, its error a string — without a library exception.
+inline std::string sweep_part(std::string_view data) {
+  const auto j = nlohmann::json::parse(data, nullptr, false);
+  if (j.is_discarded()) return "";  // not JSON: read_json_document's, not the part's
+  auto merged = merge_sweep_documents({j}, {"fuzz_sweep.json"});
+  if (!merged) {
+    if (merged.exit_code() != kExitInvalid) return "a bad part did not exit 2: " + merged.error();
+    return check_error(merged.err(), "merge");
+  }
+  const auto& axes = merged->at("axes");
+  for (const auto& p : merged->at("points")) {
+    if (p.at("at").size() != axes.size()) return "a point of another dimension passed";
+    for (const auto& c : p.at("at"))
+      if (!std::isfinite(c.get<double>())) return "a coordinate is not finite";
+    if (p.contains("error")) (void)p.at("error").get<std::string>();
+    if (p.contains("value") && !p.at("value").is_null()) (void)p.at("value").get<double>();
+  }
+  for (const auto& a : axes)
+    (void)a.at("key").get<std::string>();
+  return "";
+}
+
 // Dispatch by harness name (fuzz_main.cpp, the corpus replay).
 inline std::string run_harness(std::string_view name, std::string_view data) {
   if (name == "csv") return csv(data, false);
@@ -282,6 +308,7 @@ inline std::string run_harness(std::string_view name, std::string_view data) {
   if (name == "model_expr") return model_expr(data);
   if (name == "model_file") return model_file(data);
   if (name == "montecarlo_part") return montecarlo_part(data);
+  if (name == "sweep_part") return sweep_part(data);
   return "no harness '" + std::string(name) + "'";
 }
 

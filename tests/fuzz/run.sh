@@ -16,7 +16,7 @@ fi
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export LSAN_OPTIONS=suppressions=$here/../lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-names=${FUZZ_HARNESSES:-csv csv_mapped preset session set model_expr model_file montecarlo_part}
+names=${FUZZ_HARNESSES:-csv csv_mapped preset session set model_expr model_file montecarlo_part sweep_part}
 
 run_one() {
   local name=$1

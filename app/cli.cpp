@@ -10,6 +10,7 @@
 #include "cli_commands.h"
 #include "core/scenario.h"
 #include "core/suggest.h"
+#include "document/import_args_cli.h"
 #include "experiment/grammar.h"
 #include "model/model_stats.h"
 
@@ -73,37 +74,6 @@ void add_sets(CLI::App* c, std::vector<std::string>& sets) {
       ->take_all();
 }
 
-// How a CSV's columns become roles (README "Importing logs"); over the preset's mapping.
-void add_import(CLI::App* c, ImportArgs& m) {
-  auto repeat = [c](const char* name, std::vector<std::string>& dst, const char* type,
-                    const char* help) {
-    c->add_option(name, dst, help)->type_name(type)->allow_extra_args(false)->take_all();
-  };
-  repeat("--map", m.map, "ROLE=COLUMN", "read a role from a column (repeatable)");
-  repeat("--unit", m.unit, "ROLE=UNIT",
-         "the unit the role's column is in, converted to the role's (repeatable)");
-  c->add_option_function<std::string>(
-       "--time", [&m](const std::string& v) { m.time = v; },
-       "the time column, in s (default), ms, us, ns or iso (ISO-8601 date-time)")
-      ->type_name("COLUMN[:UNIT]");
-  repeat("--scale", m.scale, "ROLE=X", "multiply the role's values after unit conversion");
-  repeat("--offset", m.offset, "ROLE=X", "add to the role's values after scaling");
-  repeat("--flip", m.flip, "ROLE", "flip the sign of the role's values (repeatable)");
-  c->add_option_function<std::string>(
-       "--sep", [&m](const std::string& v) { m.sep = v; },
-       "the separator: comma, semicolon, tab, whitespace (default: detected)")
-      ->type_name("SEP");
-  c->add_option_function<std::string>(
-       "--header", [&m](const std::string& v) { m.header = v; },
-       "the first row: first (the column names), none (data: columns col1, col2, ...), detect "
-       "(default: no header when every cell is a number)")
-      ->type_name("first|none|detect");
-  c->add_option_function<std::string>(
-       "--mapping", [&m](const std::string& v) { m.mapping_file = v; },
-       "a mapping file (the preset's \"mapping\" block); options above override it")
-      ->type_name("FILE.json");
-}
-
 // The preset, --data with the import options, and --set, in this order.
 void add_target_and_data(CLI::App* c, TargetArgs& t, DataArgs& d,
                          const std::string& help = kPresetHelp) {
@@ -112,7 +82,7 @@ void add_target_and_data(CLI::App* c, TargetArgs& t, DataArgs& d,
        "--data", [&d](const std::string& v) { d.file = v; },
        "the dataset (CSV); default: the preset's, else simulated")
       ->type_name("FILE.csv");
-  add_import(c, d.import);
+  add_import_options(c, d.import);
   add_sets(c, t.sets);
 }
 
@@ -237,7 +207,7 @@ void declare_tune(CLI::App& app, TuneArgs& a) {
       ->type_name("FILE.csv")
       ->allow_extra_args(false)
       ->take_all();
-  add_import(c, a.import);  // the same mapping for every log of the tuning set
+  add_import_options(c, a.import);  // the same mapping for every log of the tuning set
   add_sets(c, a.target.sets);
   add_tune_search(c, a);
   add_path(c, "--seeds", a.seeds, "SET",
@@ -308,7 +278,7 @@ void declare_inspect(CLI::App& app, InspectArgs& a) {
        "PRESET", [&a](const std::string& v) { a.preset = v; },
        "guess the roles of this preset or scenario")
       ->type_name("");
-  add_import(c, a.import);
+  add_import_options(c, a.import);
   c->add_flag("--json", a.json, "print JSON");
 }
 

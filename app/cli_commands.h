@@ -65,13 +65,6 @@ Expected<std::vector<long long>> seeds_for(const std::string& seeds,
                                            const std::optional<std::string>& data,
                                            const Workspace& ws);
 
-// The import options over a mapping for these roles (time "t" is always one): a --mapping file
-// replaces the roles it names, then each option changes one field of one role. Unknown roles and
-// units, bad numbers and a bad mapping file are errors naming the option or the file's key.
-Status apply_import_args(const ImportArgs& imp, const std::vector<ColumnSpec>& roles, Mapping& m);
-// The same over the workspace's (the preset's) mapping, for the roles of its scenario.
-Status apply_import_args(const ImportArgs& imp, Workspace& ws);
-
 // Writes "kfw-cli: MESSAGE" as one line (long tokens shortened) and returns the exit code.
 int fail(std::ostream& err, const Error& e);
 

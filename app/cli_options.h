@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "document/import_args.h"
+
 namespace kfw {
 
 // A sweep larger than this needs --max-points (README "Limits").
@@ -21,18 +23,6 @@ struct TargetArgs {
 };
 
 // How every --data file is read (README "Importing logs"): applied over the preset's mapping.
-struct ImportArgs {
-  std::vector<std::string> map, unit, scale, offset, flip;  // ROLE=COLUMN, ROLE=UNIT, ...; ROLE
-  std::optional<std::string> time, sep, mapping_file;       // COLUMN[:UNIT|:iso], SEP, FILE
-  std::optional<std::string> header;                        // first, none, detect
-  bool any() const { return any_role() || time || sep || header; }
-  // An option that names a role other than time, or a mapping file (which may name any role).
-  bool any_role() const {
-    return !map.empty() || !unit.empty() || !scale.empty() || !offset.empty() || !flip.empty() ||
-           mapping_file;
-  }
-};
-
 // --data FILE.csv (default: the preset's, else simulated) and how it is read.
 struct DataArgs {
   std::optional<std::string> file;

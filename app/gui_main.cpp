@@ -167,9 +167,11 @@ int main(int argc, char** argv) {
   }
 
   kfw::MainWindow w;
-  auto loaded = w.loadPreset(opt->preset, opt->data, opt->sets);
-  if (!loaded && opt->data && !headless && w.loadPreset(opt->preset, std::nullopt, opt->sets)) {
-    // --data that the preset's mapping does not read: the import dialog on the file.
+  auto loaded = w.loadPreset(opt->preset, opt->data, opt->sets, opt->import);
+  if (!loaded && opt->data && !headless && !opt->import.any() &&
+      w.loadPreset(opt->preset, std::nullopt, opt->sets)) {
+    // --data that the preset's mapping does not read (and no import option says how): the
+    // import dialog on the file.
     w.setInteractive(true);
     loaded = w.openDataset(*opt->data);
   }

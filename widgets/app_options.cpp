@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/suggest.h"
+#include "document/import_args_cli.h"
 
 namespace kfw {
 
@@ -18,6 +19,7 @@ struct Parsed {
   std::string preset = "helicopter";
   std::optional<std::string> data, export_dir, screenshot, session, size;
   std::vector<std::string> sets, plots;
+  ImportArgs import;
   std::optional<double> dpi;
   double font_scale = 1.0;
   std::string theme = "light";
@@ -63,6 +65,7 @@ std::unique_ptr<Declaration> declare() {
   app.allow_extras();  // unknown options are answered with "did you mean"
   app.add_option("PRESET", p.preset, "a preset file or a name in presets/ (default: helicopter)");
   add_path(app, "--data", p.data, "FILE.csv", "the dataset (CSV); default: the preset's");
+  add_import_options(&app, p.import);
   app.add_option("--set", p.sets, "set a parameter (repeatable)")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false)
@@ -164,6 +167,7 @@ Expected<AppOptions> parseAppOptions(const QStringList& args) {
   o.data = q(p.data);
   for (const auto& s : p.sets)
     o.sets << QString::fromStdString(s);
+  o.import = p.import;
   o.export_dir = q(p.export_dir);
   o.formats = QString::fromStdString(p.formats);
   o.screenshot = q(p.screenshot);

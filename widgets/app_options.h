@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/expected.h"
+#include "document/import_args.h"
 
 namespace kfw {
 
@@ -16,6 +17,7 @@ struct AppOptions {
   QString preset;  // path or name; default "helicopter"
   std::optional<QString> data;
   QStringList sets;
+  ImportArgs import;  // --map, --time, --unit, --sep, --mapping, … as kfw-cli's
   std::optional<QString> export_dir;
   QString formats = "png";
   std::optional<QString> screenshot;  // grab the whole window to this PNG and exit

@@ -26,13 +26,13 @@ DocumentController::~DocumentController() = default;
 
 Status DocumentController::loadPreset(const QString& preset,
                                       const std::optional<QString>& data_file,
-                                      const QStringList& assignments) {
+                                      const QStringList& assignments, const ImportArgs& import) {
   std::vector<std::string> sets;
   for (const auto& a : assignments)
     sets.push_back(a.toStdString());
   std::optional<std::string> d;
   if (data_file) d = data_file->toStdString();
-  auto doc = Document::open(preset.toStdString(), d, sets);
+  auto doc = Document::open(preset.toStdString(), d, sets, import);
   if (!doc) return doc.err();
   const std::vector<std::string> notices = doc->notices();
   if (auto st = adopt(std::move(*doc)); !st) return st;

@@ -41,8 +41,9 @@ class DocumentController : public QObject {
   void addAdoptStep(AdoptStep step) { steps_.push_back(std::move(step)); }
 
   // Opens a preset (path or name in presets/), optionally with another dataset and --set values.
+  // `import`: kfw-cli's import options over the preset's mapping (refused when it simulates).
   Status loadPreset(const QString& preset, const std::optional<QString>& data_file = {},
-                    const QStringList& assignments = {});
+                    const QStringList& assignments = {}, const ImportArgs& import = {});
   // Makes `doc` the open document (adopt steps, then documentReplaced and a run).
   Status adopt(Document doc);
   // Null before a preset loads.

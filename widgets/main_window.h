@@ -64,9 +64,10 @@ class MainWindow : public QMainWindow {
 
   // Loads a preset (path or name in presets/), optionally with another dataset and --set values.
   // On failure nothing changes and the message names the file/line/key.
+  // `import`: how the file data in force is read (kfw-cli's import options).
   Status loadPreset(const QString& preset, const std::optional<QString>& data_file = {},
-                    const QStringList& assignments = {}) {
-    return doc_->loadPreset(preset, data_file, assignments);
+                    const QStringList& assignments = {}, const ImportArgs& import = {}) {
+    return doc_->loadPreset(preset, data_file, assignments, import);
   }
   // Loads a CSV for the current scenario. On failure the loaded dataset stays and the error shows.
   Status openDataset(const QString& path) { return data_->openDataset(path); }

@@ -53,9 +53,11 @@ std::string drop_view_parts(std::string& blob) {
 }  // namespace
 
 Expected<Document> Document::open(const std::string& preset, const std::optional<std::string>& data,
-                                  const std::vector<std::string>& assignments) {
+                                  const std::vector<std::string>& assignments,
+                                  const ImportArgs& import) {
   auto ws = open_workspace(preset, data, assignments);
   if (!ws) return ws.err();
+  if (auto st = apply_import_args(import, *ws); !st) return st.err();
   Document d = from_preset(ws->preset);
   d.state_.values = ws->values;
   if (ws->data_path) d.state_.data = DataRef{*ws->data_path, ws->mapping};

@@ -13,6 +13,7 @@
 #include "core/expected.h"
 #include "core/scenario.h"
 #include "data/mapping.h"
+#include "document/import_args.h"
 #include "document/preset.h"
 #include "document/session.h"
 
@@ -26,9 +27,11 @@ enum class UndoMerge {
 
 class Document {
  public:
-  // Opens a preset (path or name in presets/) with an optional dataset and --set assignments.
+  // Opens a preset (path or name in presets/) with an optional dataset, --set assignments and
+  // import options (how the file data in force is read; refused when the preset simulates).
   static Expected<Document> open(const std::string& preset, const std::optional<std::string>& data,
-                                 const std::vector<std::string>& assignments = {});
+                                 const std::vector<std::string>& assignments = {},
+                                 const ImportArgs& import = {});
   static Document from_preset(Preset preset);
 
   const Preset& preset() const { return preset_; }

@@ -11,6 +11,7 @@
 #include <QImage>
 #include <QTemporaryDir>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -131,6 +132,48 @@ TEST(HeadlessHardening, ExportOptionsAndAPresetsMissingDataAreNamed) {
   auto missing = headless("--export " + out + " " + preset);
   EXPECT_EQ(missing.code, 2) << missing.text;
   EXPECT_NE(missing.text.find(preset + ": data: "), std::string::npos) << missing.text;
+
+  // A session's missing data file names the session and its key (was only the data path).
+  const nlohmann::json session = {{"format", "kfw-session"},
+                                  {"version", 3},
+                                  {"preset", kHeadlessHeli},
+                                  {"scenario", "model"},
+                                  {"values", nlohmann::json::object()},
+                                  {"data", {{"path", dir.filePath("gone.csv").toStdString()}}}};
+  const std::string s = write_in(dir, "s.json", session.dump());
+  auto gone = headless("--export " + out + " --session " + s);
+  EXPECT_EQ(gone.code, 2) << gone.text;
+  EXPECT_NE(gone.text.find(s + ": data.path: "), std::string::npos) << gone.text;
+}
+
+// kfw takes kfw-cli's import options (one declaration, document/import_args_cli.h): a log whose
+// gyro column is named otherwise exports with --map, as `kfw-cli run` reads it; a misspelt role
+// and an option on a preset that simulates are refused as the CLI refuses them.
+TEST(HeadlessHardening, TheImportOptionsAreTheCliOnes) {
+  QTemporaryDir dir;
+  std::ifstream in(std::string(KFW_SOURCE_DIR) + "/data/helicopter.csv");
+  std::string header, rest;
+  std::getline(in, header);
+  rest.assign(std::istreambuf_iterator<char>(in), {});
+  header.replace(header.find("gyro"), 4, "rate");
+  const std::string csv = write_in(dir, "rate.csv", header + "\n" + rest);
+  const std::string out = dir.filePath("x").toStdString();
+  const std::string base = "--export " + out + " --plot state.theta " + kHeadlessHeli;
+  auto mapped = headless(base + " --data " + csv + " --map gyro=rate");
+  EXPECT_EQ(mapped.code, 0) << mapped.text;
+  EXPECT_TRUE(QFileInfo::exists(dir.filePath("x/helicopter_state.theta.png")));
+  auto cli = testing::run_command(std::string(KFW_CLI_FOR_GUI_TESTS) + " run " + kHeadlessHeli +
+                                  " --data " + csv + " --map gyro=rate >/dev/null 2>&1");
+  EXPECT_EQ(cli.code, 0) << cli.text;
+  auto misspelt = headless(base + " --data " + csv + " --map gyr=rate");
+  EXPECT_EQ(misspelt.code, 2) << misspelt.text;
+  EXPECT_NE(misspelt.text.find("--map: unknown role 'gyr' (did you mean 'gyro'?)"),
+            std::string::npos)
+      << misspelt.text;
+  auto simulated = headless(base + " --map gyro=rate");
+  EXPECT_EQ(simulated.code, 2) << simulated.text;
+  EXPECT_NE(simulated.text.find("this run simulates its data"), std::string::npos)
+      << simulated.text;
 }
 
 TEST(HeadlessHardening, TheWindowWithoutADisplayExits2WithOneLine) {

@@ -246,7 +246,12 @@ Status DocumentController::loadSession(const QString& path) {
   }
   doc->mark_saved();
   const std::vector<std::string> notices = doc->notices();
-  if (auto st = adopt(std::move(*doc)); !st) return st;
+  if (auto st = adopt(std::move(*doc)); !st) {
+    // The session's data file: name the session and its key, as kfw-cli does.
+    if (s->data_path && st.error().rfind(*s->data_path, 0) == 0)
+      return Error{path.toStdString() + ": data.path: " + st.error(), st.err().exit_code};
+    return st;
+  }
   runs_->waitSettled();
   refreshPins();
   restoreViewState(q(doc_->view_state()));

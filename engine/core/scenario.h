@@ -55,6 +55,9 @@ struct NeesSeries {
   // Some step has a truth value for every state of the NEES: a NEES undefined everywhere then
   // means a singular covariance (a noise-free sensor), not a missing truth column.
   bool truth = false;
+  // At some step with truth, the error x̂ − x of every state has a finite square: when not, a
+  // NEES undefined everywhere means the estimate overflowed, not a singular covariance.
+  bool error_finite = true;
 };
 
 // The per-step arrays of one run plus its metrics. Each scenario derives its own result with the

@@ -185,8 +185,10 @@ void add_consistency_metrics(const std::vector<InnovationChannel>& channels, con
     // No finite NEES: no truth, or (NeesSeries::truth) a covariance singular wherever truth is
     // known — a noise-free sensor, R = 0, pins the state; not a missing column.
     const std::string why = !nees.truth ? "no truth column"
-                                        : "the covariance of the states with truth is singular "
-                                          "wherever truth is known (a noise-free sensor, R = 0?)";
+                            : !nees.error_finite
+                                ? "the estimation error overflows wherever truth is known"
+                                : "the covariance of the states with truth is singular "
+                                  "wherever truth is known (a noise-free sensor, R = 0?)";
     undefined.emplace("nees_mean", why);
     undefined.emplace("nees_in_bounds", why);
   }

@@ -83,13 +83,19 @@ std::vector<InnovationChannel> ModelResult::channels() const {
 
 NeesSeries ModelResult::nees_series() const {
   if (nees_dof <= 0) return {};
-  NeesSeries s{nees_dof, nees, false};
-  for (std::size_t k = 0; k < steps() && !s.truth; ++k) {
-    bool all = true;
-    for (const auto& tr : truth)
-      all = all && (tr.empty() || std::isfinite(tr[k]));
-    s.truth = all;
+  NeesSeries s{nees_dof, nees, false, false};
+  for (std::size_t k = 0; k < steps() && !s.error_finite; ++k) {
+    bool all = true, finite = true;
+    for (std::size_t i = 0; i < truth.size(); ++i) {
+      if (truth[i].empty()) continue;
+      all = all && std::isfinite(truth[i][k]);
+      const double e = x[i][k] - truth[i][k];
+      finite = finite && std::isfinite(e * e);
+    }
+    s.truth = s.truth || all;
+    s.error_finite = all && finite;
   }
+  if (!s.truth) s.error_finite = true;
   return s;
 }
 

@@ -95,6 +95,26 @@ TEST_F(Messages, ANoiseFreeSensorIsNotCalledAMissingTruthColumn) {
   EXPECT_NE(why.find("R = 0"), std::string::npos) << why;
 }
 
+// An angle column of 1e308: the estimate follows it and the error's square overflows; the NEES
+// was blamed on a singular covariance ("R = 0?") although R = 1.96.
+TEST_F(Messages, AnOverflowingErrorIsNotCalledASingularCovariance) {
+  std::ifstream in(kMsgHeliCsv);
+  std::string header, line, text;
+  std::getline(in, header);
+  text = header + "\n";
+  for (int k = 0; k < 200 && std::getline(in, line); ++k) {
+    // t,angle,gyro,bias_truth,truth: the angle (second cell) set to 1e308
+    const auto a = line.find(','), b = line.find(',', a + 1);
+    text += line.substr(0, a + 1) + "1e308" + line.substr(b) + "\n";
+  }
+  ASSERT_EQ(header.substr(0, 8), "t,angle,");
+  const std::string csv = write("big_angle.csv", text);
+  auto r = cli("run " + kMsgHeli + " --data " + csv, "2>/dev/null");
+  ASSERT_EQ(r.code, 0) << r.text;
+  const std::string why = json::parse(r.text).at("undefined").at("nees_mean");
+  EXPECT_NE(why.find("the estimation error overflows"), std::string::npos) << why;
+}
+
 TEST_F(Messages, ControlBytesFromAFileAreNeverEchoedRaw) {
   std::ifstream in(kMsgHeli);
   json p = json::parse(in);

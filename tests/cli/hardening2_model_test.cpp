@@ -104,8 +104,8 @@ TEST_F(ModelLimits, ASimulationTooLongForMemoryIsRefusedWithTheLimit) {
   auto r = testing::run_command("KFW_MEMORY_LIMIT=100000000 " + std::string(KFW_CLI) + " run " +
                                 kLimitsCv1d + " --set sim.duration=3600 --set sim.dt=0.0001 2>&1");
   EXPECT_EQ(r.code, 2) << r.text;
-  EXPECT_NE(r.text.find("sim.duration / sim.dt: 36000001 rows; a simulation of this model may "
-                        "have at most"),
+  EXPECT_NE(r.text.find(kLimitsCv1d + ": sim.duration / sim.dt: 36000001 rows; a simulation "
+                                      "of this model may have at most"),
             std::string::npos)
       << r.text;
   EXPECT_NE(r.text.find("95.4 MB memory limit"), std::string::npos) << r.text;

@@ -201,7 +201,7 @@ Status Simulation::prepare(double duration, std::size_t grid_rows) {
       times.emplace_back(t, static_cast<long long>(c));
   }
   if (times.size() > max_rows_) {
-    return Error{"sim.duration: " + too_many_rows(times.size(), max_rows_, spec_)};
+    return Error{spec_.path + ": sim.duration: " + too_many_rows(times.size(), max_rows_, spec_)};
   }
   std::stable_sort(times.begin(), times.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -464,7 +464,8 @@ Expected<Dataset> simulate_model(const ModelSpec& spec, const ParamValues& value
       std::max<std::size_t>(static_cast<std::size_t>(std::floor(duration / dt + 1e-9)) + 1, 2);
   const std::size_t max_rows = limits::max_sim_rows(doubles_per_row(spec));
   if (rows > max_rows) {
-    return Error{"sim.duration / " + dt_key + ": " + too_many_rows(rows, max_rows, spec)};
+    return Error{spec.path + ": sim.duration / " + dt_key + ": " +
+                 too_many_rows(rows, max_rows, spec)};
   }
   auto evr = ModelEval::create(spec, values);
   if (!evr) return evr.err();

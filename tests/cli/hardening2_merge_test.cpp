@@ -38,6 +38,15 @@ class MergeSchema : public testing::ShortTempDir {
     std::ifstream in(part(2));
     return json::parse(in);
   }
+  // A sweep of cv1d in two shards: DIR/NAME1.json and DIR/NAME2.json.
+  void sweep_shards(const std::string& name) const {
+    const std::string grid = " --param sigma_a=0.1:10:4 --metric rmse --set sim.duration=3";
+    for (int s : {1, 2}) {
+      auto r = cli("sweep " + kMergeCv1d + grid + " --shard " + std::to_string(s) + "/2 --out " +
+                   dir_ + "/" + name + std::to_string(s) + ".json");
+      ASSERT_EQ(r.code, 0) << r.text;
+    }
+  }
   // Part 2 edited by `edit`, merged with part 1: exit 2 naming the file and `key`.
   void refused(const std::string& name, const std::function<void(json&)>& edit,
                const std::string& key) {
@@ -164,12 +173,7 @@ TEST_F(MergeSchema, AVersion1PartMergesWithAWarningThatSamenessIsUnchecked) {
 // Sweep parts: the same schema check (before: a corrupted point was copied into a JSON --out,
 // and the message of a wrong type named no file and no key).
 TEST_F(MergeSchema, CorruptedSweepPartsAreRefusedNotCopiedThrough) {
-  const std::string grid = " --param sigma_a=0.1:10:4 --metric rmse --set sim.duration=3";
-  for (int s : {1, 2}) {
-    auto r = cli("sweep " + kMergeCv1d + grid + " --shard " + std::to_string(s) + "/2 --out " +
-                 dir_ + "/s" + std::to_string(s) + ".json");
-    ASSERT_EQ(r.code, 0) << r.text;
-  }
+  ASSERT_NO_FATAL_FAILURE(sweep_shards("s"));
   const auto edited = [&](const std::string& name, const std::function<void(json&)>& edit) {
     std::ifstream in(dir_ + "/s2.json");
     json j = json::parse(in);
@@ -208,12 +212,7 @@ TEST_F(MergeSchema, CorruptedSweepPartsAreRefusedNotCopiedThrough) {
 // A point whose metric is undefined (null, as a sweep writes NaN) merges as undefined (before:
 // "a part is malformed ([json.exception.type_error.302] …)", no file, no key).
 TEST_F(MergeSchema, ASweepPointWithANullValueMergesAsUndefined) {
-  const std::string grid = " --param sigma_a=0.1:10:4 --metric rmse --set sim.duration=3";
-  for (int s : {1, 2}) {
-    auto r = cli("sweep " + kMergeCv1d + grid + " --shard " + std::to_string(s) + "/2 --out " +
-                 dir_ + "/n" + std::to_string(s) + ".json");
-    ASSERT_EQ(r.code, 0) << r.text;
-  }
+  ASSERT_NO_FATAL_FAILURE(sweep_shards("n"));
   json j = json::parse(std::ifstream(dir_ + "/n2.json"));
   j["points"][0]["value"] = nullptr;
   std::ofstream(dir_ + "/n2.json") << j.dump();

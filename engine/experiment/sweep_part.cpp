@@ -150,7 +150,17 @@ Status check_sweep_part(const Doc& j, const std::string& where) {
     };
     return jc::member(p, w, "value", value, true);
   };
-  return jc::member(j, where, "points", jc::each_of(point));
+  if (auto st = jc::member(j, where, "points", jc::each_of(point)); !st) return st;
+  const std::size_t held = j.at("points").size();
+  const std::size_t due =
+      shard_size(static_cast<std::size_t>(total), Shard{shard_index, shard_count});
+  if (held != due) {
+    return Error{jc::at(where, "points") + ": " + std::to_string(held) + " points; shard " +
+                 std::to_string(shard_index) + "/" + std::to_string(shard_count) + " of a " +
+                 std::to_string(static_cast<std::size_t>(total)) + "-point grid holds " +
+                 std::to_string(due)};
+  }
+  return Ok{};
 }
 
 Expected<Doc> merge_sweep_documents(const std::vector<Doc>& parts,

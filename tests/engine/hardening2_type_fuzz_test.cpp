@@ -1,5 +1,6 @@
 // Hardening round 2 (issue 29), the type fuzz: every JSON node of each input kind — a preset, a
-// model file, a session, a mapping, a Monte Carlo part — replaced in turn by each other JSON type
+// model file, a session (versions 2 and 3), a mapping, a Monte Carlo and a sweep part — replaced
+// in turn by each other JSON type
 // and by ±1e308. Each case loads (a value) or is refused with exit 2 and a one-line message that
 // names the file; never an exception, never exit 1 from a parse. Before (the report's 920 cases):
 // 7 aborts on uncaught type errors and 130 silent or vague outcomes, all in merge.
@@ -15,6 +16,7 @@
 #include "document/preset.h"
 #include "document/session.h"
 #include "experiment/monte_carlo.h"
+#include "experiment/sweep_part.h"
 
 namespace kfw {
 namespace {
@@ -99,12 +101,18 @@ TEST(TypeFuzz, PresetsAndModelFiles) {
 }
 
 TEST(TypeFuzz, Sessions) {
-  const json base = read_json("tests/fixtures/session_v2/helicopter.json");
-  ASSERT_TRUE(parse_session(base.dump(), "fuzz.session.json").ok());
-  const int loaded = fuzz_types(base, "fuzz.session.json", [](const json& j) {
-    return outcome(parse_session(j.dump(), "fuzz.session.json"));
-  });
-  std::cout << "session: " << loaded << " replaced nodes load\n";
+  const json v2 = read_json("tests/fixtures/session_v2/helicopter.json");
+  auto s = parse_session(v2.dump(), "fuzz.session.json");
+  ASSERT_TRUE(s.ok()) << s.error();
+  // Version 3, as this build writes it (unknown keys refused).
+  const json v3 = json::parse(session_to_json(*s));
+  ASSERT_EQ(v3.at("version"), 3);
+  for (const json& base : {v2, v3}) {
+    const int loaded = fuzz_types(base, "fuzz.session.json", [](const json& j) {
+      return outcome(parse_session(j.dump(), "fuzz.session.json"));
+    });
+    std::cout << "session v" << base.at("version") << ": " << loaded << " replaced nodes load\n";
+  }
 }
 
 TEST(TypeFuzz, Mappings) {
@@ -137,6 +145,15 @@ TEST(TypeFuzz, MonteCarloParts) {
     auto m = merge_montecarlo_parts({*p}, {"part.json"});
     return outcome(m);
   });
+}
+
+TEST(TypeFuzz, SweepParts) {
+  const json base = read_json("tests/fuzz/corpus/sweep_part/cv1d_whole.json");
+  ASSERT_TRUE(check_sweep_part(base, "p").ok());
+  const int loaded = fuzz_types(base, "part.json", [](const json& j) {
+    return outcome(merge_sweep_documents({j}, {"part.json"}));
+  });
+  std::cout << "sweep part: " << loaded << " replaced nodes load\n";
 }
 
 }  // namespace

@@ -119,7 +119,9 @@ std::string line_col_of(const std::string& text, std::size_t byte) {
 }  // namespace
 
 std::string key_path(std::string_view parent, std::string_view key) {
-  return parent.empty() ? std::string(key) : std::string(parent) + "." + std::string(key);
+  // The key as messages show any token from a file: control bytes as \xNN, long keys cut.
+  const std::string shown = truncate_token(key);
+  return parent.empty() ? shown : std::string(parent) + "." + shown;
 }
 
 std::string index_path(std::string_view parent, std::size_t index) {

@@ -29,7 +29,8 @@ Expected<nlohmann::ordered_json> parse_ordered_json_document(const std::string& 
 Expected<nlohmann::ordered_json> read_ordered_json_document(const std::string& path,
                                                             const char* what);
 
-// "parameters.Q.value", "model.h[0]": a child key appended to a dotted path.
+// "parameters.Q.value", "model.h[0]": a child key appended to a dotted path, for messages (the
+// key printable: control bytes as \xNN, a long key cut).
 std::string key_path(std::string_view parent, std::string_view key);
 std::string index_path(std::string_view parent, std::size_t index);
 // The JSON type of a value in words ("a string", "an object", ...), for messages.

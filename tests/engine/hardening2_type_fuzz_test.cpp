@@ -147,6 +147,17 @@ TEST(TypeFuzz, MonteCarloParts) {
   });
 }
 
+// Found by the session fuzzer: a key with a newline, inside a session's mapping, was echoed raw
+// in "unknown key", a message of two lines. Every key path shows control bytes escaped.
+TEST(TypeFuzz, ControlBytesInKeysAreEscaped) {
+  const json m = json::parse(R"({"angle": {"column": "x", "offse\nt": 1}})");
+  auto r = mapping_from_json(m, "s.json: mapping");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().find('\n'), std::string::npos) << r.error();
+  EXPECT_NE(r.error().find("s.json: mapping.angle.offse\\nt: unknown key"), std::string::npos)
+      << r.error();
+}
+
 TEST(TypeFuzz, SweepParts) {
   const json base = read_json("tests/fuzz/corpus/sweep_part/cv1d_whole.json");
   ASSERT_TRUE(check_sweep_part(base, "p").ok());

@@ -142,12 +142,14 @@ nlohmann::ordered_json mapping_to_json(const Mapping& m) {
   if (m.separator) j["sep"] = separator_key(m.separator);
   if (m.header != HeaderRow::detect) j["header"] = header_row_name(m.header);
   for (const auto& [role, r] : m) {
-    if (r.unit.empty() && r.scale == 1.0 && r.offset == 0.0 && !r.flip) {
-      j[role] = r.column.empty() ? role : r.column;
+    if (r.unit.empty() && r.scale == 1.0 && r.offset == 0.0 && !r.flip && !r.column.empty()) {
+      j[role] = r.column;
       continue;
     }
-    nlohmann::ordered_json e;
-    e["column"] = r.column.empty() ? role : r.column;
+    // No column: the role reads the column a guess or another mapping gives it, else the one of
+    // its own name; written as no "column", so the mapping reads back as it was.
+    nlohmann::ordered_json e = nlohmann::ordered_json::object();
+    if (!r.column.empty()) e["column"] = r.column;
     if (!r.unit.empty()) e["unit"] = r.unit;
     if (r.scale != 1.0) e["scale"] = r.scale;
     if (r.offset != 0.0) e["offset"] = r.offset;

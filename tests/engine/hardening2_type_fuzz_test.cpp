@@ -158,6 +158,17 @@ TEST(TypeFuzz, ControlBytesInKeysAreEscaped) {
       << r.error();
 }
 
+// Found by the session fuzzer: a role with a unit and no column ("t": {"unit": "ms"}) was written
+// with its own name as the column, so a saved session's mapping read back as another mapping.
+TEST(TypeFuzz, AMappingWithoutAColumnReadsBackAsItWas) {
+  const json base = json::parse(R"({"t": {"unit": "ms"}, "gyro": {}, "angle": "roll"})");
+  auto m = mapping_from_json(base, "m.json: mapping");
+  ASSERT_TRUE(m.ok()) << m.error();
+  auto again = mapping_from_json(json::parse(mapping_to_json(*m).dump()), "again.json: mapping");
+  ASSERT_TRUE(again.ok()) << again.error();
+  EXPECT_TRUE(*again == *m) << mapping_to_json(*m).dump();
+}
+
 TEST(TypeFuzz, SweepParts) {
   const json base = read_json("tests/fuzz/corpus/sweep_part/cv1d_whole.json");
   ASSERT_TRUE(check_sweep_part(base, "p").ok());

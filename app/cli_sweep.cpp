@@ -61,6 +61,12 @@ Doc sweep_document(const Workspace& ws, const std::vector<SweepAxis>& axes, cons
   return j;
 }
 
+// A point's metric, or NaN where it is undefined (no "value", or null: a NaN as JSON writes it).
+double point_value(const Doc& p) {
+  const auto it = p.find("value");
+  return it == p.end() || it->is_null() ? std::nan("") : it->get<double>();
+}
+
 // The summary printed by sweep and merge (best by the metric's direction, stopped runs), and
 // the output (--out): a .json document or a .csv table.
 Status finish_sweep(const Doc& doc, const MetricSpec& spec, const std::optional<std::string>& path,
@@ -82,10 +88,9 @@ Status finish_sweep(const Doc& doc, const MetricSpec& spec, const std::optional<
       stopped.push_back({{"at", at}, {"error", p.at("error").get<std::string>()}});
       continue;
     }
-    if (!p.contains("value") || p.at("value").is_null()) continue;
+    if (std::isnan(point_value(p))) continue;
     ++defined;
-    if (best == points.size() ||
-        better(spec, p.at("value").get<double>(), points[best].at("value").get<double>())) {
+    if (best == points.size() || better(spec, point_value(p), point_value(points[best]))) {
       best = i;
     }
   }
@@ -113,10 +118,7 @@ Status finish_sweep(const Doc& doc, const MetricSpec& spec, const std::optional<
       for (std::size_t i = 0; i < points.size(); ++i) {
         for (std::size_t k = 0; k < axes.size(); ++k)
           table.columns[k][i] = points[i].at("at").at(k).get<double>();
-        table.columns[axes.size()][i] =
-            points[i].contains("value") && !points[i].at("value").is_null()
-                ? points[i].at("value").get<double>()
-                : std::nan("");
+        table.columns[axes.size()][i] = point_value(points[i]);
       }
       std::ostringstream csv;
       write_csv(csv, table);

@@ -50,6 +50,9 @@ inline constexpr int kMaxChannelSize = 8;
 inline constexpr std::size_t kMaxSubExpressions = 1000;
 inline constexpr std::size_t kMaxSubExpressionDepth = 100;
 inline constexpr std::size_t kMaxExpandedText = 100'000;
+// Model files' modes (an IMM): modes, and mode probabilities kept (rows × modes).
+inline constexpr std::size_t kMaxModes = 400;
+inline constexpr std::size_t kMaxModeValues = 100'000'000;
 
 // The memory a run may plan for: the smallest of the machine's, the cgroup's limit (memory.max,
 // v2; memory.limit_in_bytes, v1) and the address-space limit (ulimit -v); KFW_MEMORY_LIMIT

@@ -27,6 +27,9 @@ struct InnovationChannel {
   std::vector<double> nis;         // per step; NaN where the channel did not update
   std::vector<double> normalized;  // y/√S per step (scalar channels; empty otherwise)
   std::vector<double> log_det_s;   // log det S per step, for the NLL (empty: not reported)
+  // The NLL's term per step where it is not ½(dof log 2π + log det S + NIS): an IMM's −log c,
+  // the mixture's (NaN where none); empty: from log_det_s.
+  std::vector<double> nll;
   // A channel of several components: each component (its role) with y_j/√S_jj per step, tested
   // for whiteness one by one (whiteness_p.<channel>.<role>); empty for a scalar channel.
   struct Component {

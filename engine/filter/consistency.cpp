@@ -117,7 +117,13 @@ void add_consistency_metrics(const std::vector<InnovationChannel>& channels, con
       if (!std::isfinite(v)) continue;
       raw += v;
       nis_sum += v / c.dof;
-      if (c.log_det_s.size() == c.nis.size() && std::isfinite(c.log_det_s[k])) {
+      if (c.nll.size() == c.nis.size()) {
+        if (std::isfinite(c.nll[k])) {
+          nll_sum += c.nll[k];
+        } else {
+          nll_known = false;
+        }
+      } else if (c.log_det_s.size() == c.nis.size() && std::isfinite(c.log_det_s[k])) {
         nll_sum += 0.5 * (c.dof * kLog2Pi + c.log_det_s[k] + v);
       } else {
         nll_known = false;

@@ -49,6 +49,18 @@ Dataset ModelResult::table() const {
     }
   }
   if (nees_dof > 0) put("nees", nees);
+  if (imm) {
+    const std::size_t r = imm->modes(), steps = t.size();
+    for (std::size_t j = 0; j < r; ++j) {
+      std::vector<double> m(steps);
+      for (std::size_t k = 0; k < steps; ++k)
+        m[k] = imm->mu_at(k, j);
+      put("mu." + imm->names[j], m);
+    }
+    put("imm.map", imm->map);
+    for (const auto& a : imm->axes)
+      put("imm." + a.param, a.estimate);
+  }
   return d;
 }
 
@@ -61,6 +73,7 @@ std::vector<InnovationChannel> ModelResult::channels() const {
     ic.dof = static_cast<double>(c.roles.size());
     ic.nis = c.nis;
     ic.log_det_s = c.log_det_s;
+    ic.nll = c.nll;
     // y_j/√S_jj where the update was applied (NIS finite): the whole channel when scalar, else
     // each component (its whiteness is tested one by one).
     auto normalized = [&](std::size_t j) {
@@ -158,6 +171,12 @@ std::string h_key(const ChannelSpec& cs) {
 }  // namespace
 
 Status detail::Context::skip(std::size_t c, std::size_t k, const std::string& why) {
+  if (capture) {
+    capture->applied = false;
+    capture->skipped = true;
+    capture->why = why;
+    return Ok{};
+  }
   ChannelSeries& ch = r.chans[c];
   if (ch.updates + ch.gated + ch.skipped == 0) {
     return fail(k, "channel '" + ch.name + "': its first due update cannot be applied: " + why +
@@ -257,24 +276,25 @@ Status dispatch(detail::Context& ctx, const VecX& x0, const MatX& P0) {
 
 }  // namespace
 
-Expected<std::shared_ptr<ModelResult>> run_model_filter(const ModelSpec& spec, const Dataset& d,
-                                                        const ParamValues& values,
-                                                        const FilterOptions& options,
-                                                        const RunControl& control) {
-  if (options.kind == FilterKind::kKf && !spec.linear()) {
-    return Error{spec.path + ": filter 'kf' needs a linear model (F or A, and H in every " +
-                 "channel); use ekf or ukf"};
-  }
-  const int n = spec.n();
-  if (options.kind == FilterKind::kUkf) {
-    const double lambda = options.alpha * options.alpha * (n + options.kappa) - n;
-    if (!(n + lambda > 0.0)) {
-      return Error{"ukf.alpha, ukf.kappa: n + λ = α²(n + κ) must be positive (n = " +
-                   std::to_string(n) + ")"};
-    }
-  }
-  if (d.rows() < 2) return Error{d.source + ": need at least two rows"};
-  detail::Data data;
+namespace detail {
+
+void init_context(Context& ctx) {
+  const ModelSpec& spec = ctx.spec;
+  ctx.u_held.assign(spec.inputs.size(), 0.0);
+  for (int slot : spec.input_age_slots)
+    ctx.any_age = ctx.any_age || slot >= 0;
+  ctx.u_time.assign(spec.inputs.size(), (*ctx.data.t)[0]);
+  ctx.u_age.assign(spec.inputs.size(), 0.0);
+  ctx.first_skip.assign(spec.channels.size(), ctx.data.rows);
+  ctx.first_why.assign(spec.channels.size(), std::string());
+  ctx.set_angles();
+  ctx.z_buf.assign(static_cast<std::size_t>(kMaxChannelSize), 0.0);
+}
+
+namespace {
+
+// The dataset's columns by role (an Error names the missing column).
+Status bind_columns(const ModelSpec& spec, const Dataset& d, Data& data) {
   data.source = d.source;
   data.rows = d.rows();
   auto column = [&](const std::string& name,
@@ -300,36 +320,33 @@ Expected<std::shared_ptr<ModelResult>> run_model_filter(const ModelSpec& spec, c
   }
   for (const auto& col : spec.truth)
     data.truth.push_back(!col.empty() && d.has(col) ? &d.col(col) : nullptr);
+  return Ok{};
+}
 
-  auto ev = ModelEval::create(spec, values);
-  if (!ev) return ev.err();
-  // A Q or R that depends on dt is checked at every interval of the data as the run meets it
-  // (ModelEval::set_dt_at, run_steps): an Error, exit 2, like a refusal before the run.
-
-  auto r = std::make_shared<ModelResult>();
+// The result's series, sized for the data, NaN until the run fills them.
+void allocate_result(const ModelSpec& spec, const Dataset& d, Context& ctx) {
+  ModelResult& r = ctx.r;
   const std::size_t rows = d.rows();
-  r->filter = kind_name(options.kind);
-  r->t = *data.t;
+  const auto un = static_cast<std::size_t>(spec.n());
+  r.t = *ctx.data.t;
   for (const auto& s : spec.states) {
-    r->state_keys.push_back(s.name);
-    r->state_labels.push_back(s.label);
-    r->state_units.push_back(s.unit);
-    r->x.emplace_back(rows, kNoSample);
+    r.state_keys.push_back(s.name);
+    r.state_labels.push_back(s.label);
+    r.state_units.push_back(s.unit);
+    r.x.emplace_back(rows, kNoSample);
   }
-  const auto un = static_cast<std::size_t>(n);
-  r->P.assign(un * (un + 1) / 2, std::vector<double>(rows, kNoSample));
+  r.P.assign(un * (un + 1) / 2, std::vector<double>(rows, kNoSample));
   for (std::size_t i = 0; i < un; ++i)
-    r->diag.push_back(r->cov_index(i, i));
-  r->truth.resize(un);
-  detail::Context ctx{spec, **ev, data, *r, control, options, {}, {}, {}};
+    r.diag.push_back(r.cov_index(i, i));
+  r.truth.resize(un);
   for (std::size_t i = 0; i < un; ++i) {
-    if (data.truth[i]) {
-      r->truth[i] = *data.truth[i];
+    if (ctx.data.truth[i]) {
+      r.truth[i] = *ctx.data.truth[i];
       ctx.truth_states.push_back(static_cast<int>(i));
     }
   }
-  r->nees_dof = static_cast<double>(ctx.truth_states.size());
-  if (r->nees_dof > 0) r->nees.assign(rows, kNoSample);
+  r.nees_dof = static_cast<double>(ctx.truth_states.size());
+  if (r.nees_dof > 0) r.nees.assign(rows, kNoSample);
   for (std::size_t c = 0; c < spec.channels.size(); ++c) {
     const ChannelSpec& cs = spec.channels[c];
     ChannelSeries s;
@@ -339,8 +356,8 @@ Expected<std::shared_ptr<ModelResult>> run_model_filter(const ModelSpec& spec, c
     for (std::size_t j = 0; j < m; ++j) {
       s.roles.push_back(cs.roles[j].name);
       s.units.push_back(cs.roles[j].unit);
-      r->role_names.push_back(cs.roles[j].name);
-      r->z.push_back(*data.z[c][j]);
+      r.role_names.push_back(cs.roles[j].name);
+      r.z.push_back(*ctx.data.z[c][j]);
     }
     s.y.assign(m, std::vector<double>(rows, kNoSample));
     s.S.assign(m, std::vector<double>(rows, kNoSample));
@@ -349,78 +366,125 @@ Expected<std::shared_ptr<ModelResult>> run_model_filter(const ModelSpec& spec, c
       if (d.has(cs.outlier_column)) {
         s.outlier = d.col(cs.outlier_column);
       } else {
-        r->warnings.push_back("channel '" + cs.name + "': its outlier column '" +
-                              cs.outlier_column + "' is not in the data; outliers_* leave it out");
+        r.warnings.push_back("channel '" + cs.name + "': its outlier column '" + cs.outlier_column +
+                             "' is not in the data; outliers_* leave it out");
       }
     }
     s.nis.assign(rows, kNoSample);
     s.log_det_s.assign(rows, kNoSample);
-    r->chans.push_back(std::move(s));
+    r.chans.push_back(std::move(s));
   }
-  ctx.u_held.assign(spec.inputs.size(), 0.0);
-  for (int slot : spec.input_age_slots)
-    ctx.any_age = ctx.any_age || slot >= 0;
-  ctx.u_time.assign(spec.inputs.size(), (*data.t)[0]);
-  ctx.u_age.assign(spec.inputs.size(), 0.0);
+}
+
+}  // namespace
+
+Expected<std::unique_ptr<Prepared>> prepare_run(const ModelSpec& spec, const Dataset& d,
+                                                const ParamValues& values,
+                                                const FilterOptions& options,
+                                                const RunControl& control) {
+  auto p = std::make_unique<Prepared>();
+  if (auto st = bind_columns(spec, d, p->data); !st) return st.err();
+  auto ev = ModelEval::create(spec, values);
+  if (!ev) return ev.err();
+  p->ev = std::move(*ev);
+  // A Q or R that depends on dt is checked at every interval of the data as the run meets it
+  // (ModelEval::set_dt_at, run_steps): an Error, exit 2, like a refusal before the run.
+  p->r = std::make_shared<ModelResult>();
+  p->r->filter = kind_name(options.kind);
+  p->ctx = std::make_unique<Context>(
+      Context{spec, *p->ev, p->data, *p->r, control, options, {}, {}, {}});
+  Context& ctx = *p->ctx;
+  allocate_result(spec, d, ctx);
+  init_context(ctx);
   if (auto st = set_groups(ctx, options.kind); !st) return st.err();
-  ctx.first_skip.assign(spec.channels.size(), rows);
-  ctx.first_why.assign(spec.channels.size(), std::string());
-  ctx.set_angles();
-  ctx.z_buf.assign(static_cast<std::size_t>(kMaxChannelSize), 0.0);
 
   // x0: expressions, or the first finite sample of a column (as seed 000 starts from the first
   // angle reading).
-  VecX x0 = (*ev)->x0;
-  for (std::size_t i = 0; i < un; ++i) {
+  p->x0 = p->ev->x0;
+  for (std::size_t i = 0; i < spec.x0.size(); ++i) {
     const std::string& col = spec.x0[i].first_column;
     if (col.empty() || !d.has(col)) continue;
     for (double v : d.col(col)) {
       if (std::isfinite(v)) {
-        x0(static_cast<Eigen::Index>(i)) = v;
+        p->x0(static_cast<Eigen::Index>(i)) = v;
         break;
       }
     }
   }
   // dt at the first row (for channel entries that use it): the first interval.
   const auto first = [&] { return "the interval into step 1 of " + d.source; };
-  if (auto st = (*ev)->set_dt_at((*data.t)[1] - (*data.t)[0], first); !st) return st.err();
+  if (auto st = p->ev->set_dt_at((*p->data.t)[1] - (*p->data.t)[0], first); !st) return st.err();
+  return p;
+}
 
-  Status st = Ok{};
-  switch (n) {
-    case 1:
-      st = dispatch<1>(ctx, x0, (*ev)->P0);
-      break;
-    case 2:
-      st = dispatch<2>(ctx, x0, (*ev)->P0);
-      break;
-    case 3:
-      st = dispatch<3>(ctx, x0, (*ev)->P0);
-      break;
-    case 4:
-      st = dispatch<4>(ctx, x0, (*ev)->P0);
-      break;
-    case 5:
-      st = dispatch<5>(ctx, x0, (*ev)->P0);
-      break;
-    case 6:
-      st = dispatch<6>(ctx, x0, (*ev)->P0);
-      break;
-    default:
-      st = dispatch<Eigen::Dynamic>(ctx, x0, (*ev)->P0);
-  }
-  if (!st) return st.err();
-
+Status finish_run(Context& ctx) {
+  const ModelSpec& spec = ctx.spec;
   for (std::size_t i = 0; i < spec.inputs.size(); ++i) {
     std::size_t missing = 0;
-    for (double v : *data.u[i])
+    for (double v : *ctx.data.u[i])
       missing += std::isfinite(v) ? 0 : 1;
     if (missing) {
-      r->warnings.push_back(std::to_string(missing) + " samples of input '" + spec.inputs[i].name +
-                            "' missing: the previous value was held");
+      ctx.r.warnings.push_back(std::to_string(missing) + " samples of input '" +
+                               spec.inputs[i].name + "' missing: the previous value was held");
     }
   }
-  if (auto skips = ctx.finish_skips(); !skips) return skips.err();
-  return r;
+  return ctx.finish_skips();
+}
+
+}  // namespace detail
+
+Expected<std::shared_ptr<ModelResult>> run_model_filter(const ModelSpec& spec, const Dataset& d,
+                                                        const ParamValues& values,
+                                                        const FilterOptions& options,
+                                                        const RunControl& control) {
+  if (options.kind == FilterKind::kKf && !spec.linear_modes()) {
+    return Error{spec.path + ": filter 'kf' needs a linear model (F or A, and H in every " +
+                 "channel); use ekf or ukf"};
+  }
+  const int n = spec.n();
+  if (options.kind == FilterKind::kUkf) {
+    const double lambda = options.alpha * options.alpha * (n + options.kappa) - n;
+    if (!(n + lambda > 0.0)) {
+      return Error{"ukf.alpha, ukf.kappa: n + λ = α²(n + κ) must be positive (n = " +
+                   std::to_string(n) + ")"};
+    }
+  }
+  if (d.rows() < 2) return Error{d.source + ": need at least two rows"};
+  auto p = detail::prepare_run(spec, d, values, options, control);
+  if (!p) return p.err();
+  detail::Context& ctx = *(*p)->ctx;
+  const VecX& x0 = (*p)->x0;
+  const MatX& P0 = (*p)->ev->P0;
+  Status st = Ok{};
+  if (spec.modes) {
+    st = detail::run_imm(**p, values);
+  } else {
+    switch (n) {
+      case 1:
+        st = dispatch<1>(ctx, x0, P0);
+        break;
+      case 2:
+        st = dispatch<2>(ctx, x0, P0);
+        break;
+      case 3:
+        st = dispatch<3>(ctx, x0, P0);
+        break;
+      case 4:
+        st = dispatch<4>(ctx, x0, P0);
+        break;
+      case 5:
+        st = dispatch<5>(ctx, x0, P0);
+        break;
+      case 6:
+        st = dispatch<6>(ctx, x0, P0);
+        break;
+      default:
+        st = dispatch<Eigen::Dynamic>(ctx, x0, P0);
+    }
+  }
+  if (!st) return st.err();
+  if (auto done = detail::finish_run(ctx); !done) return done.err();
+  return (*p)->r;
 }
 
 }  // namespace kfw::model

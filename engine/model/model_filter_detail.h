@@ -1,11 +1,13 @@
-// Internal to the model filters (model_kf.cpp, model_ukf.cpp): fixed-size types per state count,
-// the data columns of a run, the step loop and the per-step recording shared by every filter. The
-// filter maths is the filter library's (filter/kalman_filter.h, filter/ekf.h, filter/ukf.h, and
-// the one measurement update of filter/measurement_update.h).
+// Internal to the model filters (model_filters.h, run by model_kf.cpp, model_ukf.cpp, imm/):
+// fixed-size types per state count, the data columns of a run, the step loop and the per-step
+// recording shared by every filter. The filter maths is the filter library's
+// (filter/kalman_filter.h, filter/ekf.h, filter/ukf.h, and the one measurement update of
+// filter/measurement_update.h).
 #pragma once
 
 #include <Eigen/Cholesky>
 #include <cmath>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -66,6 +68,17 @@ struct Context {
   // updated on its own), and per group the samples waiting for their instant.
   std::vector<int> group_of{};
   std::vector<std::vector<Pending>> pending{};
+  // A mode filter of an IMM (model/imm/): its update is kept here instead of recorded, and an
+  // update it cannot apply is marked here instead of counted; the IMM decides. Null: a plain run.
+  struct Capture {
+    bool applied = false, skipped = false;
+    std::string why;
+    double nis = 0.0, log_det_s = 0.0;
+    std::size_t m = 0;
+    double y[kM] = {}, S[kM] = {};  // S's diagonal
+    std::vector<double> K;          // [state · m + component]
+  };
+  Capture* capture = nullptr;
 
   // The angles of the states and channel components, from the spec.
   void set_angles() {
@@ -175,6 +188,10 @@ struct Context {
   // (updated or gated), NIS, log det S and gain (updated). A skipped update is skip()'s.
   template <int N, int M, int MaxM>
   void record_update(std::size_t c, std::size_t k, const MeasurementUpdate<N, M, MaxM>& u) {
+    if (capture) [[unlikely]] {
+      keep_update(u);
+      return;
+    }
     ChannelSeries& ch = r.chans[c];
     if (u.status == UpdateStatus::kSkipped) return;
     ++(u.updated() ? ch.updates : ch.gated);
@@ -191,6 +208,25 @@ struct Context {
     for (Eigen::Index i = 0; i < u.K.rows(); ++i) {
       for (Eigen::Index j = 0; j < u.K.cols(); ++j)
         ch.K[static_cast<std::size_t>(i) * m + static_cast<std::size_t>(j)][k] = u.K(i, j);
+    }
+  }
+
+  template <int N, int M, int MaxM>
+  [[gnu::noinline]] void keep_update(const MeasurementUpdate<N, M, MaxM>& u) {
+    Capture& cap = *capture;
+    cap.applied = u.updated();
+    cap.m = static_cast<std::size_t>(u.y.size());
+    for (Eigen::Index j = 0; j < u.y.size(); ++j) {
+      cap.y[j] = u.y(j);
+      cap.S[j] = u.S(j, j);
+    }
+    cap.nis = u.nis;
+    cap.log_det_s = u.log_det_S;
+    if (!cap.applied) return;
+    cap.K.resize(static_cast<std::size_t>(u.K.rows()) * cap.m);
+    for (Eigen::Index i = 0; i < u.K.rows(); ++i) {
+      for (Eigen::Index j = 0; j < u.K.cols(); ++j)
+        cap.K[static_cast<std::size_t>(i) * cap.m + static_cast<std::size_t>(j)] = u.K(i, j);
     }
   }
 
@@ -320,6 +356,26 @@ Status run_steps(Context& ctx, Filter& f) {
   }
   return Ok{};
 }
+
+// A run's setup (model_filter.cpp): the data's columns, the evaluator at the run's values, the
+// result sized for the data and the context over them, and x0 (a `first` column's sample put in).
+struct Prepared {
+  Data data;
+  std::unique_ptr<ModelEval> ev;
+  std::shared_ptr<ModelResult> r;
+  std::unique_ptr<Context> ctx;
+  VecX x0;
+};
+Expected<std::unique_ptr<Prepared>> prepare_run(const ModelSpec& spec, const Dataset& d,
+                                                const ParamValues& values,
+                                                const FilterOptions& options,
+                                                const RunControl& control);
+// A context's per-run state: inputs held, ages, skips, angles, the measurement buffer.
+void init_context(Context& ctx);
+// After the run: warnings for missing inputs, and the skips (Context::finish_skips).
+Status finish_run(Context& ctx);
+// The IMM over the modes of spec.modes (model/imm/imm_run.cpp).
+Status run_imm(Prepared& p, const ParamValues& values);
 
 template <int N>
 Status run_kf(Context& ctx, Vec<N> x, Covariance<N> P);

@@ -1,7 +1,7 @@
 // Channel groups and the distance gate (version 2): how seed 004's AS / SC / SI update schemes
 // are declared — the scalar range channels grouped, the scheme one choice parameter's alternatives
 // — and each range gated on its own S_ii. Parsing, and their values per run; the run itself is
-// model_filter_detail.h's and model_kf.cpp's.
+// model_filter_detail.h's and model_filters.h's.
 #include <algorithm>
 #include <cmath>
 #include <set>

@@ -2,6 +2,7 @@
 // gains, NEES against the mapped truth. Plots and metrics read it; nothing reaches back.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -21,6 +22,26 @@ struct ChannelSeries {
   std::size_t updates = 0, gated = 0, skipped = 0;  // skipped: S not positive definite
   std::vector<std::size_t> gated_rows;              // the rows of the gated samples
   std::vector<double> outlier;  // the channel's outlier column (ChannelSpec), or empty
+  // An IMM's: −log c per step, the mixture's likelihood of the channel's sample (NaN: none);
+  // empty in a plain run, whose NLL comes from log det S and NIS.
+  std::vector<double> nll;
+};
+
+// An IMM's outputs (model/imm/, presets/models/README.md "Modes"): the modes, their probabilities
+// per step, the most probable mode, and each grid axis's μ-weighted estimate.
+struct ImmSeries {
+  std::vector<std::string> names, labels;  // per mode
+  std::vector<float> mu;                   // [step · modes + mode]
+  std::vector<double> map;                 // per step: the index of the most probable mode
+  struct Axis {
+    std::string param, label, unit;
+    std::vector<double> values;    // per mode: the parameter's value
+    std::vector<double> estimate;  // per step: Σ_j μ^j values[j]
+    std::vector<double> truth;     // per step, from the axis's truth column; empty: none
+  };
+  std::vector<Axis> axes;
+  std::size_t modes() const { return names.size(); }
+  double mu_at(std::size_t k, std::size_t j) const { return mu[k * modes() + j]; }
 };
 
 struct ModelResult final : RunResult {
@@ -45,6 +66,7 @@ struct ModelResult final : RunResult {
   std::vector<std::pair<std::string, std::vector<double>>> plot_matrices;
   std::vector<double> nees;  // over the states with truth; NaN where a truth value is missing
   double nees_dof = 0.0;
+  std::optional<ImmSeries> imm;  // a model with modes
 
   // Index of P(i, j), i ≤ j, in P.
   std::size_t cov_index(std::size_t i, std::size_t j) const;

@@ -16,6 +16,8 @@
 #include "filter/angle.h"
 #include "filter/consistency.h"
 #include "filter/dare.h"
+#include "model/imm/imm_metrics.h"
+#include "model/imm/imm_spec.h"
 #include "model/model_derived.h"
 #include "model/model_eval.h"
 #include "model/model_filter.h"
@@ -218,6 +220,8 @@ class ModelScenario final : public Scenario {
     }
     for (auto& d : model::derived_metric_specs(*spec_))
       out.push_back(std::move(d));
+    for (auto& d : model::imm_metric_specs(*spec_))
+      out.push_back(std::move(d));
     return out;
   }
 
@@ -287,6 +291,7 @@ class ModelScenario final : public Scenario {
     }
     if (spec_->primary.size() > 1) primary_rmse(res);
     model::add_gate_metrics(*spec_, res, m, res.undefined);
+    model::add_imm_metrics(*spec_, d, res);
     add_consistency_metrics(res.channels(), res.nees_series(), m, res.undefined);
     if (auto st = model::add_derived(*spec_, v, d, res, &derived_cache_); !st) return st.err();
     const double dt = d.rows() >= 2 ? d.median_dt() : param(v, spec_->sim_dt_key);
@@ -426,6 +431,7 @@ std::optional<ModelLayout> model_layout_of(const Scenario& s) {
     l.channels.push_back(std::move(ch));
   }
   l.time_invariant = m->spec()->time_invariant();
+  l.modes = m->spec()->modes != nullptr;
   l.plots = m->spec()->plots;
   return l;
 }
@@ -501,7 +507,13 @@ Expected<std::unique_ptr<Scenario>> make_model_scenario(const OJson& preset,
       all.push_back(s);
     }
   }
-  // Declared parameters first (the model's own, in the file's order), then the standard ones.
+  // Declared parameters first (the model's own, in the file's order), then those the modes
+  // gain (grid.PARAM.min, markov.stay, …), then the standard ones.
+  if (spec->modes) {
+    for (const auto& g : spec->modes->gained) {
+      if (!declared->find(g.key)) specs.push_back(g);
+    }
+  }
   specs.insert(specs.end(), all.begin(), all.end());
   ParamTable table(std::move(specs));
   auto shared = std::make_shared<const model::ModelSpec>(std::move(*spec));

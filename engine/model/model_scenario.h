@@ -35,6 +35,7 @@ struct ModelLayout {
   std::vector<State> states;
   std::vector<Channel> channels;
   bool time_invariant = false;  // linear, F B Q H R of parameters and dt only: a steady state
+  bool modes = false;           // an IMM over modes (model.modes): mode probabilities to draw
   std::vector<model::PlotBlockSpec> plots;  // the blocks the file asks for ("plots"), in order
 };
 

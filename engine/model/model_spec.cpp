@@ -7,6 +7,7 @@
 
 #include "core/limits.h"
 #include "core/suggest.h"
+#include "model/imm/imm_spec.h"
 #include "model/model_derived.h"
 #include "model/model_expressions.h"
 #include "model/model_noise.h"
@@ -210,7 +211,7 @@ Status check_noise_version(const Reader& p, const json& j) {
 // lowest version that holds the file, so a version-1 file never needs them).
 Status check_version_keys(const Reader& p, const json& j, int version) {
   if (version >= 2) return Ok{};
-  for (const char* k : {"expressions", "world", "derived", "sim", "plots", "groups"}) {
+  for (const char* k : {"expressions", "world", "derived", "sim", "plots", "groups", "modes"}) {
     if (j.contains(k))
       return p.error(std::string("model.") + k, "a version-2 key: set \"version\": 2");
   }
@@ -474,8 +475,15 @@ bool ModelSpec::linear() const {
   return std::all_of(channels.begin(), channels.end(), [](const auto& c) { return c.linear; });
 }
 
-bool ModelSpec::time_invariant() const {
+bool ModelSpec::linear_modes() const {
   if (!linear()) return false;
+  if (!modes) return true;
+  return std::all_of(modes->list.begin(), modes->list.end(),
+                     [](const ModeSpec& m) { return !m.model || m.model->linear(); });
+}
+
+bool ModelSpec::time_invariant() const {
+  if (!linear() || modes) return false;
   const auto lti = [](const MatrixSpec& m) { return m.dep() <= Dep::kDt; };
   if (process.form == ProcessForm::kLinear &&
       !(lti(process.F) && lti(process.B) && lti(process.Q))) {
@@ -493,7 +501,7 @@ int ModelSpec::state_index(const std::string& name) const {
 }
 
 std::vector<std::string> filter_choices(const ModelSpec& spec) {
-  if (spec.linear()) return {"kf", "ekf", "ukf"};
+  if (spec.linear_modes()) return {"kf", "ekf", "ukf"};
   return {"ekf", "ukf"};
 }
 
@@ -504,10 +512,11 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   Reader p(path, m.symbols);
   const std::string key = "model";
   if (!j.is_object()) return p.error(key, "expected an object");
-  if (auto st = p.only_keys(j, key,
-                            {"version", "description", "states", "inputs", "expressions", "x0",
-                             "P0", "process", "measurements", "truth", "primary", "filter", "world",
-                             "derived", "noise", "clocks", "sim", "plots", "groups"});
+  if (auto st =
+          p.only_keys(j, key, {"version", "description", "states",  "inputs",       "expressions",
+                               "x0",      "P0",          "process", "measurements", "truth",
+                               "primary", "filter",      "world",   "derived",      "noise",
+                               "clocks",  "sim",         "plots",   "groups",       "modes"});
       !st) {
     return st.err();
   }
@@ -604,6 +613,12 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
     auto w = parse_world(j, params, path, m);
     if (!w) return w.err();
     m.world = std::move(*w);
+  }
+  if (j.contains("modes")) {
+    if (world) return p.error("model.modes", "a world has no modes: declare them in the model");
+    auto modes = detail::parse_modes(p, j, params, m);
+    if (!modes) return modes.err();
+    m.modes = std::move(*modes);
   }
   return m;
 }

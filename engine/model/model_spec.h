@@ -18,6 +18,8 @@
 
 namespace kfw::model {
 
+struct ModesSpec;  // model/imm/imm_spec.h
+
 // The model format this build reads up to; a version-1 file loads unchanged (version 2 adds
 // sub-expressions and the continuous nonlinear process).
 inline constexpr int kModelVersion = 2;
@@ -213,10 +215,15 @@ struct ModelSpec {
   std::vector<NoiseSourceSpec> noise;
   std::vector<ClockSpec> clocks;
   std::vector<std::pair<std::string, Expr>> truth_exprs;
+  // The modes of an IMM over the model (version 2, issue 28; model/imm/imm_spec.h); null: one
+  // filter.
+  std::shared_ptr<const ModesSpec> modes;
 
   int n() const { return static_cast<int>(states.size()); }
   // F or A and H in every channel: the KF applies, and a steady state may exist.
   bool linear() const;
+  // linear(), and so is every mode's model: the KF runs the IMM's modes.
+  bool linear_modes() const;
   // The mean moves by f or by RK4 of ẋ (not by F x + B u).
   bool nonlinear_process() const {
     return process.form == ProcessForm::kNonlinear ||

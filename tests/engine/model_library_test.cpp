@@ -107,8 +107,9 @@ TEST(ModelLibrary, EveryPresetHasADescriptionAndIsInTheList) {
     EXPECT_EQ(j.value("scenario", ""), "model") << entry.path();
     EXPECT_GT(j.value("description", "").size(), 40u) << entry.path();
   }
-  EXPECT_EQ(files, 9u);  // issue 27: helicopter_world.json and underwater_world.json became
-                         // presets/helicopter.json and presets/underwater.json
+  // issue 27: helicopter_world.json and underwater_world.json became presets/helicopter.json and
+  // presets/underwater.json; issue 28 added cv_imm.json.
+  EXPECT_EQ(files, 10u);
 }
 
 // One scenario, runs on two threads at once (Sweep uses both cores): each run has its own

@@ -1,0 +1,298 @@
+// The IMM over a model's modes (presets/models/README.md, "Modes"; seed 001, Table 2): one model
+// filter per mode (model_filters.h, each with its own evaluator at the mode's values and a
+// context that keeps its updates instead of recording them), mixed, predicted, updated channel by
+// channel with the mode probabilities updated after each channel, and combined at every row.
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "core/limits.h"
+#include "filter/imm.h"
+#include "model/imm/imm_spec.h"
+#include "model/model_filters.h"
+
+namespace kfw::model::detail {
+
+namespace {
+
+constexpr double kNegInf = -std::numeric_limits<double>::infinity();
+const double kLog2Pi = std::log(2.0 * std::numbers::pi);
+
+// One mode: its evaluator, its context and the filter over them.
+template <class Filter>
+struct ModeRun {
+  std::unique_ptr<ModelEval> ev;
+  std::unique_ptr<Context> ctx;
+  Context::Capture cap;
+  std::unique_ptr<Filter> f;
+};
+
+template <int N, class Filter>
+class Imm {
+ public:
+  Imm(Prepared& p, const ModesSpec& ms, std::vector<Mode> modes, MarkovChain chain)
+      : p_(p), main_(*p.ctx), ms_(ms), modes_(std::move(modes)), chain_(std::move(chain)) {}
+
+  Status setup() {
+    const std::size_t r = modes_.size(), rows = main_.data.rows;
+    if (rows > limits::kMaxModeValues / r) {
+      return Error{main_.spec.path + ": model.modes: " + std::to_string(rows) + " rows × " +
+                   std::to_string(r) + " modes of probabilities: more than the limit of " +
+                   std::to_string(limits::kMaxModeValues) + " values (docs/limits.md)"};
+    }
+    const auto& t = *main_.data.t;
+    const auto first = [&] { return "the interval into step 1 of " + main_.data.source; };
+    for (const Mode& m : modes_) {
+      auto ev = ModelEval::create(*m.model, m.values);
+      if (!ev) return Error{ev.error() + " (in mode '" + m.name + "')"};
+      if (auto st = (*ev)->set_dt_at(t[1] - t[0], first); !st) {
+        return Error{st.error() + " (in mode '" + m.name + "')"};
+      }
+      auto run = std::make_unique<ModeRun<Filter>>();
+      run->ev = std::move(*ev);
+      run->ctx = std::make_unique<Context>(Context{
+          *m.model, *run->ev, main_.data, main_.r, main_.control, main_.options, {}, {}, {}});
+      init_context(*run->ctx);
+      run->ctx->group_of.assign(m.model->channels.size(), -1);
+      run->ctx->capture = &run->cap;
+      run->f.reset(new Filter{*run->ctx, Vec<N>(p_.x0), Covariance<N>(p_.ev->P0)});
+      if constexpr (requires { run->f->Z; }) {
+        for (const auto& cs : m.model->channels)
+          run->f->Z.push_back(MatX::Zero(cs.size(), run->f->ns));
+      }
+      runs_.push_back(std::move(run));
+    }
+    log_mu_ = VecX::Constant(static_cast<Eigen::Index>(r), -std::log(static_cast<double>(r)));
+    for (std::size_t j = 0; j < ms_.mu0.size(); ++j)
+      log_mu_(static_cast<Eigen::Index>(j)) = std::log(ms_.mu0[j]);
+    ImmSeries& s = *(main_.r.imm = ImmSeries{});
+    for (const Mode& m : modes_) {
+      s.names.push_back(m.name);
+      s.labels.push_back(m.label);
+    }
+    s.mu.assign(rows * r, std::numeric_limits<float>::quiet_NaN());
+    s.map.assign(rows, kNoSample);
+    for (std::size_t a = 0; a < ms_.grid.size(); ++a) {
+      const GridAxisSpec& g = ms_.grid[a];
+      ImmSeries::Axis axis{g.param, g.label, g.unit, {}, std::vector<double>(rows, kNoSample), {}};
+      for (const Mode& m : modes_)
+        axis.values.push_back(m.grid[a]);
+      s.axes.push_back(std::move(axis));
+    }
+    for (auto& c : main_.r.chans)
+      c.nll.assign(rows, kNoSample);
+    return Ok{};
+  }
+
+  Status run() {
+    const auto& t = *main_.data.t;
+    for (std::size_t k = 0; k < main_.data.rows; ++k) {
+      if (k > 0) {
+        if (auto st = predict(k, t); !st) return st;
+      }
+      for (auto& m : runs_)
+        m->ctx->hold_inputs(k);
+      bool row_set = false;
+      for (std::size_t c = 0; c < main_.spec.channels.size(); ++c) {
+        if (!main_.channel_ready(c, k)) continue;
+        if (!row_set) {
+          for (auto& m : runs_) {
+            m->ev->set_time(t[k]);
+            m->ctx->set_inputs(t[k]);
+          }
+          row_set = true;
+        }
+        if (auto st = update(c, k); !st) return st;
+      }
+      record(k);
+      if ((k & 0xFFF) == 0xFFF && main_.control.cancelled()) return Error{"cancelled"};
+    }
+    if (mode_skips_ > 0) {
+      main_.r.warnings.push_back(std::to_string(mode_skips_) +
+                                 " mode updates could not be applied (the first at " +
+                                 main_.where(first_mode_skip_) + ": " + first_mode_why_ +
+                                 "); those modes took probability 0 there");
+    }
+    return Ok{};
+  }
+
+ private:
+  // Mixing from μ_{k−1}, then each mode's prediction to row k; μ becomes c̄.
+  Status predict(std::size_t k, const std::vector<double>& t) {
+    for (auto& m : runs_) {
+      const auto where = [&] {
+        return "the interval into step " + std::to_string(k) + " of " + main_.data.source;
+      };
+      if (auto st = m->ev->set_dt_at(t[k] - t[k - 1], where); !st) return st;
+      m->ev->set_time(t[k - 1]);
+      m->ctx->set_inputs(t[k - 1]);
+      m->ev->process_step();
+    }
+    const ImmMixing w = imm_mixing(chain_, log_mu_);
+    gather();
+    imm_mix(w, g_, mixed_);
+    for (std::size_t j = 0; j < runs_.size(); ++j) {
+      runs_[j]->f->x = mixed_[j].x;
+      runs_[j]->f->P = mixed_[j].P;
+      if (auto st = runs_[j]->f->predict(k); !st) return st;
+    }
+    log_mu_ = w.log_c_bar;
+    return Ok{};
+  }
+
+  // Channel c at row k in every mode; μ ← Λ μ / c.
+  Status update(std::size_t c, std::size_t k) {
+    const std::size_t r = runs_.size();
+    VecX ll(static_cast<Eigen::Index>(r));
+    std::string why;
+    for (std::size_t j = 0; j < r; ++j) {
+      ModeRun<Filter>& m = *runs_[j];
+      std::copy(main_.z_buf.begin(), main_.z_buf.end(), m.ctx->z_buf.begin());
+      m.ev->channel_step(c);
+      m.cap.applied = m.cap.skipped = false;
+      if (auto st = m.f->update(c, k); !st) return st;
+      const auto jj = static_cast<Eigen::Index>(j);
+      if (m.cap.applied) {
+        ll(jj) = -0.5 * (static_cast<double>(m.cap.m) * kLog2Pi + m.cap.log_det_s + m.cap.nis);
+      } else {
+        ll(jj) = kNegInf;
+        if (why.empty()) why = m.cap.why.empty() ? "no mode could apply it" : m.cap.why;
+      }
+    }
+    const ImmProbabilities pr = imm_update_probabilities(log_mu_, ll);
+    if (!pr.ok) return main_.skip(c, k, "in no mode: " + why);
+    for (std::size_t j = 0; j < r; ++j) {
+      if (std::isfinite(ll(static_cast<Eigen::Index>(j)))) continue;
+      if (mode_skips_++ == 0) {
+        first_mode_skip_ = k;
+        first_mode_why_ = "channel '" + main_.spec.channels[c].name + "' in mode '" +
+                          modes_[j].name + "': " + runs_[j]->cap.why;
+      }
+    }
+    log_mu_ = pr.log_mu;
+    Eigen::Index best = 0;
+    for (Eigen::Index j = 1; j < log_mu_.size(); ++j) {
+      if (log_mu_(j) > log_mu_(best)) best = j;
+    }
+    record_channel(c, k, runs_[static_cast<std::size_t>(best)]->cap, -pr.log_c);
+    return Ok{};
+  }
+
+  // The MAP mode's update of channel c at row k as the channel's, and the mixture's NLL term.
+  void record_channel(std::size_t c, std::size_t k, const Context::Capture& cap, double nll) {
+    ChannelSeries& ch = main_.r.chans[c];
+    ++ch.updates;
+    for (std::size_t j = 0; j < cap.m; ++j) {
+      ch.y[j][k] = cap.y[j];
+      ch.S[j][k] = cap.S[j];
+    }
+    ch.nis[k] = cap.nis;
+    ch.log_det_s[k] = cap.log_det_s;
+    ch.nll[k] = nll;
+    for (std::size_t e = 0; e < cap.K.size() && e < ch.K.size(); ++e)
+      ch.K[e][k] = cap.K[e];
+  }
+
+  void gather() {
+    g_.resize(runs_.size());
+    for (std::size_t j = 0; j < runs_.size(); ++j) {
+      g_[j].x = runs_[j]->f->x;
+      g_[j].P = runs_[j]->f->P;
+    }
+  }
+
+  // The combination at row k, μ, the MAP mode and the grid's estimates.
+  void record(std::size_t k) {
+    gather();
+    const VecX mu = imm_probabilities(log_mu_);
+    Gaussian<N> c = imm_combine(g_, mu);
+    main_.wrap_states(c.x);
+    main_.record_state(k, c.x, c.P);
+    ImmSeries& s = *main_.r.imm;
+    const std::size_t r = runs_.size();
+    Eigen::Index best = 0;
+    for (std::size_t j = 0; j < r; ++j) {
+      const auto jj = static_cast<Eigen::Index>(j);
+      s.mu[k * r + j] = static_cast<float>(mu(jj));
+      if (mu(jj) > mu(best)) best = jj;
+    }
+    s.map[k] = static_cast<double>(best);
+    for (auto& a : s.axes) {
+      double e = 0.0;
+      for (std::size_t j = 0; j < r; ++j)
+        e += mu(static_cast<Eigen::Index>(j)) * a.values[j];
+      a.estimate[k] = e;
+    }
+  }
+
+  Prepared& p_;
+  Context& main_;
+  const ModesSpec& ms_;
+  std::vector<Mode> modes_;
+  MarkovChain chain_;
+  std::vector<std::unique_ptr<ModeRun<Filter>>> runs_;
+  VecX log_mu_;
+  std::vector<Gaussian<N>> g_, mixed_;
+  std::size_t mode_skips_ = 0, first_mode_skip_ = 0;
+  std::string first_mode_why_;
+};
+
+template <int N, class Filter>
+Status run_with(Prepared& p, std::vector<Mode> modes, MarkovChain chain) {
+  Imm<N, Filter> imm(p, *p.ctx->spec.modes, std::move(modes), std::move(chain));
+  if (auto st = imm.setup(); !st) return st;
+  return imm.run();
+}
+
+template <int N>
+Status run_sized(Prepared& p, std::vector<Mode> modes, MarkovChain chain) {
+  if (p.ctx->options.kind == FilterKind::kUkf) {
+    return run_with<N, UnscentedFilter<N>>(p, std::move(modes), std::move(chain));
+  }
+  return run_with<N, KalmanFilter<N>>(p, std::move(modes), std::move(chain));
+}
+
+}  // namespace
+
+Status run_imm(Prepared& p, const ParamValues& values) {
+  const ModelSpec& spec = p.ctx->spec;
+  const ModesSpec& ms = *spec.modes;
+  auto modes = ms.modes(spec, values);
+  if (!modes) return modes.err();
+  const int r = static_cast<int>(modes->size());
+  Expected<MarkovChain> chain = Error{""};
+  if (ms.matrix.empty()) {
+    chain = MarkovChain::uniform(r, ms.stay.at(values));
+    if (!chain) {
+      return Error{spec.path + ": " +
+                   (ms.stay.key.empty() ? "model.modes.markov.stay" : ms.stay.key) +
+                   " must be in (0, 1], got " + number(ms.stay.at(values))};
+    }
+  } else {
+    MatX P(r, r);
+    for (int i = 0; i < r; ++i) {
+      for (int j = 0; j < r; ++j)
+        P(i, j) = ms.matrix[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+    }
+    chain = MarkovChain::dense(P);
+    if (!chain) return Error{spec.path + ": model.modes.markov.matrix: " + chain.error()};
+  }
+  switch (spec.n()) {
+    case 1:
+      return run_sized<1>(p, std::move(*modes), std::move(*chain));
+    case 2:
+      return run_sized<2>(p, std::move(*modes), std::move(*chain));
+    case 3:
+      return run_sized<3>(p, std::move(*modes), std::move(*chain));
+    case 4:
+      return run_sized<4>(p, std::move(*modes), std::move(*chain));
+    case 5:
+      return run_sized<5>(p, std::move(*modes), std::move(*chain));
+    case 6:
+      return run_sized<6>(p, std::move(*modes), std::move(*chain));
+    default:
+      return run_sized<Eigen::Dynamic>(p, std::move(*modes), std::move(*chain));
+  }
+}
+
+}  // namespace kfw::model::detail

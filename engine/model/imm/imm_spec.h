@@ -1,0 +1,72 @@
+// The modes block of a model (version 2, issue 28; presets/models/README.md, "Modes"): an IMM over
+// the model, its modes a list (parameters set, the process or a channel replaced) or the product
+// grid of axes over parameters (seed 001 eq. 6), with a Markov chain and initial probabilities.
+#pragma once
+
+#include <memory>
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/expected.h"
+#include "core/param_spec.h"
+#include "core/types.h"
+
+namespace kfw::model {
+
+struct ModelSpec;
+
+// A value that is a number or follows a parameter (its key).
+struct ParamRef {
+  std::string key;  // empty: `value`
+  double value = 0.0;
+  double at(const ParamValues& v) const;
+};
+
+struct ModeSpec {
+  std::string name, label;
+  std::vector<std::pair<std::string, ParamRef>> params;  // parameters this mode sets
+  std::shared_ptr<const ModelSpec> model;  // its process or channels replaced; null: the model's
+};
+
+struct GridAxisSpec {
+  std::string param, label, unit;
+  std::string truth;     // the column of the parameter's true value, or empty
+  ParamRef min, max, n;  // each follows a parameter (declared, or gained: grid.PARAM.min …)
+};
+
+// One mode at a run's parameter values.
+struct Mode {
+  std::string name, label;
+  ParamValues values;  // the run's values with the mode's set
+  const ModelSpec* model = nullptr;
+  std::vector<double> grid;  // per grid axis: the parameter's value in this mode
+};
+
+struct ModesSpec {
+  std::vector<ModeSpec> list;
+  std::vector<GridAxisSpec> grid;
+  ParamRef stay;                            // the uniform chain's p^{jj} ...
+  std::vector<std::vector<double>> matrix;  // ... or the whole matrix (non-empty)
+  std::vector<double> mu0;                  // empty: uniform
+  std::vector<ParamSpec> gained;  // parameters the block adds (grid.PARAM.min, markov.stay, …)
+
+  bool is_grid() const { return !grid.empty(); }
+  // The modes at a run's values: a grid's axes checked (min ≤ max, n a whole number ≥ 1, at most
+  // limits::kMaxModes modes), messages naming the keys (exit 2).
+  Expected<std::vector<Mode>> modes(const ModelSpec& base, const ParamValues& v) const;
+  // Each grid axis's values at v (min + i·(max − min)/(n − 1); the mid-point when n = 1).
+  static std::vector<double> axis_values(double min, double max, int n);
+};
+
+namespace detail {
+class Reader;
+// Parses model.modes of the block `model` (its keys sorted): `base` is the model parsed so far
+// (every key but modes), `params` the declared parameters.
+Expected<std::shared_ptr<const ModesSpec>> parse_modes(const Reader& p, const nlohmann::json& model,
+                                                       const ParamTable& params,
+                                                       const ModelSpec& base);
+}  // namespace detail
+
+}  // namespace kfw::model

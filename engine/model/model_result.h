@@ -35,6 +35,7 @@ struct ImmSeries {
   std::vector<double> map;                 // per step: the index of the most probable mode
   struct Axis {
     std::string param, label, unit;
+    std::size_t n = 1;             // grid points (mode j's index along the axis: see values)
     std::vector<double> values;    // per mode: the parameter's value
     std::vector<double> estimate;  // per step: Σ_j μ^j values[j]
     std::vector<double> truth;     // per step, from the axis's truth column; empty: none

@@ -432,6 +432,10 @@ std::optional<ModelLayout> model_layout_of(const Scenario& s) {
   }
   l.time_invariant = m->spec()->time_invariant();
   l.modes = m->spec()->modes != nullptr;
+  if (l.modes) {
+    for (const auto& a : m->spec()->modes->grid)
+      l.grid.push_back({a.param, a.label, a.unit});
+  }
   l.plots = m->spec()->plots;
   return l;
 }

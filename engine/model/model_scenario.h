@@ -36,6 +36,10 @@ struct ModelLayout {
   std::vector<Channel> channels;
   bool time_invariant = false;  // linear, F B Q H R of parameters and dt only: a steady state
   bool modes = false;           // an IMM over modes (model.modes): mode probabilities to draw
+  struct GridAxis {
+    std::string param, label, unit;
+  };
+  std::vector<GridAxis> grid;               // a grid IMM's axes (model.modes.grid), in order
   std::vector<model::PlotBlockSpec> plots;  // the blocks the file asks for ("plots"), in order
 };
 

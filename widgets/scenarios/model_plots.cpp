@@ -2,8 +2,8 @@
 // state the estimate ± 2σ with truth; per measurement component the measured and predicted value
 // and the innovation ± 2√S; per channel the NIS with χ² bounds; the gains over time with the DARE
 // steady state; the steady-state gains versus a parameter chosen under the sliders; and one panel
-// per plot block the file asks for ("plots", widgets/plots/). Nothing here knows a particular
-// model.
+// per plot block the file asks for ("plots", widgets/plots/); a model with modes adds the IMM
+// panels (model_imm_widgets.h). Nothing here knows a particular model.
 #include <qcustomplot.h>
 
 #include <QComboBox>
@@ -12,7 +12,6 @@
 #include <QGroupBox>
 #include <QSignalBlocker>
 #include <QtConcurrent/QtConcurrentRun>
-#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -26,6 +25,7 @@
 #include "plot_text.h"
 #include "plots/block_drawer.h"
 #include "scenario_view.h"
+#include "scenarios/model_imm_widgets.h"
 
 namespace kfw {
 
@@ -126,13 +126,7 @@ class ModelView final : public ScenarioView {
       curve_ = std::make_unique<plot::GainCurvePlot>(parent);
       out.push_back({"gain_curve", "Gain curve", curve_->plot()});
     }
-    if (layout_->modes) {
-      modes_ =
-          plot::makePlot(parent, "Mode probabilities μ over time (at most the 8 most probable)",
-                         "time (s)", "mode probability μ");
-      modes_cursor_ = plot::addCursor(modes_);
-      out.push_back({"mode_probabilities", "Mode probabilities", modes_});
-    }
+    imm_.create(parent, *layout_, out);
     for (const auto& b : layout_->plots) {
       if (auto d = plot::makeBlockDrawer(parent, b, *scenario_)) {
         out.push_back({q(b.id), d->title(), d->plot()});
@@ -169,7 +163,7 @@ class ModelView final : public ScenarioView {
       nis_[c]->setData(&r->t, &ch.nis, static_cast<double>(ch.y.size()));
     }
     rebuildGainGraphs();
-    rebuildModeGraphs();
+    imm_.setResult(*r);
     const plot::BlockInput in{*scenario_, *r, values_, data_.get()};
     for (auto& b : blocks_)
       b->setResult(in);
@@ -262,42 +256,6 @@ class ModelView final : public ScenarioView {
     gain_->yAxis->setLabel(plot::gainAxisLabel(units));
   }
 
-  // One line per mode (the kMaxModeLines most probable on average when there are more), μ from
-  // the run's float storage.
-  void rebuildModeGraphs() {
-    if (!modes_) return;
-    modes_->clearGraphs();
-    mode_graphs_.clear();
-    mode_mu_.clear();
-    const ModelResult& r = *result_;
-    if (!r.imm) return;
-    const auto& imm = *r.imm;
-    const std::size_t steps = r.steps(), count = imm.modes();
-    std::vector<double> mean(count, 0.0);
-    for (std::size_t k = 0; k < steps; ++k) {
-      for (std::size_t j = 0; j < count; ++j) {
-        const double m = imm.mu_at(k, j);
-        if (std::isfinite(m)) mean[j] += m;
-      }
-    }
-    std::vector<std::size_t> order(count);
-    for (std::size_t j = 0; j < count; ++j)
-      order[j] = j;
-    constexpr std::size_t kMaxModeLines = 8;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return mean[a] > mean[b]; });
-    if (order.size() > kMaxModeLines) order.resize(kMaxModeLines);
-    std::sort(order.begin(), order.end());
-    for (std::size_t j : order) {
-      std::vector<double> mu(steps);
-      for (std::size_t k = 0; k < steps; ++k)
-        mu[k] = imm.mu_at(k, j);
-      mode_mu_.push_back(std::move(mu));
-      mode_graphs_.push_back(plot::addGraph(
-          modes_, q(imm.labels[j]), plot::color::cycle(static_cast<int>(j)), plot::Style::kLine));
-    }
-  }
-
   // The curve is 100 DARE solutions (≈ 10 ms for a small model): computed on a pool thread so
   // the other plots redraw at once; requests coalesce, the latest values win.
   void requestCurve() {
@@ -363,14 +321,7 @@ class ModelView final : public ScenarioView {
     plot::rescale(gain_, f.t0, f.t1, f.settle());
     plot::setCursorAt(gain_cursor_, f.tc, !f.all);
     plot::replot(gain_);
-    if (modes_) {
-      for (std::size_t g = 0; g < mode_graphs_.size(); ++g)
-        plot::setSeries(mode_graphs_[g], r.t, mode_mu_[g], f.n);
-      plot::rescale(modes_, f.t0, f.t1, f.settle());
-      modes_->yAxis->setRange(0.0, 1.0);
-      plot::setCursorAt(modes_cursor_, f.tc, !f.all);
-      plot::replot(modes_);
-    }
+    imm_.draw(f, index);
     for (auto& b : blocks_)
       b->draw(f);
   }
@@ -388,10 +339,7 @@ class ModelView final : public ScenarioView {
   QCustomPlot* gain_ = nullptr;
   QCPItemStraightLine* gain_cursor_ = nullptr;
   std::vector<GainGraph> gains_;
-  QCustomPlot* modes_ = nullptr;  // an IMM's mode probabilities
-  QCPItemStraightLine* modes_cursor_ = nullptr;
-  std::vector<QCPGraph*> mode_graphs_;
-  std::vector<std::vector<double>> mode_mu_;
+  ImmPanels imm_;  // a model with modes
   std::unique_ptr<plot::GainCurvePlot> curve_;
   std::vector<std::unique_ptr<plot::BlockDrawer>> blocks_;  // the file's plot blocks
   std::vector<std::string> curve_keys_;

@@ -2,6 +2,7 @@
 // filter per mode (model_filters.h, each with its own evaluator at the mode's values and a
 // context that keeps its updates instead of recording them), mixed, predicted, updated channel by
 // channel with the mode probabilities updated after each channel, and combined at every row.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -74,9 +75,15 @@ class Imm {
     s.map.assign(rows, kNoSample);
     for (std::size_t a = 0; a < ms_.grid.size(); ++a) {
       const GridAxisSpec& g = ms_.grid[a];
-      ImmSeries::Axis axis{g.param, g.label, g.unit, {}, std::vector<double>(rows, kNoSample), {}};
-      for (const Mode& m : modes_)
+      ImmSeries::Axis axis;
+      axis.param = g.param;
+      axis.label = g.label;
+      axis.unit = g.unit;
+      axis.estimate.assign(rows, kNoSample);
+      for (const Mode& m : modes_) {
         axis.values.push_back(m.grid[a]);
+        axis.n = std::max(axis.n, m.grid_index[a] + 1);
+      }
       s.axes.push_back(std::move(axis));
     }
     for (auto& c : main_.r.chans)

@@ -62,10 +62,12 @@ Expected<std::vector<Mode>> ModesSpec::modes(const ModelSpec& base, const ParamV
     Mode mode{"g" + std::to_string(j), "", v, &base, {}};
     std::size_t rest = j;
     for (std::size_t a = 0; a < grid.size(); ++a) {
-      const double value = axes[a][rest % axes[a].size()];
+      const std::size_t i = rest % axes[a].size();
+      const double value = axes[a][i];
       rest /= axes[a].size();
       mode.values[grid[a].param] = value;
       mode.grid.push_back(value);
+      mode.grid_index.push_back(i);
       mode.label += (a ? ", " : "") + grid[a].label + " = " + number(value);
     }
     out.push_back(std::move(mode));

@@ -41,7 +41,8 @@ struct Mode {
   std::string name, label;
   ParamValues values;  // the run's values with the mode's set
   const ModelSpec* model = nullptr;
-  std::vector<double> grid;  // per grid axis: the parameter's value in this mode
+  std::vector<double> grid;             // per grid axis: the parameter's value in this mode ...
+  std::vector<std::size_t> grid_index;  // ... and its index along the axis
 };
 
 struct ModesSpec {

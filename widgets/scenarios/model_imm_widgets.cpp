@@ -1,0 +1,171 @@
+#include "scenarios/model_imm_widgets.h"
+
+#include <qcustomplot.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "plot_kit.h"
+#include "plot_text.h"
+
+namespace kfw {
+
+namespace {
+
+constexpr std::size_t kMaxModeLines = 8;
+constexpr double kLogMuFloor = -8.0;  // log₁₀ μ below this is drawn as the floor
+
+QString q(const std::string& s) {
+  return QString::fromStdString(s);
+}
+
+}  // namespace
+
+void ImmPanels::create(QWidget* parent, const ModelLayout& layout, QList<PlotPanel>& out) {
+  if (!layout.modes) return;
+  lines_ = plot::makePlot(parent, "Mode probabilities μ over time (at most the 8 most probable)",
+                          "time (s)", "mode probability μ");
+  lines_cursor_ = plot::addCursor(lines_);
+  out.push_back({"mode_probabilities", "Mode probabilities", lines_});
+  if (layout.grid.size() == 2) {
+    const auto& a = layout.grid[0];
+    const auto& b = layout.grid[1];
+    heat_ = plot::makePlot(parent, "Mode probabilities on the grid at the replay cursor",
+                           plot::withUnit(q(a.label), a.unit), plot::withUnit(q(b.label), b.unit));
+    heat_->legend->setVisible(false);
+    heat_map_ = new QCPColorMap(heat_->xAxis, heat_->yAxis);
+    auto* scale = new QCPColorScale(heat_);
+    QCPLayoutGrid* grid = heat_->plotLayout();
+    int rect_row = 0;
+    for (int row = 0; row < grid->rowCount(); ++row) {
+      if (grid->element(row, 0) == heat_->axisRect()) rect_row = row;
+    }
+    grid->addElement(rect_row, 1, scale);
+    scale->setType(QCPAxis::atRight);
+    scale->axis()->setLabel("log₁₀ μ (–)");
+    auto* margins = new QCPMarginGroup(heat_);
+    heat_->axisRect()->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
+    scale->setMarginGroup(QCP::msBottom | QCP::msTop, margins);
+    heat_map_->setColorScale(scale);
+    heat_map_->setGradient(QCPColorGradient(QCPColorGradient::gpThermal));
+    heat_map_->setInterpolate(false);
+    heat_map_->setDataRange(QCPRange(kLogMuFloor, 0.0));
+    out.push_back({"mode_heatmap", "Mode probabilities on the grid", heat_});
+  }
+  for (const auto& g : layout.grid) {
+    Axis a;
+    const QString label = q(g.label);
+    a.plot =
+        plot::makePlot(parent, QString("IMM estimate of %1 (μ-weighted) and the grid").arg(label),
+                       "time (s)", plot::withUnit(label, g.unit));
+    a.truth = plot::addGraph(a.plot, "truth", plot::color::kTruth, plot::Style::kLine);
+    a.estimate = plot::addGraph(a.plot, "IMM estimate Σ μʲ " + label + "ʲ", plot::color::kEstimate,
+                                plot::Style::kLine);
+    a.lo = plot::addGraph(a.plot, "grid ends", plot::color::kSensor, plot::Style::kDashed);
+    a.hi = plot::addGraph(a.plot, "", plot::color::kSensor, plot::Style::kDashed);
+    a.hi->removeFromLegend();
+    a.cursor = plot::addCursor(a.plot);
+    out.push_back({q("grid." + g.param), "IMM " + label, a.plot});
+    axes_.push_back(a);
+  }
+}
+
+void ImmPanels::setResult(const model::ModelResult& r) {
+  result_ = &r;
+  if (!lines_ || !r.imm) return;
+  const model::ImmSeries& imm = *r.imm;
+  const std::size_t steps = r.steps(), count = imm.modes();
+  lines_->clearGraphs();
+  graphs_.clear();
+  mu_.clear();
+  std::vector<double> mean(count, 0.0);
+  for (std::size_t k = 0; k < steps; ++k) {
+    for (std::size_t j = 0; j < count; ++j) {
+      const double m = imm.mu_at(k, j);
+      if (std::isfinite(m)) mean[j] += m;
+    }
+  }
+  std::vector<std::size_t> order(count);
+  for (std::size_t j = 0; j < count; ++j)
+    order[j] = j;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return mean[a] > mean[b]; });
+  if (order.size() > kMaxModeLines) order.resize(kMaxModeLines);
+  std::sort(order.begin(), order.end());
+  for (std::size_t j : order) {
+    std::vector<double> mu(steps);
+    for (std::size_t k = 0; k < steps; ++k)
+      mu[k] = imm.mu_at(k, j);
+    mu_.push_back(std::move(mu));
+    graphs_.push_back(plot::addGraph(lines_, q(imm.labels[j]),
+                                     plot::color::cycle(static_cast<int>(j)), plot::Style::kLine));
+  }
+  if (heat_map_ && imm.axes.size() == 2) {
+    heat_map_->data()->setSize(static_cast<int>(imm.axes[0].n), static_cast<int>(imm.axes[1].n));
+  }
+  for (std::size_t a = 0; a < axes_.size() && a < imm.axes.size(); ++a) {
+    const auto& v = imm.axes[a].values;
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    axes_[a].lo_v.assign(steps, *lo);
+    axes_[a].hi_v.assign(steps, *hi);
+    // A truth line in the legend only where the axis has a truth column.
+    if (imm.axes[a].truth.empty()) {
+      axes_[a].truth->removeFromLegend();
+    } else {
+      axes_[a].truth->addToLegend();
+    }
+  }
+}
+
+void ImmPanels::draw(const plot::Frame& f, std::size_t index) {
+  if (!lines_ || !result_ || !result_->imm) return;
+  const model::ModelResult& r = *result_;
+  for (std::size_t g = 0; g < graphs_.size(); ++g)
+    plot::setSeries(graphs_[g], r.t, mu_[g], f.n);
+  plot::rescale(lines_, f.t0, f.t1, f.settle());
+  lines_->yAxis->setRange(0.0, 1.0);
+  plot::setCursorAt(lines_cursor_, f.tc, !f.all);
+  plot::replot(lines_);
+  if (heat_map_) drawHeatMap(std::min(index, r.steps() - 1));
+  for (std::size_t a = 0; a < axes_.size() && a < r.imm->axes.size(); ++a) {
+    const auto& axis = r.imm->axes[a];
+    Axis& p = axes_[a];
+    plot::setSeries(p.estimate, r.t, axis.estimate, f.n);
+    if (!axis.truth.empty()) {
+      plot::setSeries(p.truth, r.t, axis.truth, f.n);
+    } else {
+      p.truth->data()->clear();
+    }
+    plot::setSeries(p.lo, r.t, p.lo_v, f.n);
+    plot::setSeries(p.hi, r.t, p.hi_v, f.n);
+    plot::rescale(p.plot, f.t0, f.t1, f.settle());
+    plot::setCursorAt(p.cursor, f.tc, !f.all);
+    plot::replot(p.plot);
+  }
+}
+
+// μ on the grid at step k: cell (i₀, i₁) is mode i₀ + n₀ i₁ (the first axis fastest).
+void ImmPanels::drawHeatMap(std::size_t k) {
+  const model::ImmSeries& imm = *result_->imm;
+  QCPColorMapData* d = heat_map_->data();
+  const int n0 = d->keySize(), n1 = d->valueSize();
+  if (n0 < 1 || n1 < 1 || static_cast<std::size_t>(n0 * n1) != imm.modes()) return;
+  const auto& v0 = imm.axes[0].values;
+  const auto& v1 = imm.axes[1].values;
+  const double a0 = v0.front(), a1 = v0[static_cast<std::size_t>(n0 - 1)];
+  const double b0 = v1.front(), b1 = v1.back();
+  d->setRange(QCPRange(a0, a1 > a0 ? a1 : a0 + 1e-9), QCPRange(b0, b1 > b0 ? b1 : b0 + 1e-9));
+  for (int i1 = 0; i1 < n1; ++i1) {
+    for (int i0 = 0; i0 < n0; ++i0) {
+      const double mu = imm.mu_at(k, static_cast<std::size_t>(i0 + n0 * i1));
+      d->setCell(i0, i1, std::isfinite(mu) ? std::log10(std::max(mu, 1e-8)) : kLogMuFloor);
+    }
+  }
+  const double h0 = n0 > 1 ? (a1 - a0) / (2.0 * (n0 - 1)) : 0.5 * std::max(std::abs(a0), 1e-3);
+  const double h1 = n1 > 1 ? (b1 - b0) / (2.0 * (n1 - 1)) : 0.5 * std::max(std::abs(b0), 1e-3);
+  if (!plot::userZoomedX(heat_)) heat_->xAxis->setRange(a0 - h0, a1 + h0);
+  if (!plot::userZoomedY(heat_)) heat_->yAxis->setRange(b0 - h1, b1 + h1);
+  plot::replot(heat_);
+}
+
+}  // namespace kfw

@@ -1,0 +1,52 @@
+// The panels of a model with modes (an IMM, presets/models/README.md "Modes") in the generic model
+// view: the mode probabilities over time (a line per mode, the 8 most probable on average for a
+// bigger grid), for a two-axis grid the probabilities on the grid at the replay cursor (a heat
+// map, log₁₀ μ), and per grid axis the μ-weighted estimate over time with the grid's ends and the
+// truth when mapped. Laid out from the model; rebuilt at each result, so a grid's n or bounds
+// redraw the lines and the heat map's cells.
+#pragma once
+
+#include <QList>
+#include <memory>
+#include <vector>
+
+#include "model/model_result.h"
+#include "model/model_scenario.h"
+#include "plot_blocks.h"
+#include "scenario_view.h"
+
+class QCustomPlot;
+class QCPGraph;
+class QCPColorMap;
+class QCPItemStraightLine;
+class QWidget;
+
+namespace kfw {
+
+class ImmPanels {
+ public:
+  // The panels for `layout` (none when the model has no modes), appended to `out`.
+  void create(QWidget* parent, const ModelLayout& layout, QList<PlotPanel>& out);
+  void setResult(const model::ModelResult& r);
+  void draw(const plot::Frame& f, std::size_t index);
+
+ private:
+  struct Axis {
+    QCustomPlot* plot = nullptr;
+    QCPGraph *estimate = nullptr, *truth = nullptr, *lo = nullptr, *hi = nullptr;
+    QCPItemStraightLine* cursor = nullptr;
+    std::vector<double> lo_v, hi_v;
+  };
+  void drawHeatMap(std::size_t k);
+
+  const model::ModelResult* result_ = nullptr;
+  QCustomPlot* lines_ = nullptr;
+  QCPItemStraightLine* lines_cursor_ = nullptr;
+  std::vector<QCPGraph*> graphs_;
+  std::vector<std::vector<double>> mu_;
+  QCustomPlot* heat_ = nullptr;
+  QCPColorMap* heat_map_ = nullptr;
+  std::vector<Axis> axes_;
+};
+
+}  // namespace kfw

@@ -204,7 +204,7 @@ Status ModelEval::bind(const ParamValues& values) {
       return Error{path + ": parameter '" + s.param_keys[i] + "' has no value"};
     vars_[static_cast<std::size_t>(s.param_slots[i])] = it->second;
   }
-  ExprGroup param;  // evaluated once, below
+  ExprGroup& param = param_;  // evaluated once, below (again by set_params)
   ExprGroup unused;
   const int n = s.n();
 
@@ -293,7 +293,7 @@ Status ModelEval::bind(const ParamValues& values) {
   }
   // Compile every group against the symbols, then evaluate the parameter-only entries once.
   for (ExprGroup* g :
-       {&param, &p_dt_, &p_step_, &F_state_, &f_state_, &Q_state_, &xdot_state_, &A_state_}) {
+       {&param_, &p_dt_, &p_step_, &F_state_, &f_state_, &Q_state_, &xdot_state_, &A_state_}) {
     if (auto st = g->bind(s.symbols, vars_.data()); !st) return st;
   }
   for (auto& ch : channels_) {
@@ -373,6 +373,28 @@ const MatrixSpec* ModelEval::noise_not_psd(const MatX*& M) const {
     }
   }
   return nullptr;
+}
+
+Status ModelEval::set_params(const std::vector<std::pair<int, double>>& values) {
+  for (const auto& [slot, v] : values)
+    vars_[static_cast<std::size_t>(slot)] = v;
+  param_.eval();
+  cache_.clear();
+  evict_ = 0;
+  dt_ = std::numeric_limits<double>::quiet_NaN();  // what depends on dt: at the next set_dt
+  const ModelSpec& s = spec_;
+  const ProcessSpec& pr = s.process;
+  if (pr.form == ProcessForm::kContinuous || rk4_) {
+    if (auto st = check_psd(Qc, pr.Qc, s.path, false); !st) return st;
+  } else if (pr.Q.dep() <= Dep::kParam) {
+    if (auto st = check_psd(Q, pr.Q, s.path, false); !st) return st;
+  }
+  for (std::size_t c = 0; c < s.channels.size(); ++c) {
+    if (s.channels[c].R.dep() <= Dep::kParam) {
+      if (auto st = check_psd(channels_[c].R, s.channels[c].R, s.path, false); !st) return st;
+    }
+  }
+  return Ok{};
 }
 
 Status ModelEval::eval_dt(double dt, bool check_q) {

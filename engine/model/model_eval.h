@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/expected.h"
@@ -60,6 +61,11 @@ class ModelEval {
     if (dt == dt_) return Ok{};
     return check_at(dt, where);
   }
+
+  // Moves parameters during a run (an IMM's grid under renewal): each slot's value set, what
+  // depends on parameters re-evaluated now and what depends on dt at the next set_dt. A Q, Qc or
+  // R of parameters only that is then not PSD is an Error naming the key.
+  Status set_params(const std::vector<std::pair<int, double>>& values);
 
   // The process at the current symbols. step: entries of t and inputs (once per step);
   // f / f_jacobian / noise: what depends on states, at the state set by set_state: fx = f(x) (or
@@ -171,6 +177,7 @@ class ModelEval {
   double dt_;
   std::vector<Channel> channels_;
   std::vector<Group> groups_;
+  ExprGroup param_;  // entries of parameters only (bind, set_params)
   ExprGroup p_dt_, p_step_, F_state_, f_state_, Q_state_;
   // Step-level sub-expressions that state entries read by name (Expr::state_text): evaluated by
   // process_step (the process's) and channel_step (the channel's), before the entries.

@@ -58,8 +58,10 @@ Dataset ModelResult::table() const {
       put("mu." + imm->names[j], m);
     }
     put("imm.map", imm->map);
-    for (const auto& a : imm->axes)
+    for (const auto& a : imm->axes) {
       put("imm." + a.param, a.estimate);
+      put("imm." + a.param + ".centre", a.centre);
+    }
   }
   return d;
 }

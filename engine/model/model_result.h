@@ -37,8 +37,11 @@ struct ImmSeries {
     std::string param, label, unit;
     std::size_t n = 1;             // grid points (mode j's index along the axis: see values)
     std::vector<double> values;    // per mode: the parameter's value
-    std::vector<double> estimate;  // per step: Σ_j μ^j values[j]
-    std::vector<double> truth;     // per step, from the axis's truth column; empty: none
+    std::vector<double> estimate;  // per step: Σ_j μ^j (mode j's value at that step)
+    // Per step: the grid's centre (min + max)/2, moved by renewal; mode j's value at step k is
+    // values[j] + centre[k] − centre[0].
+    std::vector<double> centre;
+    std::vector<double> truth;  // per step, from the axis's truth column; empty: none
   };
   std::vector<Axis> axes;
   std::size_t modes() const { return names.size(); }

@@ -106,8 +106,14 @@ void ImmPanels::setResult(const model::ModelResult& r) {
   for (std::size_t a = 0; a < axes_.size() && a < imm.axes.size(); ++a) {
     const auto& v = imm.axes[a].values;
     const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    // The grid's ends over time: they move with the centre under renewal.
+    const auto& c = imm.axes[a].centre;
     axes_[a].lo_v.assign(steps, *lo);
     axes_[a].hi_v.assign(steps, *hi);
+    for (std::size_t k = 0; k < steps && k < c.size() && !c.empty(); ++k) {
+      axes_[a].lo_v[k] += c[k] - c.front();
+      axes_[a].hi_v[k] += c[k] - c.front();
+    }
     // A truth line in the legend only where the axis has a truth column.
     if (imm.axes[a].truth.empty()) {
       axes_[a].truth->removeFromLegend();
@@ -152,8 +158,13 @@ void ImmPanels::drawHeatMap(std::size_t k) {
   if (n0 < 1 || n1 < 1 || static_cast<std::size_t>(n0 * n1) != imm.modes()) return;
   const auto& v0 = imm.axes[0].values;
   const auto& v1 = imm.axes[1].values;
-  const double a0 = v0.front(), a1 = v0[static_cast<std::size_t>(n0 - 1)];
-  const double b0 = v1.front(), b1 = v1.back();
+  // The grid at step k: moved by renewal from its first values.
+  const auto shift = [k](const model::ImmSeries::Axis& a) {
+    return a.centre.size() > k ? a.centre[k] - a.centre.front() : 0.0;
+  };
+  const double s0 = shift(imm.axes[0]), s1 = shift(imm.axes[1]);
+  const double a0 = v0.front() + s0, a1 = v0[static_cast<std::size_t>(n0 - 1)] + s0;
+  const double b0 = v1.front() + s1, b1 = v1.back() + s1;
   d->setRange(QCPRange(a0, a1 > a0 ? a1 : a0 + 1e-9), QCPRange(b0, b1 > b0 ? b1 : b0 + 1e-9));
   for (int i1 = 0; i1 < n1; ++i1) {
     for (int i0 = 0; i0 < n0; ++i0) {

@@ -6,9 +6,11 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "core/limits.h"
 #include "filter/imm.h"
+#include "filter/imm_grid.h"
 #include "model/imm/imm_spec.h"
 #include "model/model_filters.h"
 
@@ -18,6 +20,13 @@ namespace {
 
 constexpr double kNegInf = -std::numeric_limits<double>::infinity();
 const double kLog2Pi = std::log(2.0 * std::numbers::pi);
+
+// Renewal at a run's values (RenewalSpec): off when Kp is 0 or the model has no renewal.
+struct RenewalRun {
+  bool on = false;
+  double kp = 0.0, start = 0.0;
+  RenewalReading reading = RenewalReading::kIndex;
+};
 
 // One mode: its evaluator, its context and the filter over them.
 template <class Filter>
@@ -31,8 +40,14 @@ struct ModeRun {
 template <int N, class Filter>
 class Imm {
  public:
-  Imm(Prepared& p, const ModesSpec& ms, std::vector<Mode> modes, MarkovChain chain)
-      : p_(p), main_(*p.ctx), ms_(ms), modes_(std::move(modes)), chain_(std::move(chain)) {}
+  Imm(Prepared& p, const ModesSpec& ms, std::vector<Mode> modes, MarkovChain chain,
+      RenewalRun renewal)
+      : p_(p),
+        main_(*p.ctx),
+        ms_(ms),
+        modes_(std::move(modes)),
+        chain_(std::move(chain)),
+        ren_(renewal) {}
 
   Status setup() {
     const std::size_t r = modes_.size(), rows = main_.data.rows;
@@ -84,10 +99,12 @@ class Imm {
         axis.values.push_back(m.grid[a]);
         axis.n = std::max(axis.n, m.grid_index[a] + 1);
       }
+      axis.centre.assign(rows, kNoSample);
       s.axes.push_back(std::move(axis));
     }
     for (auto& c : main_.r.chans)
       c.nll.assign(rows, kNoSample);
+    set_grid();
     return Ok{};
   }
 
@@ -126,6 +143,9 @@ class Imm {
  private:
   // Mixing from μ_{k−1}, then each mode's prediction to row k; μ becomes c̄.
   Status predict(std::size_t k, const std::vector<double>& t) {
+    if (ren_.on) {
+      if (auto st = renew(k, t[k] - t[k - 1]); !st) return st;
+    }
     for (auto& m : runs_) {
       const auto where = [&] {
         return "the interval into step " + std::to_string(k) + " of " + main_.data.source;
@@ -135,7 +155,8 @@ class Imm {
       m->ctx->set_inputs(t[k - 1]);
       m->ev->process_step();
     }
-    const ImmMixing w = imm_mixing(chain_, log_mu_);
+    const ImmMixing w = imm_mixing(moved_ ? *moved_ : chain_, log_mu_);
+    moved_.reset();
     gather();
     imm_mix(w, g_, mixed_);
     for (std::size_t j = 0; j < runs_.size(); ++j) {
@@ -200,6 +221,66 @@ class Imm {
       ch.K[e][k] = cap.K[e];
   }
 
+  // The grid's centre and offsets per axis, and each axis's parameter slot (a grid's modes
+  // share the model's symbols).
+  void set_grid() {
+    const ModelSpec& spec = main_.spec;
+    for (std::size_t a = 0; a < ms_.grid.size(); ++a) {
+      std::size_t n = 1;
+      for (const Mode& m : modes_)
+        n = std::max(n, m.grid_index[a] + 1);
+      std::vector<double> values(n, 0.0);
+      for (const Mode& m : modes_)
+        values[m.grid_index[a]] = m.grid[a];
+      const double c = 0.5 * (values.front() + values.back());
+      centre_.push_back(c);
+      est_.push_back(c);
+      off_.emplace_back();
+      for (double v : values)
+        off_.back().push_back(v - c);
+      int slot = -1;
+      for (std::size_t i = 0; i < spec.param_keys.size(); ++i) {
+        if (spec.param_keys[i] == ms_.grid[a].param) slot = spec.param_slots[i];
+      }
+      slot_.push_back(slot);
+    }
+    if (ren_.reading == RenewalReading::kMix) chain_matrix_ = chain_.matrix();
+  }
+
+  // Seed 001 eq. 4 before the prediction into row k: the grid moves by
+  // d = gain (R̂_{k−1} − centre_{k−1}) per axis, μ follows by the reading, and every mode's
+  // parameters take their moved values.
+  Status renew(std::size_t k, double dt) {
+    elapsed_ += dt;
+    const double kp = elapsed_ < ren_.start ? 0.0 : ren_.kp;
+    const double gain = ren_.reading == RenewalReading::kRate ? std::min(1.0, kp * dt) : kp;
+    std::vector<double> d(centre_.size());
+    bool moves = false;
+    for (std::size_t a = 0; a < d.size(); ++a) {
+      d[a] = gain * (est_[a] - centre_[a]);
+      moves = moves || d[a] != 0.0;
+    }
+    if (!moves) return Ok{};
+    if (ren_.reading == RenewalReading::kSlope) {
+      const VecX moved = grid_remap(imm_probabilities(log_mu_), off_, d);
+      log_mu_ = moved.array().max(1e-300).log().matrix();
+    } else if (ren_.reading == RenewalReading::kMix) {
+      auto moved = MarkovChain::dense(grid_shift_transition(off_, d) * chain_matrix_);
+      if (moved) moved_ = std::move(*moved);
+    }
+    for (std::size_t a = 0; a < d.size(); ++a)
+      centre_[a] += d[a];
+    std::vector<std::pair<int, double>> set(centre_.size());
+    for (std::size_t j = 0; j < runs_.size(); ++j) {
+      for (std::size_t a = 0; a < centre_.size(); ++a)
+        set[a] = {slot_[a], centre_[a] + off_[a][modes_[j].grid_index[a]]};
+      if (auto st = runs_[j]->ev->set_params(set); !st) {
+        return main_.fail(k, "the moved grid (renewal): " + st.error());
+      }
+    }
+    return Ok{};
+  }
+
   void gather() {
     g_.resize(runs_.size());
     for (std::size_t j = 0; j < runs_.size(); ++j) {
@@ -224,11 +305,13 @@ class Imm {
       if (mu(jj) > mu(best)) best = jj;
     }
     s.map[k] = static_cast<double>(best);
-    for (auto& a : s.axes) {
+    for (std::size_t a = 0; a < s.axes.size(); ++a) {
       double e = 0.0;
       for (std::size_t j = 0; j < r; ++j)
-        e += mu(static_cast<Eigen::Index>(j)) * a.values[j];
-      a.estimate[k] = e;
+        e += mu(static_cast<Eigen::Index>(j)) * (centre_[a] + off_[a][modes_[j].grid_index[a]]);
+      s.axes[a].estimate[k] = e;
+      s.axes[a].centre[k] = centre_[a];
+      est_[a] = e;
     }
   }
 
@@ -240,23 +323,30 @@ class Imm {
   std::vector<std::unique_ptr<ModeRun<Filter>>> runs_;
   VecX log_mu_;
   std::vector<Gaussian<N>> g_, mixed_;
+  RenewalRun ren_;
+  std::vector<std::vector<double>> off_;  // per grid axis: the offsets from the centre
+  std::vector<double> centre_, est_;      // per grid axis: the centre, the last estimate
+  std::vector<int> slot_;                 // per grid axis: its parameter's symbol
+  double elapsed_ = 0.0;
+  MatX chain_matrix_;
+  std::optional<MarkovChain> moved_;  // this row's chain under the mix reading
   std::size_t mode_skips_ = 0, first_mode_skip_ = 0;
   std::string first_mode_why_;
 };
 
 template <int N, class Filter>
-Status run_with(Prepared& p, std::vector<Mode> modes, MarkovChain chain) {
-  Imm<N, Filter> imm(p, *p.ctx->spec.modes, std::move(modes), std::move(chain));
+Status run_with(Prepared& p, std::vector<Mode> modes, MarkovChain chain, RenewalRun ren) {
+  Imm<N, Filter> imm(p, *p.ctx->spec.modes, std::move(modes), std::move(chain), ren);
   if (auto st = imm.setup(); !st) return st;
   return imm.run();
 }
 
 template <int N>
-Status run_sized(Prepared& p, std::vector<Mode> modes, MarkovChain chain) {
+Status run_sized(Prepared& p, std::vector<Mode> modes, MarkovChain chain, RenewalRun ren) {
   if (p.ctx->options.kind == FilterKind::kUkf) {
-    return run_with<N, UnscentedFilter<N>>(p, std::move(modes), std::move(chain));
+    return run_with<N, UnscentedFilter<N>>(p, std::move(modes), std::move(chain), ren);
   }
-  return run_with<N, KalmanFilter<N>>(p, std::move(modes), std::move(chain));
+  return run_with<N, KalmanFilter<N>>(p, std::move(modes), std::move(chain), ren);
 }
 
 }  // namespace
@@ -284,21 +374,32 @@ Status run_imm(Prepared& p, const ParamValues& values) {
     chain = MarkovChain::dense(P);
     if (!chain) return Error{spec.path + ": model.modes.markov.matrix: " + chain.error()};
   }
+  RenewalRun ren;
+  if (ms.renewal) {
+    ren.kp = ms.renewal->gain.at(values);
+    ren.start = ms.renewal->start.at(values);
+    ren.reading = ms.renewal->at(values);
+    ren.on = ren.kp != 0.0;
+    if (!(ren.kp >= 0.0 && ren.kp <= 1.0) || !std::isfinite(ren.start)) {
+      return Error{spec.path + ": " + ms.renewal->gain.key + " must be in [0, 1] and " +
+                   ms.renewal->start.key + " finite"};
+    }
+  }
   switch (spec.n()) {
     case 1:
-      return run_sized<1>(p, std::move(*modes), std::move(*chain));
+      return run_sized<1>(p, std::move(*modes), std::move(*chain), ren);
     case 2:
-      return run_sized<2>(p, std::move(*modes), std::move(*chain));
+      return run_sized<2>(p, std::move(*modes), std::move(*chain), ren);
     case 3:
-      return run_sized<3>(p, std::move(*modes), std::move(*chain));
+      return run_sized<3>(p, std::move(*modes), std::move(*chain), ren);
     case 4:
-      return run_sized<4>(p, std::move(*modes), std::move(*chain));
+      return run_sized<4>(p, std::move(*modes), std::move(*chain), ren);
     case 5:
-      return run_sized<5>(p, std::move(*modes), std::move(*chain));
+      return run_sized<5>(p, std::move(*modes), std::move(*chain), ren);
     case 6:
-      return run_sized<6>(p, std::move(*modes), std::move(*chain));
+      return run_sized<6>(p, std::move(*modes), std::move(*chain), ren);
     default:
-      return run_sized<Eigen::Dynamic>(p, std::move(*modes), std::move(*chain));
+      return run_sized<Eigen::Dynamic>(p, std::move(*modes), std::move(*chain), ren);
   }
 }
 

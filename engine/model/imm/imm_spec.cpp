@@ -20,6 +20,14 @@ double ParamRef::at(const ParamValues& v) const {
   return it == v.end() ? value : it->second;
 }
 
+RenewalReading RenewalSpec::at(const ParamValues& v) const {
+  if (param.empty()) return fixed;
+  const auto it = v.find(param);
+  if (it == v.end() || !(it->second >= 0.0)) return fixed;
+  const auto i = static_cast<std::size_t>(it->second);
+  return i < by_choice.size() ? by_choice[i] : fixed;
+}
+
 std::vector<double> ModesSpec::axis_values(double min, double max, int n) {
   if (n <= 1) return {0.5 * (min + max)};
   std::vector<double> g(static_cast<std::size_t>(n));
@@ -345,6 +353,73 @@ Status parse_mu0(const Reader& p, const json& j, ModesSpec& out) {
   return Ok{};
 }
 
+const char* const kReadings[] = {"index", "slope", "rate", "mix"};
+
+Expected<RenewalReading> reading(const Reader& p, const std::string& key, const std::string& name) {
+  for (int i = 0; i < 4; ++i) {
+    if (name == kReadings[i]) return static_cast<RenewalReading>(i);
+  }
+  return p.error(key, "'" + name + "' is not a reading of renewal (index, slope, rate, mix)");
+}
+
+// "renewal": {"gain", "start", "mode"}: gain and start numbers gain Kp and renewal.start; mode a
+// reading or the key of a choice parameter whose labels are readings.
+Status parse_renewal(const Reader& p, const json& j, const ParamTable& params, ModesSpec& out) {
+  const std::string key = "model.modes.renewal";
+  if (!out.is_grid()) return p.error(key, "renewal moves a grid: declare \"grid\"");
+  if (!j.is_object()) return p.error(key, "expected {\"gain\", \"start\", \"mode\"}");
+  if (auto st = p.only_keys(j, key, {"gain", "start", "mode"}); !st) return st;
+  auto r = std::make_shared<RenewalSpec>();
+  const ParamSpec kp{"Kp",
+                     "Kp, renewal gain",
+                     "",
+                     0.0,
+                     1.0,
+                     0.0,
+                     Scale::kLinear,
+                     "IMM",
+                     "Mode-parameter renewal (seed 001 eq. 4): the grid moves by Kp (R̂ − centre) "
+                     "every row (per second for the rate reading); 0: the grid stays."};
+  const ParamSpec start{"renewal.start",
+                        "renewal start",
+                        "s",
+                        0.0,
+                        1e4,
+                        0.0,
+                        Scale::kLinear,
+                        "IMM",
+                        "The time (s after the first row) from which the grid moves."};
+  auto gain =
+      gained_ref(p, j.contains("gain") ? j["gain"] : json(0.0), key + ".gain", params, kp, out);
+  if (!gain) return gain.err();
+  auto from = gained_ref(p, j.contains("start") ? j["start"] : json(0.0), key + ".start", params,
+                         start, out);
+  if (!from) return from.err();
+  r->gain = *gain;
+  r->start = *from;
+  if (auto it = j.find("mode"); it != j.end()) {
+    if (!it->is_string()) return p.error(key + ".mode", "expected a reading or a choice parameter");
+    const auto name = it->get<std::string>();
+    if (const ParamSpec* c = params.find(name)) {
+      if (c->scale != Scale::kChoice) {
+        return p.error(key + ".mode", "'" + name + "' is not a choice parameter");
+      }
+      r->param = name;
+      for (const auto& label : c->choices) {
+        auto rd = reading(p, key + ".mode", label);
+        if (!rd) return rd.err();
+        r->by_choice.push_back(*rd);
+      }
+    } else {
+      auto rd = reading(p, key + ".mode", name);
+      if (!rd) return rd.err();
+      r->fixed = *rd;
+    }
+  }
+  out.renewal = std::move(r);
+  return Ok{};
+}
+
 // What an IMM does not run yet: gates and stacked or sequential groups.
 Status check_supported(const Reader& p, const ModelSpec& base) {
   for (const auto& c : base.channels) {
@@ -370,7 +445,8 @@ Expected<std::shared_ptr<const ModesSpec>> parse_modes(const Reader& p, const js
   const json& j = model["modes"];
   const std::string key = "model.modes";
   if (!j.is_object()) return p.error(key, "expected {\"list\" or \"grid\", \"markov\", \"mu0\"}");
-  if (auto st = p.only_keys(j, key, {"list", "grid", "markov", "mu0"}); !st) return st.err();
+  if (auto st = p.only_keys(j, key, {"list", "grid", "markov", "mu0", "renewal"}); !st)
+    return st.err();
   if (j.contains("list") == j.contains("grid"))
     return p.error(key, "expected one of \"list\" (named modes) or \"grid\" (axes)");
   if (auto st = check_supported(p, base); !st) return st.err();
@@ -383,6 +459,9 @@ Expected<std::shared_ptr<const ModesSpec>> parse_modes(const Reader& p, const js
   if (auto st = parse_markov(p, j.contains("markov") ? j["markov"] : json(), params, *out); !st)
     return st.err();
   if (auto st = parse_mu0(p, j.contains("mu0") ? j["mu0"] : json(), *out); !st) return st.err();
+  if (j.contains("renewal")) {
+    if (auto st = parse_renewal(p, j["renewal"], params, *out); !st) return st.err();
+  }
   return std::shared_ptr<const ModesSpec>(std::move(out));
 }
 

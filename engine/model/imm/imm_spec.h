@@ -36,6 +36,22 @@ struct GridAxisSpec {
   ParamRef min, max, n;  // each follows a parameter (declared, or gained: grid.PARAM.min …)
 };
 
+// Mode-parameter renewal of a grid (seed 001 eq. 4; presets/models/README.md, "Renewal"): the
+// whole grid moves by ΔR̄ = Kp (R̂ − R̄_centre) per row, and μ follows it by one of four readings.
+enum class RenewalReading {
+  kIndex,  // μ stays on the mode index (the estimate jumps with the grid)
+  kSlope,  // μ shared between the moved grid points around each old value
+  kRate,   // as index, with Kp per second: ΔR̄ = min(1, Kp·dt)(R̂ − R̄_centre)
+  kMix,    // the move as a mode transition composed with the Markov chain, in one mixing
+};
+struct RenewalSpec {
+  ParamRef gain, start;  // Kp (per row, or per second for `rate`), and the time it starts (s)
+  RenewalReading fixed = RenewalReading::kIndex;
+  std::string param;  // a choice parameter whose labels name the readings, or empty: `fixed`
+  std::vector<RenewalReading> by_choice;
+  RenewalReading at(const ParamValues& v) const;
+};
+
 // One mode at a run's parameter values.
 struct Mode {
   std::string name, label;
@@ -48,9 +64,10 @@ struct Mode {
 struct ModesSpec {
   std::vector<ModeSpec> list;
   std::vector<GridAxisSpec> grid;
-  ParamRef stay;                            // the uniform chain's p^{jj} ...
-  std::vector<std::vector<double>> matrix;  // ... or the whole matrix (non-empty)
-  std::vector<double> mu0;                  // empty: uniform
+  ParamRef stay;                               // the uniform chain's p^{jj} ...
+  std::vector<std::vector<double>> matrix;     // ... or the whole matrix (non-empty)
+  std::vector<double> mu0;                     // empty: uniform
+  std::shared_ptr<const RenewalSpec> renewal;  // a grid's renewal; null: the grid stays
   std::vector<ParamSpec> gained;  // parameters the block adds (grid.PARAM.min, markov.stay, …)
 
   bool is_grid() const { return !grid.empty(); }

@@ -277,6 +277,14 @@ Json tune_report(const TuneArgs& a, const Workspace& ws, const TuningSet& set,
     j["bounds"][p.key] = {p.lo, p.hi};
   }
   j["at_bound"] = r.at_bound;
+  if (r.trade_off) {
+    const TradeOff& t = *r.trade_off;
+    j["trade_off"] = {{"metric", t.metric},     {"start_value", t.start_value},
+                      {"value", t.best_value},  {"start_nis_mean", t.start_nis},
+                      {"nis_mean", t.best_nis}, {"cost", t.cost()},
+                      {"costly", t.costly()}};
+    if (t.costly()) err << "kfw-cli: warning: " << t.message() << "\n";
+  }
   j["scale"] = scale_reports(r, o.objective, err);
   if (!r.at_bound.empty()) {
     err << "kfw-cli: warning: the optimum sits on a search bound for " << join(r.at_bound)

@@ -216,6 +216,11 @@ void TuneDialog::finished() {
       keys << q(k);
     text += "\n⚠ The optimum sits on a search bound for " + keys.join(", ") + ": widen the bounds.";
   }
+  if (r->trade_off && r->trade_off->costly()) {
+    // Both points, so the user chooses: Revert goes back to the start's values.
+    warn = true;
+    text += "\n⚠ " + q(r->trade_off->message()) + " (Revert).";
+  }
   if (r->logs.size() > 1) {
     for (const auto& l : r->logs)
       text += QString("\n  %1: %2").arg(q(l.name)).arg(l.value, 0, 'g', 5);

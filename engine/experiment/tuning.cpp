@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <sstream>
 
 #include "core/suggest.h"
 #include "experiment/parallel.h"
@@ -493,7 +494,35 @@ Expected<TuneResult> tune(const Scenario& s, const std::vector<TuneLog>& logs,
   for (std::size_t i = 0; i < dim; ++i) {
     if (u[i] < kBoundTol || u[i] > 1.0 - kBoundTol) out.at_bound.push_back(params[i].key);
   }
+  if (objective.combined() && !out.cancelled) {
+    const Eval e0 = tuner.evaluate(start, penalised);
+    if (std::isfinite(e0.value) && std::isfinite(e.value)) {
+      out.trade_off =
+          TradeOff{objective.spec.key, objective.spec.direction, e0.value, e.value, e0.nis, e.nis};
+    }
+  }
   return out;
+}
+
+double TradeOff::cost() const {
+  if (!(std::abs(start_value) > 0.0)) return 0.0;
+  const double change = (best_value - start_value) / std::abs(start_value);
+  return direction == Direction::kHigher ? -change : change;
+}
+
+bool TradeOff::costly() const {
+  return cost() > 0.10;
+}
+
+std::string TradeOff::message() const {
+  std::ostringstream os;
+  os.precision(4);
+  os << "meeting the consistency target costs " << std::lround(100.0 * cost()) << " % of " << metric
+     << " against the start: start " << metric << " " << start_value << " (NIS mean/dof "
+     << start_nis << "), tuned " << metric << " " << best_value << " (NIS mean/dof " << best_nis
+     << "); if " << metric << " matters more, keep the start's values or tune for " << metric
+     << " alone";
+  return os.str();
 }
 
 Expected<SearchParam> search_param(const Preset& preset, const std::string& key) {

@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -98,6 +99,21 @@ struct LogReport {
   double value = 0.0;  // the objective's metric on this log (NaN when undefined)
 };
 
+// A consistency target (rmse+nis, rmse+anis) can cost the metric it ranks: a filter whose models
+// cannot match the data reaches NIS mean / dof = 1 only by being a worse filter (issue 28: tuning
+// radome's IMM for rmse+nis made every figure the paper reports worse). The metric and NIS mean /
+// dof at the start and at the result, aggregated as the objective is.
+struct TradeOff {
+  std::string metric;  // "rmse"
+  Direction direction = Direction::kLower;
+  double start_value = 0.0, best_value = 0.0;
+  double start_nis = 0.0, best_nis = 0.0;
+  // The result's metric is more than 10 % worse than the start's: the user should choose.
+  bool costly() const;
+  double cost() const;  // the relative change of the metric for the worse (0.23: 23 %)
+  std::string message() const;
+};
+
 struct TuneResult {
   ParamValues best;
   double objective = 0.0;  // aggregate badness of the best values
@@ -106,6 +122,7 @@ struct TuneResult {
   std::vector<LogReport> logs;
   std::vector<ScaleReport> scales;
   std::vector<std::string> at_bound;  // keys whose optimum sits on a search bound
+  std::optional<TradeOff> trade_off;  // a combined objective: what consistency cost
   std::string method;                 // what ran ("bobyqa", "direct+bobyqa", ...)
   int evaluations = 0;
   bool cancelled = false;

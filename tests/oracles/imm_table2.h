@@ -33,6 +33,10 @@ class ImmTable2 {
     P_.assign(modes_.size(), P0);
   }
 
+  // Mixing block by block (presets/models/README.md, "Structure"): the mixed covariances'
+  // entries between states of different blocks are dropped. Empty: one block.
+  void set_blocks(std::vector<int> block_of) { blocks_ = std::move(block_of); }
+
   // One row: `first` skips mixing and prediction; `z` empty: no measurement at this row.
   Table2Row step(bool first, const Eigen::VectorXd& z) {
     const std::size_t r = modes_.size();
@@ -50,6 +54,11 @@ class ImmTable2 {
         for (std::size_t i = 0; i < r; ++i) {
           const Eigen::VectorXd d = x_[i] - x0[j];
           P0[j] += p_(i, j) * mu_(i) / c_bar(j) * (P_[i] + d * d.transpose());
+        }
+        for (std::size_t a = 0; a < blocks_.size(); ++a) {
+          for (std::size_t b = 0; b < blocks_.size(); ++b) {
+            if (blocks_[a] != blocks_[b]) P0[j](a, b) = 0.0;
+          }
         }
       }
       // Mode-matched prediction.
@@ -99,6 +108,7 @@ class ImmTable2 {
   Eigen::VectorXd mu_;
   std::vector<Eigen::VectorXd> x_;
   std::vector<Eigen::MatrixXd> P_;
+  std::vector<int> blocks_;
 };
 
 }  // namespace kfw::oracles

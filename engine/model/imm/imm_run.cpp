@@ -41,13 +41,14 @@ template <int N, class Filter>
 class Imm {
  public:
   Imm(Prepared& p, const ModesSpec& ms, std::vector<Mode> modes, MarkovChain chain,
-      RenewalRun renewal)
+      RenewalRun renewal, const StructureSpec* structure)
       : p_(p),
         main_(*p.ctx),
         ms_(ms),
         modes_(std::move(modes)),
         chain_(std::move(chain)),
-        ren_(renewal) {}
+        ren_(renewal),
+        st_(structure) {}
 
   Status setup() {
     const std::size_t r = modes_.size(), rows = main_.data.rows;
@@ -105,6 +106,7 @@ class Imm {
     for (auto& c : main_.r.chans)
       c.nll.assign(rows, kNoSample);
     set_grid();
+    set_structure();
     return Ok{};
   }
 
@@ -162,6 +164,10 @@ class Imm {
     for (std::size_t j = 0; j < runs_.size(); ++j) {
       runs_[j]->f->x = mixed_[j].x;
       runs_[j]->f->P = mixed_[j].P;
+      if (st_) {
+        drop_cross(runs_[j]->f->P);  // mixing block by block
+        if (st_->approximate) drop_cross(runs_[j]->ev->Q);
+      }
       if (auto st = runs_[j]->f->predict(k); !st) return st;
     }
     log_mu_ = w.log_c_bar;
@@ -177,6 +183,7 @@ class Imm {
       ModeRun<Filter>& m = *runs_[j];
       std::copy(main_.z_buf.begin(), main_.z_buf.end(), m.ctx->z_buf.begin());
       m.ev->channel_step(c);
+      if (st_ && st_->approximate) drop_cross(m.ev->channel(c).R, c);
       m.cap.applied = m.cap.skipped = false;
       if (auto st = m.f->update(c, k); !st) return st;
       const auto jj = static_cast<Eigen::Index>(j);
@@ -245,6 +252,37 @@ class Imm {
       slot_.push_back(slot);
     }
     if (ren_.reading == RenewalReading::kMix) chain_matrix_ = chain_.matrix();
+  }
+
+  // The state pairs in different blocks, and per channel the component pairs; P0 block-diagonal.
+  void set_structure() {
+    if (!st_) return;
+    const auto n = st_->block_of.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t k = 0; k < n; ++k) {
+        if (st_->block_of[i] != st_->block_of[k]) cross_.emplace_back(i, k);
+      }
+    }
+    for (const auto& blocks : st_->component_block) {
+      cross_R_.emplace_back();
+      for (std::size_t a = 0; a < blocks.size(); ++a) {
+        for (std::size_t b = 0; b < blocks.size(); ++b) {
+          if (blocks[a] != blocks[b]) cross_R_.back().emplace_back(a, b);
+        }
+      }
+    }
+    for (auto& m : runs_)
+      drop_cross(m->f->P);
+  }
+  template <class M>
+  void drop_cross(M& P) const {
+    for (const auto& [i, k] : cross_)
+      P(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = 0.0;
+  }
+  void drop_cross(MatX& R, std::size_t c) const {
+    if (c >= cross_R_.size()) return;
+    for (const auto& [a, b] : cross_R_[c])
+      R(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) = 0.0;
   }
 
   // Seed 001 eq. 4 before the prediction into row k: the grid moves by
@@ -324,6 +362,9 @@ class Imm {
   VecX log_mu_;
   std::vector<Gaussian<N>> g_, mixed_;
   RenewalRun ren_;
+  const StructureSpec* st_;                                                // blocks, or null
+  std::vector<std::pair<std::size_t, std::size_t>> cross_;                 // states
+  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> cross_R_;  // per channel
   std::vector<std::vector<double>> off_;  // per grid axis: the offsets from the centre
   std::vector<double> centre_, est_;      // per grid axis: the centre, the last estimate
   std::vector<int> slot_;                 // per grid axis: its parameter's symbol
@@ -335,18 +376,20 @@ class Imm {
 };
 
 template <int N, class Filter>
-Status run_with(Prepared& p, std::vector<Mode> modes, MarkovChain chain, RenewalRun ren) {
-  Imm<N, Filter> imm(p, *p.ctx->spec.modes, std::move(modes), std::move(chain), ren);
+Status run_with(Prepared& p, std::vector<Mode> modes, MarkovChain chain, RenewalRun ren,
+                const StructureSpec* structure) {
+  Imm<N, Filter> imm(p, *p.ctx->spec.modes, std::move(modes), std::move(chain), ren, structure);
   if (auto st = imm.setup(); !st) return st;
   return imm.run();
 }
 
 template <int N>
-Status run_sized(Prepared& p, std::vector<Mode> modes, MarkovChain chain, RenewalRun ren) {
+Status run_sized(Prepared& p, std::vector<Mode> modes, MarkovChain chain, RenewalRun ren,
+                 const StructureSpec* structure) {
   if (p.ctx->options.kind == FilterKind::kUkf) {
-    return run_with<N, UnscentedFilter<N>>(p, std::move(modes), std::move(chain), ren);
+    return run_with<N, UnscentedFilter<N>>(p, std::move(modes), std::move(chain), ren, structure);
   }
-  return run_with<N, KalmanFilter<N>>(p, std::move(modes), std::move(chain), ren);
+  return run_with<N, KalmanFilter<N>>(p, std::move(modes), std::move(chain), ren, structure);
 }
 
 }  // namespace
@@ -385,21 +428,22 @@ Status run_imm(Prepared& p, const ParamValues& values) {
                    ms.renewal->start.key + " finite"};
     }
   }
+  const StructureSpec* st = ms.structure.at(values);
   switch (spec.n()) {
     case 1:
-      return run_sized<1>(p, std::move(*modes), std::move(*chain), ren);
+      return run_sized<1>(p, std::move(*modes), std::move(*chain), ren, st);
     case 2:
-      return run_sized<2>(p, std::move(*modes), std::move(*chain), ren);
+      return run_sized<2>(p, std::move(*modes), std::move(*chain), ren, st);
     case 3:
-      return run_sized<3>(p, std::move(*modes), std::move(*chain), ren);
+      return run_sized<3>(p, std::move(*modes), std::move(*chain), ren, st);
     case 4:
-      return run_sized<4>(p, std::move(*modes), std::move(*chain), ren);
+      return run_sized<4>(p, std::move(*modes), std::move(*chain), ren, st);
     case 5:
-      return run_sized<5>(p, std::move(*modes), std::move(*chain), ren);
+      return run_sized<5>(p, std::move(*modes), std::move(*chain), ren, st);
     case 6:
-      return run_sized<6>(p, std::move(*modes), std::move(*chain), ren);
+      return run_sized<6>(p, std::move(*modes), std::move(*chain), ren, st);
     default:
-      return run_sized<Eigen::Dynamic>(p, std::move(*modes), std::move(*chain), ren);
+      return run_sized<Eigen::Dynamic>(p, std::move(*modes), std::move(*chain), ren, st);
   }
 }
 

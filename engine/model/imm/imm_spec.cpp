@@ -445,7 +445,7 @@ Expected<std::shared_ptr<const ModesSpec>> parse_modes(const Reader& p, const js
   const json& j = model["modes"];
   const std::string key = "model.modes";
   if (!j.is_object()) return p.error(key, "expected {\"list\" or \"grid\", \"markov\", \"mu0\"}");
-  if (auto st = p.only_keys(j, key, {"list", "grid", "markov", "mu0", "renewal"}); !st)
+  if (auto st = p.only_keys(j, key, {"list", "grid", "markov", "mu0", "renewal", "structure"}); !st)
     return st.err();
   if (j.contains("list") == j.contains("grid"))
     return p.error(key, "expected one of \"list\" (named modes) or \"grid\" (axes)");
@@ -461,6 +461,9 @@ Expected<std::shared_ptr<const ModesSpec>> parse_modes(const Reader& p, const js
   if (auto st = parse_mu0(p, j.contains("mu0") ? j["mu0"] : json(), *out); !st) return st.err();
   if (j.contains("renewal")) {
     if (auto st = parse_renewal(p, j["renewal"], params, *out); !st) return st.err();
+  }
+  if (j.contains("structure")) {
+    if (auto st = parse_structure(p, j["structure"], params, base, *out); !st) return st.err();
   }
   return std::shared_ptr<const ModesSpec>(std::move(out));
 }

@@ -52,6 +52,23 @@ struct RenewalSpec {
   RenewalReading at(const ParamValues& v) const;
 };
 
+// Per-block mode-matched filtering (presets/models/README.md, "Structure"): the states in blocks
+// that F and H keep apart; mixing is done block by block (the cross-block spread terms of each
+// mode's mixed prior dropped, as three axis filters would), and `approximate` drops the
+// cross-block entries of Q, R and P0 too (seed 001's axis structure).
+struct StructureSpec {
+  std::vector<int> block_of;  // per state: its block
+  bool approximate = false;
+  // Per channel, per component: the block its H row reads (−1: none).
+  std::vector<std::vector<int>> component_block;
+};
+struct StructureChoice {
+  std::shared_ptr<const StructureSpec> fixed;                   // null: one block (no structure)
+  std::string param;                                            // a choice parameter selecting ...
+  std::vector<std::shared_ptr<const StructureSpec>> by_choice;  // ... one per label
+  const StructureSpec* at(const ParamValues& v) const;
+};
+
 // One mode at a run's parameter values.
 struct Mode {
   std::string name, label;
@@ -64,10 +81,11 @@ struct Mode {
 struct ModesSpec {
   std::vector<ModeSpec> list;
   std::vector<GridAxisSpec> grid;
-  ParamRef stay;                               // the uniform chain's p^{jj} ...
-  std::vector<std::vector<double>> matrix;     // ... or the whole matrix (non-empty)
-  std::vector<double> mu0;                     // empty: uniform
-  std::shared_ptr<const RenewalSpec> renewal;  // a grid's renewal; null: the grid stays
+  ParamRef stay;                            // the uniform chain's p^{jj} ...
+  std::vector<std::vector<double>> matrix;  // ... or the whole matrix (non-empty)
+  std::vector<double> mu0;                  // empty: uniform
+  std::shared_ptr<const RenewalSpec> renewal;
+  StructureChoice structure;      // a grid's renewal; null: the grid stays
   std::vector<ParamSpec> gained;  // parameters the block adds (grid.PARAM.min, markov.stay, …)
 
   bool is_grid() const { return !grid.empty(); }
@@ -85,6 +103,9 @@ class Reader;
 Expected<std::shared_ptr<const ModesSpec>> parse_modes(const Reader& p, const nlohmann::json& model,
                                                        const ParamTable& params,
                                                        const ModelSpec& base);
+// model.modes.structure (imm_structure.cpp): blocks checked against every mode's model.
+Status parse_structure(const Reader& p, const nlohmann::json& j, const ParamTable& params,
+                       const ModelSpec& base, ModesSpec& out);
 }  // namespace detail
 
 }  // namespace kfw::model

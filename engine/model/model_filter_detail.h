@@ -242,6 +242,21 @@ struct Context {
   // one that skipped some after its first update gets a warning.
   Status finish_skips();
 
+  // A variance that overflows ends the run (an unstable process that no channel observes: x may
+  // stay finite while P grows without bound). The diagonal goes first; checked after a
+  // prediction, where P grows.
+  template <class M>
+  Status check_variances(std::size_t k, const M& P) const {
+    for (Eigen::Index i = 0; i < P.rows(); ++i) {
+      if (!std::isfinite(P(i, i))) [[unlikely]] {
+        return fail(k, "the variance of '" + spec.states[static_cast<std::size_t>(i)].name +
+                           "' is not finite (P overflowed: is the process unstable and the "
+                           "state unobserved?); the run stops here");
+      }
+    }
+    return Ok{};
+  }
+
   // A state that stops being finite ends the run.
   template <class V>
   Status check_finite(std::size_t k, const V& x) const {

@@ -47,7 +47,9 @@ struct KalmanFilter {
     }
     ekf_predict(x, P, fx, F, ev.Q, FP);
     ctx.wrap_states(x);
-    return ctx.check_finite(k, x);
+    if (auto st = ctx.check_finite(k, x); !st) [[unlikely]]
+      return st;
+    return ctx.check_variances(k, P);
   }
 
   // Channel c at row k: H (or ∂h/∂x at x_{k|k−1}), R and the innovation y = z − ẑ, ẑ = H x or
@@ -266,7 +268,9 @@ struct UnscentedFilter {
       }
     }
     unscented_predict(Y, w, ctx.state_angle, ev.Q, x, P);
-    return ctx.check_finite(k, x);
+    if (auto st = ctx.check_finite(k, x); !st) [[unlikely]]
+      return st;
+    return ctx.check_variances(k, P);
   }
 
   // Channel c at row k: Z_j = h(X_j) (or H X_j), ẑ, S and C = P_xz from them, y = z − ẑ; then the

@@ -230,5 +230,32 @@ TEST(ImmModelFormat, TwoAxesShareDeclaredKeysFirstAxisFastest) {
   EXPECT_EQ(res.imm->labels[3], "q = 1, r = 0.55");
 }
 
+TEST(ImmModelFormat, AnUnstableUnobservedStateEndsTheRunNamingIt) {
+  // Found by the model-file fuzzer on an IMM seed: F = [[1, dt], [5, 1]] grows P by ~1.5 a step
+  // while H = 0 observes nothing, so x stays 0 and P overflowed unnoticed (a debug build aborted
+  // in the next update's covariance check). With and without modes: exit 1 naming the state.
+  int refused_runs = 0;
+  for (bool modes : {false, true}) {
+    json p = imm_base_preset();
+    p["model"]["process"]["F"][1][0] = "5";
+    p["model"]["measurements"]["pos"]["H"][0][0] = "0";
+    p["parameters"]["sim.dt"] = fmt_param(0.01, 0.001, 1);
+    p["parameters"]["sim.duration"] = fmt_param(20, 1, 100);
+    if (modes) p["model"]["modes"] = imm_two_modes();
+    auto s = make_model_scenario(p, "m.json");
+    ASSERT_TRUE(s.ok()) << s.error();
+    const ParamValues v = (*s)->params().defaults();
+    auto d = (*s)->simulate(v);
+    ASSERT_TRUE(d.ok()) << d.error();
+    auto r = (*s)->run(*d, v);
+    ASSERT_FALSE(r.ok()) << modes;
+    ++refused_runs;
+    EXPECT_EQ(r.exit_code(), 1);
+    EXPECT_NE(r.error().find("the variance of 'v' is not finite (P overflowed"), std::string::npos)
+        << r.error();
+  }
+  EXPECT_EQ(refused_runs, 2);
+}
+
 }  // namespace
 }  // namespace kfw

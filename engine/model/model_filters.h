@@ -72,7 +72,9 @@ struct KalmanFilter {
         cs.size() == 1 ? update_scalar(c, k, ch, cs.linear) : update_vector(c, k, ch, cs);
     if (!applied) return ctx.skip(c, k, why);
     ctx.wrap_states(x);
-    return ctx.check_finite(k, x);
+    if (auto st = ctx.check_finite(k, x); !st) [[unlikely]]
+      return st;
+    return ctx.check_variances(k, P);
   }
 
   std::string why{};  // why the last update was skipped
@@ -167,7 +169,9 @@ struct KalmanFilter {
         series.K[static_cast<std::size_t>(i)][q.row] = u.K(i, a);
     }
     ctx.wrap_states(x);
-    return ctx.check_finite(k, x);
+    if (auto st = ctx.check_finite(k, x); !st) [[unlikely]]
+      return st;
+    return ctx.check_variances(k, P);
   }
 
   // A channel of several components. Not inlined: its fixed-capacity matrices would give the
@@ -310,7 +314,9 @@ struct UnscentedFilter {
     if (u.status == UpdateStatus::kSkipped) return ctx.skip(c, k, ctx.s_not_pd(c, um.S, true));
     if (!u.updated()) return Ok{};
     ctx.wrap_states(x);
-    return ctx.check_finite(k, x);
+    if (auto st = ctx.check_finite(k, x); !st) [[unlikely]]
+      return st;
+    return ctx.check_variances(k, P);
   }
 };
 

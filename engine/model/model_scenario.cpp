@@ -530,6 +530,15 @@ Expected<std::unique_ptr<Scenario>> make_model_scenario(const OJson& preset,
     auto wev = model::ModelEval::create(*shared->world, table.defaults());
     if (!wev) return wev.err();
   }
+  // Every mode at the preset's values: a grid's axes, a mode's P0, Q and R (exit 2 at load).
+  if (shared->modes) {
+    auto modes = shared->modes->modes(*shared, defaults);
+    if (!modes) return modes.err();
+    for (const auto& mode : *modes) {
+      auto mev = model::ModelEval::create(*mode.model, mode.values);
+      if (!mev) return Error{mev.error() + " (in mode '" + mode.name + "')"};
+    }
+  }
   if (auto st = (*ev)->check_dt(param(defaults, shared->sim_dt_key), shared->sim_dt_key); !st) {
     return st.err();
   }

@@ -619,6 +619,16 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
     auto modes = detail::parse_modes(p, j, params, m);
     if (!modes) return modes.err();
     m.modes = std::move(*modes);
+    // A mode's f or h rules out the kf the base model alone allowed.
+    const auto choices = filter_choices(m);
+    if (std::find(choices.begin(), choices.end(), m.filter) == choices.end()) {
+      if (j.contains("filter")) {
+        return p.error("model.filter", "'" + m.filter +
+                                           "' is not a filter for this model (one of ekf ukf; "
+                                           "a mode's process or h is not linear)");
+      }
+      m.filter = choices.front();
+    }
   }
   return m;
 }

@@ -138,6 +138,37 @@ TEST(ImmModelFormat, VersionOneAndGatesAreRefused) {
             "m.json: model.measurements.pos.gate: a gate cannot be combined with modes yet");
 }
 
+TEST(ImmModelFormat, WhatIsCheckedWhenTheFileLoads) {
+  // Angle states: their μ-weighted mean would not wrap.
+  json p = imm_base_preset();
+  p["model"]["states"][0] = {{"name", "x"}, {"angle", "rad"}};
+  p["model"]["modes"] = imm_two_modes();
+  EXPECT_EQ(imm_load_error(p),
+            "m.json: model.states: the angle state 'x' cannot be mixed across modes yet (its mean "
+            "would not wrap)");
+  // A declared kf that a mode's nonlinear process rules out.
+  p = imm_base_preset();
+  json modes = imm_two_modes();
+  modes["list"][1]["process"] = {{"f", fmt_list({"x + dt*v", "v*cos(0.01*dt)"})},
+                                 {"Q", fmt_list({fmt_list({"dt^4/4*q^2", "dt^3/2*q^2"}),
+                                                 fmt_list({"dt^3/2*q^2", "dt^2*q^2"})})}};
+  p["model"]["modes"] = modes;
+  p["model"]["filter"] = "kf";
+  EXPECT_EQ(imm_load_error(p),
+            "m.json: model.filter: 'kf' is not a filter for this model (one of ekf ukf; a mode's "
+            "process or h is not linear)");
+  // A grid that is empty at the preset's values is refused at load, naming its keys.
+  p = imm_base_preset();
+  p["model"]["modes"] = {{"grid", {{{"param", "q"}, {"min", 3.0}, {"max", 2.0}, {"n", 3}}}}};
+  EXPECT_EQ(imm_load_error(p), "m.json: grid.q.min (3) must not exceed grid.q.max (2)");
+  // A mode whose R is not PSD at the preset's values: at load, naming the mode.
+  p = imm_base_preset();
+  modes = imm_two_modes();
+  modes["list"][1]["measurements"] = {{"pos", {{"R", fmt_list({"-r^2"})}}}};
+  p["model"]["modes"] = modes;
+  EXPECT_NE(imm_load_error(p).find("(in mode 'man')"), std::string::npos) << imm_load_error(p);
+}
+
 TEST(ImmModelFormat, ANonlinearModeRulesOutTheKf) {
   json p = imm_base_preset();
   json modes = imm_two_modes();

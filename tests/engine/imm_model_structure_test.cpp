@@ -186,6 +186,16 @@ TEST(ImmModelStructure, CoupledBlocksAreRefused) {
   EXPECT_EQ(error_of(p),
             "st.json: model.modes.structure: model.measurements.pos.H[0] reads states of two "
             "blocks: a component belongs to one");
+  // The continuous form's noise enters through G: one white input driving both axes.
+  p = two_axis_preset(axis_blocks(false));
+  p["model"]["process"] = {
+      {"A", st_list({st_list({"0", "1", "0", "0"}), st_list({"0", "0", "0", "0"}),
+                     st_list({"0", "0", "0", "1"}), st_list({"0", "0", "0", "0"})})},
+      {"G", st_list({st_list({"0"}), st_list({"1"}), st_list({"0"}), st_list({"1"})})},
+      {"Qc", st_list({st_list({"q"})})}};
+  EXPECT_EQ(error_of(p),
+            "st.json: model.modes.structure: model.process.Qc: G Qc Gᵀ couples the states 'vx' "
+            "and 'vy' of two blocks (\"approximate\": true drops such entries of Q, R and P0)");
   p = two_axis_preset({{"blocks", st_list({st_list({"x", "vx"}), st_list({"y"})})}});
   EXPECT_EQ(error_of(p), "st.json: model.modes.structure.blocks: state 'vy' is in no block");
   p = two_axis_preset({{"blocks", st_list({st_list({"x", "vx", "y"}), st_list({"y", "vy"})})}});

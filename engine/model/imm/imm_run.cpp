@@ -148,11 +148,16 @@ class Imm {
     if (ren_.on) {
       if (auto st = renew(k, t[k] - t[k - 1]); !st) return st;
     }
-    for (auto& m : runs_) {
+    for (std::size_t j = 0; j < runs_.size(); ++j) {
+      auto& m = runs_[j];
       const auto where = [&] {
         return "the interval into step " + std::to_string(k) + " of " + main_.data.source;
       };
-      if (auto st = m->ev->set_dt_at(t[k] - t[k - 1], where); !st) return st;
+      if (auto st = m->ev->set_dt_at(t[k] - t[k - 1], where); !st) {
+        // Under renewal the moved grid broke it: a breakdown (exit 1), not a refusal.
+        const std::string what = st.error() + " (in mode '" + modes_[j].name + "')";
+        return ren_.on ? main_.fail(k, "the moved grid (renewal): " + what) : Status(Error{what});
+      }
       m->ev->set_time(t[k - 1]);
       m->ctx->set_inputs(t[k - 1]);
       m->ev->process_step();
@@ -304,7 +309,8 @@ class Imm {
       log_mu_ = moved.array().max(1e-300).log().matrix();
     } else if (ren_.reading == RenewalReading::kMix) {
       auto moved = MarkovChain::dense(grid_shift_transition(off_, d) * chain_matrix_);
-      if (moved) moved_ = std::move(*moved);
+      if (!moved) return main_.fail(k, "the moved grid (renewal, mix): " + moved.error());
+      moved_ = std::move(*moved);
     }
     for (std::size_t a = 0; a < d.size(); ++a)
       centre_[a] += d[a];

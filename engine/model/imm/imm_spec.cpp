@@ -203,7 +203,7 @@ Expected<std::shared_ptr<const ModelSpec>> mode_model(const Reader& p, const jso
                                                       const ParamTable& params,
                                                       const ModelSpec& base) {
   json patched = model;
-  for (const char* k : {"modes", "world", "plots", "derived"})
+  for (const char* k : {"modes", "world", "plots", "derived", "filter"})
     patched.erase(k);
   if (mode.contains("process")) patched["process"] = mode["process"];
   if (auto it = mode.find("measurements"); it != mode.end()) {
@@ -420,8 +420,15 @@ Status parse_renewal(const Reader& p, const json& j, const ParamTable& params, M
   return Ok{};
 }
 
-// What an IMM does not run yet: gates and stacked or sequential groups.
+// What an IMM does not run yet: angle states, gates, stacked or sequential groups.
 Status check_supported(const Reader& p, const ModelSpec& base) {
+  for (const auto& st : base.states) {
+    if (st.angle != Angle::kNone) {
+      return p.error("model.states", "the angle state '" + st.name +
+                                         "' cannot be mixed across modes yet (its mean would "
+                                         "not wrap)");
+    }
+  }
   for (const auto& c : base.channels) {
     if (c.has_gate()) {
       return p.error("model.measurements." + c.name + ".gate",

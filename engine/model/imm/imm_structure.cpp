@@ -41,6 +41,31 @@ std::string coupling(const MatrixSpec& m, const std::vector<int>& block_of) {
   return {};
 }
 
+// The continuous forms' Q = ∫ e^{Aτ} G Qc Gᵀ e^{Aᵀτ}: with F keeping the blocks apart, it couples
+// two blocks where G Qc Gᵀ does: (i, j) with some G(i, k) Qc(k, l) G(j, l) structurally non-zero
+// (G absent: the identity).
+std::string noise_coupling(const ModelSpec& m, const std::vector<int>& block_of) {
+  const ProcessSpec& pr = m.process;
+  if (pr.Qc.empty()) return {};
+  const auto n = static_cast<int>(block_of.size());
+  const auto g = [&](int i, int k) { return pr.G.empty() ? i == k : !zero(pr.G.at(i, k)); };
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      if (block_of[static_cast<std::size_t>(i)] == block_of[static_cast<std::size_t>(j)]) continue;
+      for (int k = 0; k < pr.Qc.rows; ++k) {
+        for (int l = 0; l < pr.Qc.cols; ++l) {
+          if (g(i, k) && g(j, l) && !zero(pr.Qc.at(k, l))) {
+            return pr.Qc.key + ": G Qc Gᵀ couples the states '" +
+                   m.states[static_cast<std::size_t>(i)].name + "' and '" +
+                   m.states[static_cast<std::size_t>(j)].name + "' of two blocks";
+          }
+        }
+      }
+    }
+  }
+  return {};
+}
+
 // Each component's block from its H row (symbolic for h); Error when a row reads two blocks or
 // R couples components of two blocks without `approximate`.
 Status channel_blocks(const Reader& p, const std::string& key, const ModelSpec& m,
@@ -90,7 +115,10 @@ Status check_model(const Reader& p, const std::string& key, const ModelSpec& m, 
     }
   }
   if (!s.approximate) {
-    for (const MatrixSpec* q : {&pr.Q, &m.P0, &pr.Qc}) {
+    if (auto at = noise_coupling(m, s.block_of); !at.empty()) {
+      return p.error(key, at + " (\"approximate\": true drops such entries of Q, R and P0)");
+    }
+    for (const MatrixSpec* q : {&pr.Q, &m.P0}) {
       if (auto at = coupling(*q, s.block_of); !at.empty()) {
         return p.error(key, at + " couples two blocks (\"approximate\": true drops such entries " +
                                 "of Q, R and P0)");
@@ -143,6 +171,11 @@ Expected<std::shared_ptr<const StructureSpec>> parse_blocks(const Reader& p, con
     StructureSpec mode = *s;
     if (auto st = check_model(p, key + " (mode '" + m.name + "')", *m.model, mode); !st)
       return st.err();
+    if (mode.component_block != s->component_block) {
+      return p.error(key + " (mode '" + m.name + "')",
+                     "a channel's components read other blocks than in the model: the blocks "
+                     "of a component are the same in every mode");
+    }
   }
   return std::shared_ptr<const StructureSpec>(std::move(s));
 }

@@ -257,6 +257,14 @@ struct Context {
     return Ok{};
   }
 
+  // After a prediction or an update: the state finite (check_finite), then its variances.
+  template <class V, class M>
+  Status check_estimate(std::size_t k, const V& x, const M& P) const {
+    if (auto st = check_finite(k, x); !st) [[unlikely]]
+      return st;
+    return check_variances(k, P);
+  }
+
   // A state that stops being finite ends the run.
   template <class V>
   Status check_finite(std::size_t k, const V& x) const {

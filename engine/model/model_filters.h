@@ -47,9 +47,7 @@ struct KalmanFilter {
     }
     ekf_predict(x, P, fx, F, ev.Q, FP);
     ctx.wrap_states(x);
-    if (auto st = ctx.check_finite(k, x); !st) [[unlikely]]
-      return st;
-    return ctx.check_variances(k, P);
+    return ctx.check_estimate(k, x, P);
   }
 
   // Channel c at row k: H (or ∂h/∂x at x_{k|k−1}), R and the innovation y = z − ẑ, ẑ = H x or
@@ -72,9 +70,7 @@ struct KalmanFilter {
         cs.size() == 1 ? update_scalar(c, k, ch, cs.linear) : update_vector(c, k, ch, cs);
     if (!applied) return ctx.skip(c, k, why);
     ctx.wrap_states(x);
-    if (auto st = ctx.check_finite(k, x); !st) [[unlikely]]
-      return st;
-    return ctx.check_variances(k, P);
+    return ctx.check_estimate(k, x, P);
   }
 
   std::string why{};  // why the last update was skipped
@@ -169,9 +165,7 @@ struct KalmanFilter {
         series.K[static_cast<std::size_t>(i)][q.row] = u.K(i, a);
     }
     ctx.wrap_states(x);
-    if (auto st = ctx.check_finite(k, x); !st) [[unlikely]]
-      return st;
-    return ctx.check_variances(k, P);
+    return ctx.check_estimate(k, x, P);
   }
 
   // A channel of several components. Not inlined: its fixed-capacity matrices would give the
@@ -272,9 +266,7 @@ struct UnscentedFilter {
       }
     }
     unscented_predict(Y, w, ctx.state_angle, ev.Q, x, P);
-    if (auto st = ctx.check_finite(k, x); !st) [[unlikely]]
-      return st;
-    return ctx.check_variances(k, P);
+    return ctx.check_estimate(k, x, P);
   }
 
   // Channel c at row k: Z_j = h(X_j) (or H X_j), ẑ, S and C = P_xz from them, y = z − ẑ; then the
@@ -314,9 +306,7 @@ struct UnscentedFilter {
     if (u.status == UpdateStatus::kSkipped) return ctx.skip(c, k, ctx.s_not_pd(c, um.S, true));
     if (!u.updated()) return Ok{};
     ctx.wrap_states(x);
-    if (auto st = ctx.check_finite(k, x); !st) [[unlikely]]
-      return st;
-    return ctx.check_variances(k, P);
+    return ctx.check_estimate(k, x, P);
   }
 };
 

@@ -23,13 +23,17 @@ bool is_symmetric_psd(const M& P, double tol = 1e-8, double reference = 0.0) {
   if (P.rows() == 0 || !P.allFinite()) return true;
   const double scale = std::max(P.cwiseAbs().maxCoeff(), reference);
   if (scale == 0.0) return true;
-  if ((P - P.transpose()).cwiseAbs().maxCoeff() > tol * scale) return false;
+  // In units of `scale`: a P near the largest double (an unstable process) would overflow in
+  // P + Pᵀ and in the eigen-solver's squares, and fail the check for the arithmetic's sake.
   using Dense = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>;
-  const Dense S = 0.5 * (Dense(P) + Dense(P).transpose());
+  const Dense Pn = Dense(P) / scale;
+  if ((Pn - Pn.transpose()).cwiseAbs().maxCoeff() > tol) return false;
+  const Dense S = 0.5 * (Pn + Pn.transpose());
   const Eigen::SelfAdjointEigenSolver<Dense> es(S, Eigen::EigenvaluesOnly);
   if (es.info() != Eigen::Success) return false;
   const auto& ev = es.eigenvalues();
-  const double top = std::max({std::abs(ev.minCoeff()), std::abs(ev.maxCoeff()), reference});
+  const double top =
+      std::max({std::abs(ev.minCoeff()), std::abs(ev.maxCoeff()), reference / scale});
   return ev.minCoeff() >= -tol * top;
 }
 

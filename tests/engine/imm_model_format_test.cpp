@@ -169,6 +169,23 @@ TEST(ImmModelFormat, WhatIsCheckedWhenTheFileLoads) {
   EXPECT_NE(imm_load_error(p).find("(in mode 'man')"), std::string::npos) << imm_load_error(p);
 }
 
+TEST(ImmModelFormat, HugeInitialProbabilitiesNormalise) {
+  // mu0 entries near the largest double: their sum overflowed, every μ became 0 (exit 1 with an
+  // empty reason); they are normalised relative to the largest first.
+  json p = imm_base_preset();
+  json modes = imm_two_modes();
+  modes["mu0"] = fmt_list({1e308, 1e308});
+  p["model"]["modes"] = modes;
+  auto s = make_model_scenario(p, "m.json");
+  ASSERT_TRUE(s.ok()) << s.error();
+  const ParamValues v = (*s)->params().defaults();
+  auto d = (*s)->simulate(v);
+  ASSERT_TRUE(d.ok());
+  auto r = (*s)->run(*d, v);
+  ASSERT_TRUE(r.ok()) << r.error();
+  EXPECT_TRUE(std::isfinite(r->get()->metrics.at("rmse")));
+}
+
 TEST(ImmModelFormat, ANonlinearModeRulesOutTheKf) {
   json p = imm_base_preset();
   json modes = imm_two_modes();

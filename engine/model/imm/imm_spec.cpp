@@ -1,5 +1,6 @@
 #include "model/imm/imm_spec.h"
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -348,6 +349,11 @@ Status parse_mu0(const Reader& p, const json& j, ModesSpec& out) {
     sum += out.mu0.back();
   }
   if (!(sum > 0.0)) return p.error(key, "every entry is 0");
+  // Relative to the largest first: entries near the largest double would make the sum infinite.
+  const double top = *std::max_element(out.mu0.begin(), out.mu0.end());
+  sum = 0.0;
+  for (double& m : out.mu0)
+    sum += (m /= top);
   for (double& m : out.mu0)
     m /= sum;
   return Ok{};

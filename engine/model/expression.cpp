@@ -243,10 +243,10 @@ Dep dep_of(SymbolKind k) {
       return Dep::kDt;
     case kTimeSymbol:
     case kInputSymbol:
+    case kMeasuredSymbol:  // a channel's column: once per sample
       return Dep::kStep;
     case kStateSymbol:
     case kTruthSymbol:
-    case kMeasuredSymbol:
     case kSubSymbol:  // not reached: a sub-expression's class is its own
       return Dep::kState;
   }

@@ -1,5 +1,6 @@
 #include "model/model_derived.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -28,9 +29,10 @@ void add_truth_symbols(ModelSpec& m) {
     }
     m.truth_slots[i] = m.symbols.add(col, kTruthSymbol);
   }
-  // The channels' roles (their columns as read): a measurement minus the truth is an error.
+  // The channels' roles (their columns as read): a measurement minus the truth is an error. A
+  // pre-processed channel's are its components (ModelResult::z holds what the filter compared).
   for (const auto& c : m.channels) {
-    for (const auto& r : c.roles) {
+    for (const auto& r : c.comps) {
       const bool free =
           is_identifier(r.name) && !is_reserved_name(r.name) && m.symbols.find(r.name) < 0;
       m.measured_slots.push_back(free ? m.symbols.add(r.name, kMeasuredSymbol) : -1);
@@ -38,7 +40,8 @@ void add_truth_symbols(ModelSpec& m) {
   }
 }
 
-Expected<DerivedSpec> parse_one(const detail::Reader& p, const std::string& name, const json& j) {
+Expected<DerivedSpec> parse_one(const detail::Reader& p, const std::string& name, const json& j,
+                                const ModelSpec& m) {
   const std::string key = "model.derived." + name;
   DerivedSpec d;
   d.name = name;
@@ -60,7 +63,19 @@ Expected<DerivedSpec> parse_one(const detail::Reader& p, const std::string& name
   auto e = p.expr(*text, j.is_object() ? key + ".expression" : key,
                   kAllSymbols | kTruthSymbol | kMeasuredSymbol, kDerivedWhat);
   if (!e) return e.err();
+  for (const auto& c : m.channels) {
+    for (std::size_t i = 0; i < c.column_slots.size(); ++i) {
+      const auto used = symbols_used(e->text, m.symbols);
+      if (std::find(used.begin(), used.end(), c.column_slots[i]) == used.end()) continue;
+      return p.error(key, "reads the column '" + c.roles[i].name + "', which channel '" + c.name +
+                              "' pre-processes (z): a derived quantity reads its components");
+    }
+  }
   d.e = *e;
+  for (int slot : m.grid_param_slots) {
+    const auto used = symbols_used(d.e.text, m.symbols);
+    d.grid = d.grid || std::find(used.begin(), used.end(), slot) != used.end();
+  }
   return d;
 }
 
@@ -83,7 +98,7 @@ Status parse_derived(const detail::Reader& p, const json& block, ModelSpec& m) {
     if (!is_identifier(it.key())) {
       return p.error("model.derived." + it.key(), "a name (letters, digits and _)");
     }
-    auto d = parse_one(p, it.key(), it.value());
+    auto d = parse_one(p, it.key(), it.value(), m);
     if (!d) return d.err();
     m.derived.push_back(std::move(*d));
   }
@@ -204,6 +219,15 @@ void set_row(const ModelSpec& spec, const ModelResult& r,
     if (spec.measured_slots[j] >= 0)
       vars[static_cast<std::size_t>(spec.measured_slots[j])] = r.z[j][k];
   }
+  if (!r.imm) return;
+  for (std::size_t a = 0; a < spec.grid_param_slots.size() && a < r.imm->axes.size(); ++a) {
+    const auto& axis = r.imm->axes[a];
+    if (spec.grid_param_slots[a] >= 0)
+      vars[static_cast<std::size_t>(spec.grid_param_slots[a])] = axis.estimate[k];
+    if (a < spec.grid_truth_slots.size() && spec.grid_truth_slots[a] >= 0)
+      vars[static_cast<std::size_t>(spec.grid_truth_slots[a])] =
+          axis.truth.empty() ? kNoSample : axis.truth[k];
+  }
 }
 
 // derived.NAME.rms and .max of each series.
@@ -253,7 +277,7 @@ Status add_derived(const ModelSpec& spec, const ParamValues& values, const Datas
       scalars.add(ds.e.text, &out[q]);
       continue;
     }
-    if (ds.e.uses & kStateSymbol) {
+    if (ds.live()) {
       live.add(ds.e.text, &out[q]);
     } else {
       fixed_rows.push_back(r.derived.size());
@@ -286,7 +310,7 @@ Status add_derived(const ModelSpec& spec, const ParamValues& values, const Datas
   if (cache && !fixed.empty()) {
     std::vector<int> slots;
     for (const auto& ds : spec.derived) {
-      if (!ds.series() || (ds.e.uses & kStateSymbol)) continue;
+      if (!ds.series() || ds.live()) continue;
       for (int slot : symbols_used(ds.e.text, spec.symbols))
         slots.push_back(slot);
     }
@@ -304,7 +328,7 @@ Status add_derived(const ModelSpec& spec, const ParamValues& values, const Datas
   for (std::size_t q = 0; q < spec.derived.size(); ++q) {
     if (!spec.derived[q].series()) continue;
     series_q.push_back(q);
-    evaluate.push_back(!hit || (spec.derived[q].e.uses & kStateSymbol));
+    evaluate.push_back(!hit || spec.derived[q].live());
   }
   for (std::size_t k = 0; k < r.steps(); ++k) {
     set_row(spec, r, inputs, k, vars);

@@ -265,6 +265,13 @@ Status ModelEval::bind(const ParamValues& values) {
     }
     place_matrix(cs.H, ch.H, param, ch.dt, ch.step, &ch.H_state, &ch.subs.slots);
     place_matrix(cs.R, ch.R, param, ch.dt, ch.step, &ch.R_state, &ch.subs.slots);
+    if (cs.preprocessed()) {
+      ch.zf.setZero(cs.size());
+      ch.column_slots = cs.column_slots;
+      for (int i = 0; i < cs.size(); ++i)
+        place(cs.z[static_cast<std::size_t>(i)], &ch.zf(i), param, ch.dt, ch.step, nullptr,
+              &ch.subs.slots);
+    }
     ch.R_varies = cs.R.dep() >= Dep::kStep;
     ch.R_at_state = cs.R.dep() == Dep::kState;
     ch.R_dt = cs.R.dep() == Dep::kDt;
@@ -375,13 +382,40 @@ const MatrixSpec* ModelEval::noise_not_psd(const MatX*& M) const {
   return nullptr;
 }
 
+bool ModelEval::process_reads(int slot) {
+  if (process_slots_.empty()) {
+    process_slots_.assign(spec_.symbols.names.size(), 0);
+    const ProcessSpec& pr = spec_.process;
+    const auto mark = [&](const Expr& e) {
+      for (int used : symbols_used(e.text, spec_.symbols))
+        process_slots_[static_cast<std::size_t>(used)] = 1;
+    };
+    for (const MatrixSpec* m : {&pr.F, &pr.B, &pr.Q, &pr.A, &pr.Bc, &pr.G, &pr.Qc}) {
+      for (const Expr& e : m->e)
+        mark(e);
+    }
+    for (const Expr& e : pr.f)
+      mark(e);
+    mark(pr.substep);
+  }
+  return process_slots_[static_cast<std::size_t>(slot)] != 0;
+}
+
 Status ModelEval::set_params(const std::vector<std::pair<int, double>>& values) {
-  for (const auto& [slot, v] : values)
+  bool process = false;
+  for (const auto& [slot, v] : values) {
     vars_[static_cast<std::size_t>(slot)] = v;
+    process = process || process_reads(slot);
+  }
   param_.eval();
-  cache_.clear();
-  evict_ = 0;
-  dt_ = std::numeric_limits<double>::quiet_NaN();  // what depends on dt: at the next set_dt
+  if (process) {
+    cache_.clear();
+    evict_ = 0;
+    dt_ = std::numeric_limits<double>::quiet_NaN();  // what depends on dt: at the next set_dt
+  } else {
+    for (auto& ch : channels_)  // the process keeps its matrices (and its cache)
+      ch.dt.eval();
+  }
   const ModelSpec& s = spec_;
   const ProcessSpec& pr = s.process;
   if (pr.form == ProcessForm::kContinuous || rk4_) {

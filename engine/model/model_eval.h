@@ -63,8 +63,9 @@ class ModelEval {
   }
 
   // Moves parameters during a run (an IMM's grid under renewal): each slot's value set, what
-  // depends on parameters re-evaluated now and what depends on dt at the next set_dt. A Q, Qc or
-  // R of parameters only that is then not PSD is an Error naming the key.
+  // depends on parameters re-evaluated now and what depends on dt at the next set_dt (the
+  // process's only when it reads a slot moved: seed 001's slopes move the measurement alone). A
+  // Q, Qc or R of parameters only that is then not PSD is an Error naming the key.
   Status set_params(const std::vector<std::pair<int, double>>& values);
 
   // The process at the current symbols. step: entries of t and inputs (once per step);
@@ -115,6 +116,8 @@ class ModelEval {
     MatX H;  // H, or ∂h/∂x at the state set
     MatX R;
     VecX hx;  // h(x) (nonlinear channels)
+    VecX zf;  // a pre-processed channel's components at the sample (ChannelSpec::z)
+    std::vector<int> column_slots;  // its columns' symbols
     int every = 1;
     double gate_nis = 0.0;    // reject when NIS exceeds this (0: no gate)
     double gate_sigma = 0.0;  // a distance gate d: gate_nis = d² (scalar channels)
@@ -125,9 +128,16 @@ class ModelEval {
     StepSubs subs;
   };
   Channel& channel(std::size_t c) { return channels_[c]; }
-  void channel_step(std::size_t c) {
-    channels_[c].subs.eval();
-    channels_[c].step.eval();
+  // Channel c's entries of t and inputs at its sample `z` (the columns read); a pre-processed
+  // channel's columns are its symbols, and `z` becomes its components.
+  void channel_step(std::size_t c, double* z) {
+    Channel& ch = channels_[c];
+    for (std::size_t j = 0; j < ch.column_slots.size(); ++j)
+      vars_[static_cast<std::size_t>(ch.column_slots[j])] = z[j];
+    ch.subs.eval();
+    ch.step.eval();
+    for (Eigen::Index j = 0; j < ch.zf.size(); ++j)
+      z[j] = ch.zf(j);
   }
   void channel_h(std::size_t c) { channels_[c].h.eval(); }
   void channel_jacobian(std::size_t c) { channels_[c].H_state.eval(); }
@@ -166,6 +176,8 @@ class ModelEval {
   Status set_rk4_steps(double dt);
   void rk4(bool jacobian);
   void continuous_noise();
+  bool process_reads(int slot);             // a process expression uses this symbol
+  std::vector<char> process_slots_;         // per symbol, lazily: read by the process
   Status eval_dt(double dt, bool check_q);  // set_dt, Q checked on evaluation when asked
   Status check_at(double dt, const std::function<std::string()>& where);  // check_dt
   // The key of the first Q or R that depends on dt and is not PSD at the current dt, and the

@@ -58,7 +58,8 @@ class SubReader {
                              std::to_string(kMaxSubExpressionDepth) + " deep");
     }
     depth_[name] = depth;
-    auto e = compile_expr(text, "model.expressions." + name, symbols_, kAllSymbols, "");
+    auto e = compile_expr(text, "model.expressions." + name, symbols_,
+                          kAllSymbols | kMeasuredSymbol, "");
     if (!e) return Error{path_ + ": " + e.error()};
     symbols_.add_sub(name, *e);
     stack_.pop_back();

@@ -355,11 +355,17 @@ void allocate_result(const ModelSpec& spec, const Dataset& d, Context& ctx) {
     s.name = cs.name;
     s.label = cs.label;
     const auto m = static_cast<std::size_t>(cs.size());
+    ctx.z_row.push_back(r.z.size());
     for (std::size_t j = 0; j < m; ++j) {
-      s.roles.push_back(cs.roles[j].name);
-      s.units.push_back(cs.roles[j].unit);
-      r.role_names.push_back(cs.roles[j].name);
-      r.z.push_back(*ctx.data.z[c][j]);
+      s.roles.push_back(cs.comps[j].name);
+      s.units.push_back(cs.comps[j].unit);
+      r.role_names.push_back(cs.comps[j].name);
+      // A pre-processed channel's components are recorded at its updates (Context).
+      if (cs.preprocessed()) {
+        r.z.emplace_back(rows, kNoSample);
+      } else {
+        r.z.push_back(*ctx.data.z[c][j]);
+      }
     }
     s.y.assign(m, std::vector<double>(rows, kNoSample));
     s.S.assign(m, std::vector<double>(rows, kNoSample));
@@ -416,7 +422,40 @@ Expected<std::unique_ptr<Prepared>> prepare_run(const ModelSpec& spec, const Dat
   // dt at the first row (for channel entries that use it): the first interval.
   const auto first = [&] { return "the interval into step 1 of " + d.source; };
   if (auto st = p->ev->set_dt_at((*p->data.t)[1] - (*p->data.t)[0], first); !st) return st.err();
+  if (spec.start_channel >= 0 && !spec.modes) {
+    if (auto st = start_from_channel(*p, *p->ev); !st) return st.err();
+  }
   return p;
+}
+
+Status start_from_channel(Prepared& p, ModelEval& e) {
+  Context& ctx = *p.ctx;
+  const ModelSpec& spec = ctx.spec;
+  const auto c = static_cast<std::size_t>(spec.start_channel);
+  const std::string& name = spec.channels[c].name;
+  const auto& t = *ctx.data.t;
+  std::size_t k = 0;
+  for (; k < ctx.data.rows; ++k) {
+    ctx.hold_inputs(k);
+    if (ctx.channel_ready(c, k)) break;
+  }
+  if (k == ctx.data.rows) {
+    return failure(ctx.data.source + ": channel '" + name +
+                   "' has no sample, and x0 starts the filter from its first one");
+  }
+  e.set_time(t[k]);
+  ctx.set_inputs_of(e, t[k]);
+  if (std::string why; !ctx.preprocess(e, c, ctx.z_buf.data(), why)) {
+    return ctx.fail(k, "channel '" + name + "', whose first sample makes x0: " + why);
+  }
+  for (std::size_t i = 0; i < spec.x0.size(); ++i) {
+    if (spec.x0[i].first_channel != static_cast<int>(c)) continue;
+    p.x0(static_cast<Eigen::Index>(i)) =
+        ctx.z_buf[static_cast<std::size_t>(spec.x0[i].first_component)];
+  }
+  ctx.start = k;
+  ctx.start_channel = static_cast<int>(c);
+  return Ok{};
 }
 
 Status finish_run(Context& ctx) {

@@ -68,6 +68,11 @@ struct Context {
   // updated on its own), and per group the samples waiting for their instant.
   std::vector<int> group_of{};
   std::vector<std::vector<Pending>> pending{};
+  // The first row the filter runs (x0 from a channel's first sample: that row, whose sample of
+  // `start_channel` made x0 and is not applied again), and per channel its first row in r.z.
+  std::size_t start = 0;
+  int start_channel = -1;
+  std::vector<std::size_t> z_row{};
   // A mode filter of an IMM (model/imm/): its update is kept here instead of recorded, and an
   // update it cannot apply is marked here instead of counted; the IMM decides. Null: a plain run.
   struct Capture {
@@ -76,6 +81,7 @@ struct Context {
     double nis = 0.0, log_det_s = 0.0;
     std::size_t m = 0;
     double y[kM] = {}, S[kM] = {};  // S's diagonal
+    double z[kM] = {};              // the sample (a pre-processed channel's components)
     std::vector<double> K;          // [state · m + component]
   };
   Capture* capture = nullptr;
@@ -88,8 +94,8 @@ struct Context {
     }
     role_angle.resize(spec.channels.size());
     for (std::size_t c = 0; c < spec.channels.size(); ++c) {
-      for (const auto& role : spec.channels[c].roles)
-        role_angle[c].push_back(role.angle);
+      for (const auto& comp : spec.channels[c].comps)
+        role_angle[c].push_back(comp.angle);
     }
   }
 
@@ -124,12 +130,28 @@ struct Context {
     }
   }
   // The inputs held, and their ages at time `now`, as the evaluator's symbols.
-  void set_inputs(double now) {
-    ev.set_inputs(u_held.data());
+  void set_inputs(double now) { set_inputs_of(ev, now); }
+  void set_inputs_of(ModelEval& e, double now) {
+    e.set_inputs(u_held.data());
     if (!any_age) return;
     for (std::size_t i = 0; i < u_time.size(); ++i)
       u_age[i] = now - u_time[i];
-    ev.set_input_ages(u_age.data());
+    e.set_input_ages(u_age.data());
+  }
+
+  // Channel c's sample at row k (z_buf) as the filter compares it: a pre-processed channel's
+  // components, from evaluator `e`. False (and `why`) when a component is not finite.
+  bool preprocess(ModelEval& e, std::size_t c, double* z, std::string& why) const {
+    e.channel_step(c, z);
+    const ChannelSpec& cs = spec.channels[c];
+    if (!cs.preprocessed()) return true;
+    for (int j = 0; j < cs.size(); ++j) {
+      if (std::isfinite(z[j])) continue;
+      why = "its component '" + cs.comps[static_cast<std::size_t>(j)].name + "' (" +
+            "model.measurements." + cs.name + ".z[" + std::to_string(j) + "]) is not finite";
+      return false;
+    }
+    return true;
   }
 
   // The channel updates at row k: its clock allows and every value is present. Fills z_buf.
@@ -194,6 +216,10 @@ struct Context {
     }
     ChannelSeries& ch = r.chans[c];
     if (u.status == UpdateStatus::kSkipped) return;
+    if (spec.channels[c].preprocessed()) [[unlikely]] {
+      for (std::size_t j = 0; j < ch.y.size(); ++j)
+        r.z[z_row[c] + j][k] = z_buf[j];
+    }
     ++(u.updated() ? ch.updates : ch.gated);
     if (u.status == UpdateStatus::kGated) ch.gated_rows.push_back(k);
     const auto m = static_cast<std::size_t>(u.y.size());
@@ -220,6 +246,8 @@ struct Context {
       cap.y[j] = u.y(j);
       cap.S[j] = u.S(j, j);
     }
+    for (std::size_t j = 0; j < cap.m; ++j)
+      cap.z[j] = z_buf[j];
     cap.nis = u.nis;
     cap.log_det_s = u.log_det_S;
     if (!cap.applied) return;
@@ -305,12 +333,14 @@ Status flush_group(Context& ctx, Filter& f, std::size_t g, std::size_t k) {
   if (ctx.ev.group(g).scheme == GroupScheme::kSequential) {
     for (const Pending& q : batch) {
       ctx.z_buf[0] = q.z;
-      ctx.ev.channel_step(q.c);
+      ctx.ev.channel_step(q.c, ctx.z_buf.data());
       if (st = f.update(q.c, q.row); !st) break;
     }
   } else if constexpr (requires { f.update_group(g, batch, k); }) {
-    for (const Pending& q : batch)
-      ctx.ev.channel_step(q.c);
+    for (const Pending& q : batch) {
+      double z = q.z;  // a group's members are not pre-processed: z stays
+      ctx.ev.channel_step(q.c, &z);
+    }
     st = f.update_group(g, batch, k);
   }
   batch.clear();
@@ -343,8 +373,8 @@ template <class Filter>
 Status run_steps(Context& ctx, Filter& f) {
   ModelEval& ev = ctx.ev;
   const auto& t = *ctx.data.t;
-  for (std::size_t k = 0; k < ctx.data.rows; ++k) {
-    if (k > 0) {
+  for (std::size_t k = ctx.start; k < ctx.data.rows; ++k) {
+    if (k > ctx.start) {
       const auto where = [&] {
         return "the interval into step " + std::to_string(k) + " of " + ctx.data.source;
       };
@@ -358,6 +388,7 @@ Status run_steps(Context& ctx, Filter& f) {
     bool row_set = false;
     for (std::size_t c = 0; c < ctx.spec.channels.size(); ++c) {
       if (!ctx.channel_ready(c, k)) continue;
+      if (k == ctx.start && static_cast<int>(c) == ctx.start_channel) continue;  // made x0
       if (!row_set) {
         ev.set_time(t[k]);
         ctx.set_inputs(t[k]);
@@ -367,7 +398,10 @@ Status run_steps(Context& ctx, Filter& f) {
         if (auto st = group_sample(ctx, f, c, k); !st) return st;
         continue;
       }
-      ev.channel_step(c);
+      if (std::string why; !ctx.preprocess(ev, c, ctx.z_buf.data(), why)) {
+        if (auto st = ctx.skip(c, k, why); !st) return st;
+        continue;
+      }
       if (auto st = f.update(c, k); !st) return st;
     }
     ctx.record_state(k, f.x, f.P);
@@ -397,6 +431,10 @@ Expected<std::unique_ptr<Prepared>> prepare_run(const ModelSpec& spec, const Dat
 void init_context(Context& ctx);
 // After the run: warnings for missing inputs, and the skips (Context::finish_skips).
 Status finish_run(Context& ctx);
+// x0 from a channel's first sample (ModelSpec::start_channel): the row the filter starts at, and
+// the x0 entries that read the channel's components, evaluated by `e` (the run's, or an IMM's at
+// its grid's centre). A channel without a sample ends the run (exit 1).
+Status start_from_channel(Prepared& p, ModelEval& e);
 // The IMM over the modes of spec.modes (model/imm/imm_run.cpp).
 Status run_imm(Prepared& p, const ParamValues& values);
 

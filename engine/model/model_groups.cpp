@@ -78,6 +78,11 @@ Expected<GroupSpec> parse_group(const Reader& p, const std::string& name, const 
                                std::to_string(m.channels[static_cast<std::size_t>(ci)].size()) +
                                " components; a group's members are scalar channels");
     }
+    if (m.channels[static_cast<std::size_t>(ci)].preprocessed()) {
+      return p.error(ckey, "channel '" + c +
+                               "' is pre-processed (z); a group's members are not "
+                               "(not yet)");
+    }
     if (!grouped.insert(ci).second) {
       return p.error(ckey, "channel '" + c + "' is already in a group");
     }

@@ -189,6 +189,17 @@ class Reader {
 // The process block, in any of its four forms (model_process.cpp).
 Status parse_process(const Reader& p, const json& j, ModelSpec& m);
 
+// Pre-processed measurements (model_preprocess.cpp): the columns of channels with `z` as symbols
+// (before the sub-expressions, which may read them); a channel's `z` (or its roles as its
+// components); an expression reading only channel c's columns; x0 entries naming a channel's
+// component ("CHANNEL.COMPONENT", after the channels).
+Status add_column_symbols(const Reader& p, const json& j, ModelSpec& m);
+Status parse_preprocess(const Reader& p, const json& j, const std::string& key, const ModelSpec& m,
+                        ChannelSpec& c);
+Status check_own_columns(const Reader& p, const Expr& e, const std::string& key, const ModelSpec& m,
+                         const ChannelSpec& c);
+Status resolve_initial_channels(const Reader& p, ModelSpec& m);
+
 // A world's own keys (world/model_world_parse.cpp): its noise sources (symbols), its clocks, and a
 // sensor's clock, dropout and outliers (`j` the channel's object, `key` its key).
 Status parse_noise_sources(const Reader& p, const json& world, ModelSpec& m);

@@ -195,8 +195,8 @@ class ModelScenario final : public Scenario {
     std::vector<MetricSpec> out = model::gate_metric_specs(*spec_);
     for (const auto& c : spec_->channels) {
       // A channel of several components is tested for whiteness component by component.
-      if (c.roles.size() > 1) {
-        for (const auto& r : c.roles) {
+      if (c.comps.size() > 1) {
+        for (const auto& r : c.comps) {
           out.push_back({"whiteness_p." + c.name + "." + r.name,
                          "whiteness p of " + c.label + ": " + r.name, "",
                          "Ljung–Box p-value (20 lags) of " + r.name + "'s innovation over √S (" +
@@ -208,7 +208,7 @@ class ModelScenario final : public Scenario {
     // The gain entries (`gain`'s steady state, the gains plot over time): [state]/[role].
     for (const auto& st : spec_->states) {
       for (const auto& c : spec_->channels) {
-        for (const auto& r : c.roles) {
+        for (const auto& r : c.comps) {
           out.push_back({"K." + st.name + "." + r.name, "gain of " + st.name + " from " + r.name,
                          unit_ratio(st.unit, r.unit),
                          "Kalman gain entry: the change of " + st.name + "'s estimate per " +
@@ -387,8 +387,8 @@ Expected<Metrics> ModelScenario::gain(const ParamValues& v, const Dataset* data)
     H.middleRows(r0, ch.H.rows()) = ch.H;
     R.block(r0, r0, ch.R.rows(), ch.R.cols()) = ch.R;
     r0 += ch.H.rows();
-    for (const auto& role : s.channels[c].roles)
-      roles.push_back(role.name);
+    for (const auto& comp : s.channels[c].comps)
+      roles.push_back(comp.name);
   }
   MatX Fm, Qm;
   m_step((*ev)->F, (*ev)->Q, every, Fm, Qm);
@@ -426,7 +426,7 @@ std::optional<ModelLayout> model_layout_of(const Scenario& s) {
     l.states.push_back({st.name, st.label.empty() ? st.name : st.label, st.unit, turn(st.angle)});
   for (const auto& c : m->spec()->channels) {
     ModelLayout::Channel ch{c.name, c.label.empty() ? c.name : c.label, {}};
-    for (const auto& r : c.roles)
+    for (const auto& r : c.comps)
       ch.roles.push_back({r.name, r.unit, r.angle != Angle::kNone, turn(r.angle)});
     l.channels.push_back(std::move(ch));
   }

@@ -54,7 +54,7 @@ Expected<ChannelSpec> parse_channel(const Reader& p, const std::string& name, co
   c.name = name;
   if (!j.is_object()) return p.error(key, "expected an object");
   if (auto st = p.only_keys(j, key,
-                            {"roles", "label", "H", "h", "R", "every", "gate", "noise_param",
+                            {"roles", "label", "z", "H", "h", "R", "every", "gate", "noise_param",
                              "clock", "dropout", "outliers", "outlier_column"});
       !st) {
     return st.err();
@@ -101,8 +101,13 @@ Expected<ChannelSpec> parse_channel(const Reader& p, const std::string& name, co
     }
     c.roles.push_back(role);
   }
-  if (c.size() > kMaxChannelSize) {
+  if (c.roles.size() > static_cast<std::size_t>(kMaxChannelSize)) {
     return p.error(key + ".roles",
+                   "at most " + std::to_string(kMaxChannelSize) + " components per channel");
+  }
+  if (auto st = detail::parse_preprocess(p, j, key, m, c); !st) return st.err();
+  if (c.size() > kMaxChannelSize) {
+    return p.error(key + ".z",
                    "at most " + std::to_string(kMaxChannelSize) + " components per channel");
   }
   const int mdim = c.size(), n = m.n();
@@ -133,9 +138,13 @@ Expected<ChannelSpec> parse_channel(const Reader& p, const std::string& name, co
     }
   }
   if (!j.contains("R")) return p.error(key, "missing key 'R'");
-  auto R = p.matrix(j["R"], key + ".R", mdim, mdim, kAllSymbols, "", true);
+  const KindMask r_kinds = kAllSymbols | (c.preprocessed() ? kMeasuredSymbol : 0u);
+  auto R = p.matrix(j["R"], key + ".R", mdim, mdim, r_kinds, "", true);
   if (!R) return R.err();
   c.R = *R;
+  for (std::size_t i = 0; i < c.R.e.size() && c.preprocessed(); ++i) {
+    if (auto st = detail::check_own_columns(p, c.R.e[i], c.R.key, m, c); !st) return st.err();
+  }
   if (auto st = p.symmetric(c.R); !st) return st.err();
   if (auto it = j.find("every"); it != j.end()) {
     if (it->is_number_integer() && it->get<long long>() >= 1) {
@@ -184,6 +193,23 @@ Status add_sim_symbols(const Reader& p, const ParamTable& params, ModelSpec& m) 
     m.param_keys.push_back(spec.key);
   }
   return Ok{};
+}
+
+// The grid axes' parameters (model.modes.grid[a].param; checked when the modes are parsed).
+void set_grid_param_slots(const json& j, ModelSpec& m) {
+  const auto modes = j.find("modes");
+  if (modes == j.end() || !modes->is_object() || !modes->contains("grid")) return;
+  const json& grid = (*modes)["grid"];
+  if (!grid.is_array()) return;
+  for (const json& axis : grid) {
+    const bool named = axis.is_object() && axis.contains("param") && axis["param"].is_string();
+    m.grid_param_slots.push_back(named ? m.symbols.find(axis["param"].get<std::string>()) : -1);
+    const bool truth = axis.is_object() && axis.contains("truth") && axis["truth"].is_string();
+    const std::string col = truth ? axis["truth"].get<std::string>() : std::string();
+    const bool free =
+        truth && is_identifier(col) && !is_reserved_name(col) && m.symbols.find(col) < 0;
+    m.grid_truth_slots.push_back(free ? m.symbols.add(col, kTruthSymbol) : -1);
+  }
 }
 
 // noise_param on an input or a channel (version 2), refused in a version-1 file.
@@ -561,6 +587,7 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   std::set<std::string> roles_seen;
   if (auto st = parse_inputs(p, j, m, roles_seen); !st) return st.err();
 
+  if (auto st = detail::add_column_symbols(p, j, m); !st) return st.err();
   if (auto it = j.find("expressions"); it != j.end()) {
     if (auto st = parse_expressions(*it, path, m.symbols); !st) return st.err();
   }
@@ -594,6 +621,7 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
     }
     m.channels.push_back(std::move(*c));
   }
+  if (auto st = detail::resolve_initial_channels(p, m); !st) return st.err();
 
   if (auto it = j.find("groups"); it != j.end()) {
     if (world) return p.error("model.groups", "a world's sensors are not grouped: group channels");
@@ -602,6 +630,7 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   if (auto st = parse_noise_params(j, m, params, world); !st) return st.err();
   if (auto st = parse_outputs(p, j, m, roles_seen); !st) return st.err();
   if (auto it = j.find("derived"); it != j.end()) {
+    set_grid_param_slots(j, m);
     if (auto st = parse_derived(p, *it, m); !st) return st.err();
   }
   if (auto it = j.find("plots"); it != j.end()) {

@@ -107,7 +107,13 @@ struct SensorSpec {
 
 struct ChannelSpec {
   std::string name, label;
-  std::vector<RoleSpec> roles;
+  std::vector<RoleSpec> roles;  // the columns read
+  // Pre-processing (version 2, issue 28; presets/models/README.md "Pre-processed measurements"):
+  // the filter's components z_i, expressions of the roles' columns (`column_slots`), inputs,
+  // parameters and t, named and given units in `comps`. Without `z`, comps are the roles.
+  std::vector<RoleSpec> comps;
+  std::vector<Expr> z;
+  std::vector<int> column_slots;  // per role: its symbol (kMeasuredSymbol) when `z` is declared
   bool linear = true;
   std::vector<Expr> h;  // nonlinear: z = h(x, u, t) + v
   MatrixSpec H;         // linear: z = H x + v; nonlinear: ∂h/∂x (symbolic)
@@ -122,7 +128,8 @@ struct ChannelSpec {
   // none); `noise_shared`: one parameter for every role. Empty: the channel links nothing.
   std::vector<std::string> noise_params;
   bool noise_shared = false;
-  int size() const { return static_cast<int>(roles.size()); }
+  int size() const { return static_cast<int>(comps.size()); }  // the filter's components
+  bool preprocessed() const { return !z.empty(); }
   bool has_gate() const { return gate > 0.0 || !gate_sigma.text.empty(); }
 };
 
@@ -164,14 +171,19 @@ struct ProcessSpec {
 struct DerivedSpec {
   std::string name, label, unit, description;
   Expr e;
-  bool series() const { return e.dep > Dep::kDt; }
+  bool grid = false;  // reads a grid axis's parameter: its IMM estimate at each step
+  bool series() const { return grid || e.dep > Dep::kDt; }
+  bool live() const { return grid || (e.uses & kStateSymbol) != 0; }  // reads the run's output
 };
 
 // x0[i]: an expression of the parameters, or the first finite sample of a column (then `value`
-// is used when the column has none, and in simulation).
+// is used when the column has none, and in simulation), or (version 2, issue 28) a component of a
+// channel's first sample ("CHANNEL.COMPONENT"): the filter then starts at that sample's row, which
+// the channel does not also apply as an update.
 struct InitialSpec {
   Expr value;
   std::string first_column;
+  int first_channel = -1, first_component = -1;
 };
 
 struct ModelSpec {
@@ -189,6 +201,7 @@ struct ModelSpec {
   std::vector<ChannelSpec> channels;  // in the order of their names
   std::vector<GroupSpec> groups;      // channel groups (version 2), in the order of their names
   std::vector<InitialSpec> x0;
+  int start_channel = -1;  // the channel whose first sample starts the filter (x0), or -1
   MatrixSpec P0;
   std::vector<std::string> truth;  // per state: its truth column, or empty
   // The states whose RMSE is `rmse`: one, or several (then the Euclidean RMSE,
@@ -218,6 +231,10 @@ struct ModelSpec {
   // The modes of an IMM over the model (version 2, issue 28; model/imm/imm_spec.h); null: one
   // filter.
   std::shared_ptr<const ModesSpec> modes;
+  // The grid axes' parameters (model.modes.grid[a].param) as symbols, in axis order: in a derived
+  // series each stands for its axis's IMM estimate at the step.
+  std::vector<int> grid_param_slots;
+  std::vector<int> grid_truth_slots;  // each axis's truth column (kTruthSymbol), or -1
 
   int n() const { return static_cast<int>(states.size()); }
   // F or A and H in every channel: the KF applies, and a steady state may exist.

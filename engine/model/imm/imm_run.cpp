@@ -112,8 +112,12 @@ class Imm {
 
   Status run() {
     const auto& t = *main_.data.t;
-    for (std::size_t k = 0; k < main_.data.rows; ++k) {
-      if (k > 0) {
+    for (auto& m : runs_) {  // the inputs held before the first row (x0 from a channel)
+      for (std::size_t k = 0; k < main_.start; ++k)
+        m->ctx->hold_inputs(k);
+    }
+    for (std::size_t k = main_.start; k < main_.data.rows; ++k) {
+      if (k > main_.start) {
         if (auto st = predict(k, t); !st) return st;
       }
       for (auto& m : runs_)
@@ -121,6 +125,7 @@ class Imm {
       bool row_set = false;
       for (std::size_t c = 0; c < main_.spec.channels.size(); ++c) {
         if (!main_.channel_ready(c, k)) continue;
+        if (k == main_.start && static_cast<int>(c) == main_.start_channel) continue;
         if (!row_set) {
           for (auto& m : runs_) {
             m->ev->set_time(t[k]);
@@ -187,9 +192,13 @@ class Imm {
     for (std::size_t j = 0; j < r; ++j) {
       ModeRun<Filter>& m = *runs_[j];
       std::copy(main_.z_buf.begin(), main_.z_buf.end(), m.ctx->z_buf.begin());
-      m.ev->channel_step(c);
-      if (st_ && st_->approximate) drop_cross(m.ev->channel(c).R, c);
       m.cap.applied = m.cap.skipped = false;
+      if (!m.ctx->preprocess(*m.ev, c, m.ctx->z_buf.data(), m.cap.why)) {
+        ll(static_cast<Eigen::Index>(j)) = kNegInf;
+        if (why.empty()) why = m.cap.why;
+        continue;
+      }
+      if (st_ && st_->approximate) drop_cross(m.ev->channel(c).R, c);
       if (auto st = m.f->update(c, k); !st) return st;
       const auto jj = static_cast<Eigen::Index>(j);
       if (m.cap.applied) {
@@ -229,6 +238,10 @@ class Imm {
     ch.nis[k] = cap.nis;
     ch.log_det_s[k] = cap.log_det_s;
     ch.nll[k] = nll;
+    if (main_.spec.channels[c].preprocessed()) {  // the MAP mode's components
+      for (std::size_t j = 0; j < cap.m; ++j)
+        main_.r.z[main_.z_row[c] + j][k] = cap.z[j];
+    }
     for (std::size_t e = 0; e < cap.K.size() && e < ch.K.size(); ++e)
       ch.K[e][k] = cap.K[e];
   }
@@ -398,6 +411,30 @@ Status run_sized(Prepared& p, std::vector<Mode> modes, MarkovChain chain, Renewa
   return run_with<N, KalmanFilter<N>>(p, std::move(modes), std::move(chain), ren, structure);
 }
 
+// x0 from a channel's first sample, evaluated with each grid axis at its centre (seed 001
+// converts the first measurement with the grid's centre slope); a list's at the run's values.
+Status start_at_centre(Prepared& p, const ModesSpec& ms, const std::vector<Mode>& modes,
+                       const ParamValues& values) {
+  const ModelSpec& spec = p.ctx->spec;
+  if (spec.start_channel < 0) return Ok{};
+  if (ms.grid.empty()) return start_from_channel(p, *p.ev);
+  ParamValues centre = values;
+  for (std::size_t a = 0; a < ms.grid.size(); ++a) {
+    double lo = modes.front().grid[a], hi = lo;
+    for (const Mode& m : modes) {
+      lo = std::min(lo, m.grid[a]);
+      hi = std::max(hi, m.grid[a]);
+    }
+    centre[ms.grid[a].param] = 0.5 * (lo + hi);
+  }
+  auto ev = ModelEval::create(spec, centre);
+  if (!ev) return ev.err();
+  const auto& t = *p.data.t;
+  const auto first = [&] { return "the interval into step 1 of " + p.data.source; };
+  if (auto st = (*ev)->set_dt_at(t[1] - t[0], first); !st) return st;
+  return start_from_channel(p, **ev);
+}
+
 }  // namespace
 
 Status run_imm(Prepared& p, const ParamValues& values) {
@@ -405,6 +442,7 @@ Status run_imm(Prepared& p, const ParamValues& values) {
   const ModesSpec& ms = *spec.modes;
   auto modes = ms.modes(spec, values);
   if (!modes) return modes.err();
+  if (auto st = start_at_centre(p, ms, *modes, values); !st) return st;
   const int r = static_cast<int>(modes->size());
   Expected<MarkovChain> chain = Error{""};
   if (ms.matrix.empty()) {

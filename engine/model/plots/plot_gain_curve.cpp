@@ -31,7 +31,7 @@ std::vector<std::string> curve_quantities(const ModelSpec& m, bool gains) {
   if (!gains) return out;
   for (const auto& s : m.states) {
     for (const auto& c : m.channels) {
-      for (const auto& r : c.roles)
+      for (const auto& r : c.comps)
         out.push_back("K." + s.name + "." + r.name);
     }
   }

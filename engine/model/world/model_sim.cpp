@@ -255,7 +255,8 @@ Expected<VecX> Simulation::mean_step(double dt, double t_end) {
     return VecX(ev_.fx);
   }
   VecX next = ev_.F * x_;
-  for (std::size_t i = 0; i < u_.size(); ++i)
+  // B is optional: inputs a model's process does not read (a world's attitude signals, say).
+  for (std::size_t i = 0; i < u_.size() && ev_.B.cols() > 0; ++i)
     next += ev_.B.col(static_cast<Eigen::Index>(i)) * u_[i];
   return next;
 }
@@ -303,7 +304,7 @@ Status Simulation::sample(std::size_t c, std::size_t row, double t, Dataset& d) 
   // z = h(x) + v (or H x + v), v ~ N(0, R); lost with the sensor's dropout probability.
   const ChannelSpec& cs = spec_.channels[c];
   auto& ch = ev_.channel(c);
-  ev_.channel_step(c);
+  ev_.channel_step(c, nullptr);  // a sensor is never pre-processed
   ev_.channel_noise(c);
   VecX z;
   if (cs.linear) {
@@ -451,6 +452,13 @@ Expected<Dataset> Simulation::run(const std::string& source) {
 
 Expected<Dataset> simulate_model(const ModelSpec& spec, const ParamValues& values,
                                  const std::string& name) {
+  for (const auto& c : spec.channels) {
+    if (c.preprocessed()) {
+      return Error{spec.path + ": model.measurements." + c.name +
+                   ".z: a model that pre-processes its measurements cannot simulate them; "
+                   "declare a world (model.world) or give data"};
+    }
+  }
   const double seed = param(values, "sim.seed");
   const double duration = param(values, "sim.duration");
   const std::string& dt_key = spec.sim_dt_key;

@@ -1,0 +1,364 @@
+// Issue 28: seed 001's radome as a model file (tests/models/radome_model.json) equals the built-in
+// scenario: its world simulates the built-in's data to 1e-12, and on the same data its IMM gives
+// the built-in's combined position and slope estimates to 1e-9 (../shared/STAGE.md's rule), in
+// the axis and full structures, without and with renewal, under every reading and start.
+//
+// Where the run amplifies rounding — with renewal, and without it when the truth leaves the grid
+// — the radome IMM is chaotic: the built-in against itself, its ranges changed by one part in
+// 10¹³, drifts from 1e-13 to several σ by 60 s. There 1e-9 holds over the rows where the
+// built-in is reproducible (expect_equal_runs), and beyond them the outcomes are the same over
+// seeds (RenewalOutcomesAgreeOverSeeds).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "common/model_files.h"
+#include "core/scenario.h"
+#include "model/model_result.h"
+#include "scenarios/radome/radome_imm.h"
+#include "scenarios/radome/radome_sim.h"
+
+namespace kfw {
+namespace {
+
+const std::string kRadomeFile = KFW_SOURCE_DIR "/tests/models/radome_model.json";
+
+double max_abs(const std::vector<double>& v) {
+  double m = 0.0;
+  for (double x : v) {
+    if (std::isfinite(x)) m = std::max(m, std::fabs(x));
+  }
+  return m;
+}
+
+// |a − b| ≤ tol (|b| + scale) at every row where b is finite; a must be finite there too.
+void expect_close(const std::vector<double>& a, const std::vector<double>& b,
+                  const std::vector<double>& scale, double tol, const std::string& what) {
+  ASSERT_EQ(a.size(), b.size()) << what;
+  int bad = 0;
+  for (std::size_t k = 0; k < b.size() && bad < 3; ++k) {
+    if (!std::isfinite(b[k])) continue;
+    const double bound = tol * (std::fabs(b[k]) + scale[k]);
+    if (!(std::fabs(a[k] - b[k]) <= bound)) {
+      ADD_FAILURE() << what << " at row " << k << ": " << a[k] << " vs " << b[k] << " (bound "
+                    << bound << ")";
+      ++bad;
+    }
+  }
+}
+
+std::vector<double> constant(std::size_t n, double v) {
+  return std::vector<double>(n, v);
+}
+
+radome::SimParams sim_params(const ParamValues& v) {
+  radome::SimParams s;
+  s.seed = static_cast<std::uint64_t>(v.at("sim.seed"));
+  s.amplitude = v.at("sim.amplitude");
+  s.duration_s = v.at("sim.duration");
+  s.Ts_s = v.at("sim.Ts");
+  s.range0_m = v.at("sim.range0");
+  s.az0_deg = v.at("sim.az0");
+  s.el0_deg = v.at("sim.el0");
+  s.weave_deg = v.at("sim.weave");
+  s.weave_period_s = v.at("sim.weave_period");
+  s.target_g = v.at("sim.target_g");
+  s.var_angle_rad2 = v.at("sim.R");
+  s.var_range_m2 = v.at("sim.R_range");
+  return s;
+}
+
+radome::FilterParams filter_params(const ParamValues& v) {
+  radome::FilterParams f;
+  f.Q = v.at("Q");
+  f.tau_s = v.at("tau");
+  f.var_angle = v.at("R");
+  f.var_range = v.at("R_range");
+  f.P0_pos_m2 = v.at("P0_pos");
+  f.P0_vel_m2ps2 = v.at("P0_vel");
+  f.P0_acc_m2ps4 = v.at("P0_acc");
+  f.structure =
+      v.at("imm.structure") >= 0.5 ? radome::Structure::kFull : radome::Structure::kAxisBlocks;
+  f.Kp = v.at("Kp");
+  f.renewal = static_cast<radome::Renewal>(static_cast<int>(v.at("renewal.mode")));
+  f.renewal_start_s = v.at("renewal.start");
+  f.grid_min = v.at("grid.min");
+  f.grid_max = v.at("grid.max");
+  f.n_psi = static_cast<int>(v.at("grid.n_psi"));
+  f.n_theta = static_cast<int>(v.at("grid.n_theta"));
+  f.stay = v.at("markov.stay");
+  return f;
+}
+
+TEST(ImmModelRadome, WorldSimulatesTheBuiltInsData) {
+  auto s = testing::load_model_file(kRadomeFile);
+  ASSERT_TRUE(s);
+  for (double amplitude : {0.05, 0.08}) {
+    for (int seed = 1; seed <= 5; ++seed) {
+      ParamValues v = s->params().defaults();
+      v["sim.seed"] = seed;
+      v["sim.amplitude"] = amplitude;
+      auto mine = s->simulate(v);
+      ASSERT_TRUE(mine.ok()) << mine.error();
+      auto theirs = radome::simulate(sim_params(v));
+      ASSERT_TRUE(theirs.ok()) << theirs.error();
+      ASSERT_EQ(mine->rows(), theirs->rows());
+      for (const char* col :
+           {"t", "range_m", "psi_rad", "theta_rad", "psi_a_rad", "theta_a_rad", "ax_mps2", "x_m",
+            "y_m", "z_m", "psi_los_rad", "theta_los_rad", "R_psi_true", "R_theta_true"}) {
+        ASSERT_TRUE(mine->has(col)) << col;
+        const auto& b = theirs->col(col);
+        expect_close(mine->col(col), b, constant(b.size(), max_abs(b)), 1e-12,
+                     std::string(col) + " seed " + std::to_string(seed));
+      }
+    }
+  }
+}
+
+Expected<radome::RadomeResult> run_builtin(const Dataset& d, const std::vector<double>& range,
+                                           const ParamValues& v) {
+  radome::Inputs in;
+  in.t = &d.col("t");
+  in.range = &range;
+  in.psi = &d.col("psi_rad");
+  in.theta = &d.col("theta_rad");
+  in.psi_a = &d.col("psi_a_rad");
+  in.theta_a = &d.col("theta_a_rad");
+  return radome::run_radome_imm(in, filter_params(v));
+}
+
+// Per row, the largest normalised difference so far between `a` and the built-in `b`: position
+// |Δ| / (|b| + σ_b), slope and grid centre |Δ| / span (STAGE.md's form), from row 1 (the
+// built-in records row 0 from the raw angles, while its modes start from the centre-corrected
+// ones, as the model file's do).
+struct Series {
+  const std::vector<double>* pos[3];
+  const std::vector<double>* slope[2];
+  const std::vector<double>* centre[2];
+};
+std::vector<double> drift(const Series& a, const radome::RadomeResult& b, double span) {
+  const Series rb{{&b.x_est, &b.y_est, &b.z_est},
+                  {&b.slope_psi, &b.slope_theta},
+                  {&b.center_psi, &b.center_theta}};
+  std::vector<double> out(b.t.size(), 0.0);
+  double worst = 0.0;
+  const auto at = [&](double x, double y, double scale) {
+    if (std::isfinite(y)) worst = std::max(worst, std::fabs(x - y) / (std::fabs(y) + scale));
+  };
+  for (std::size_t k = 1; k < b.t.size(); ++k) {
+    for (Eigen::Index i = 0; i < 3; ++i) {
+      const auto ui = static_cast<std::size_t>(i);
+      at((*a.pos[ui])[k], (*rb.pos[ui])[k], std::sqrt(b.P_pos[k](i, i)));
+    }
+    for (std::size_t i = 0; i < 2; ++i) {
+      at((*a.slope[i])[k], (*rb.slope[i])[k], span);
+      at((*a.centre[i])[k], (*rb.centre[i])[k], span);
+    }
+    out[k] = worst;
+  }
+  return out;
+}
+
+// The model file and the built-in on the built-in's data at `v`: position and slope estimates,
+// the grid's centre and the MAP mode's innovation equal to 1e-9 over the rows where the built-in
+// is reproducible to 1e-10 (its ranges changed by 1e-13, 1 nm in 10 km, move it less); at
+// least `min_rows` of them.
+void expect_equal_runs(const Scenario& s, ParamValues v, const std::string& what,
+                       std::size_t min_rows = 0) {
+  auto d = radome::simulate(sim_params(v));
+  ASSERT_TRUE(d.ok()) << d.error();
+  auto run = s.run(*d, v);
+  ASSERT_TRUE(run.ok()) << what << ": " << run.error();
+  const auto* m = dynamic_cast<const model::ModelResult*>(run->get());
+  ASSERT_TRUE(m && m->imm && m->imm->axes.size() == 2) << what;
+  auto ref = run_builtin(*d, d->col("range_m"), v);
+  ASSERT_TRUE(ref.ok()) << ref.error();
+  std::vector<double> nudged = d->col("range_m");
+  for (double& r : nudged)
+    r *= 1.0 + 1e-13;
+  auto self = run_builtin(*d, nudged, v);
+  ASSERT_TRUE(self.ok()) << self.error();
+  const double span = v.at("grid.max") - v.at("grid.min");
+  const auto& ax = m->imm->axes;
+  const std::vector<double> mine = drift({{&m->x[0], &m->x[1], &m->x[2]},
+                                          {&ax[0].estimate, &ax[1].estimate},
+                                          {&ax[0].centre, &ax[1].centre}},
+                                         *ref, span);
+  const std::vector<double> own = drift({{&self->x_est, &self->y_est, &self->z_est},
+                                         {&self->slope_psi, &self->slope_theta},
+                                         {&self->center_psi, &self->center_theta}},
+                                        *ref, span);
+  // The rows where the built-in is reproducible 10 times below the tolerance.
+  std::size_t rows = 1;
+  while (rows < own.size() && own[rows] <= 1e-10)
+    ++rows;
+  for (std::size_t k = 1; k < rows; ++k) {
+    ASSERT_LE(mine[k], 1e-9) << what << " at row " << k;
+  }
+  std::cout << what << ": compared over " << rows << " of " << own.size() << " rows; at the end "
+            << mine.back() << " apart (the built-in from itself " << own.back() << ")\n";
+  // The MAP mode's innovation is the built-in's (its pseudo-measurement less the prediction),
+  // against the column's largest magnitude.
+  const auto& ch = m->chans.at(0);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::vector<double> head(ref->innovation[i].begin(),
+                                   ref->innovation[i].begin() + static_cast<std::ptrdiff_t>(rows));
+    const double scale = max_abs(head);
+    for (std::size_t k = 1; k < rows; ++k) {
+      const double b = ref->innovation[i][k];
+      if (!std::isfinite(b)) continue;
+      ASSERT_LE(std::fabs(ch.y[i][k] - b), 1e-9 * (std::fabs(b) + scale))
+          << what << ", innovation " << i << " at row " << k;
+    }
+  }
+  if (min_rows > 0) {
+    EXPECT_GE(rows, min_rows) << what;
+  }
+}
+
+TEST(ImmModelRadome, EqualsTheBuiltInInBothStructures) {
+  auto s = testing::load_model_file(kRadomeFile);
+  ASSERT_TRUE(s);
+  for (double structure : {0.0, 1.0}) {
+    for (double amplitude : {0.05, 0.08}) {
+      ParamValues v = s->params().defaults();
+      v["imm.structure"] = structure;
+      v["sim.amplitude"] = amplitude;
+      v["sim.seed"] = 2;
+      // The truth inside the grid: the whole run; outside (0.08 > 0.05): 15 s at least.
+      expect_equal_runs(
+          *s, v,
+          "structure " + std::to_string(structure) + ", amplitude " + std::to_string(amplitude),
+          amplitude < 0.06 ? 1201 : 300);
+    }
+  }
+}
+
+TEST(ImmModelRadome, EqualsTheBuiltInUnderRenewal) {
+  auto s = testing::load_model_file(kRadomeFile);
+  ASSERT_TRUE(s);
+  for (double structure : {0.0, 1.0}) {
+    for (double reading : {0.0, 1.0, 2.0, 3.0}) {
+      ParamValues v = s->params().defaults();
+      v["imm.structure"] = structure;
+      v["sim.amplitude"] = 0.08;
+      v["Kp"] = 0.45;  // the paper's; the rate reading applies it per second
+      v["renewal.mode"] = reading;
+      expect_equal_runs(
+          *s, v, "structure " + std::to_string(structure) + ", reading " + std::to_string(reading),
+          60);
+    }
+  }
+  for (double start : {0.0, 7.5}) {  // renewal.start
+    ParamValues v = s->params().defaults();
+    v["Kp"] = 0.45;
+    v["renewal.start"] = start;
+    v["grid.n_psi"] = 5;
+    v["grid.n_theta"] = 3;
+    v["grid.min"] = -0.08;
+    v["grid.max"] = 0.02;
+    // At least the rows before renewal starts.
+    expect_equal_runs(*s, v, "renewal.start " + std::to_string(start), start > 0.0 ? 150 : 20);
+  }
+}
+
+TEST(ImmModelRadome, DerivedSeriesReadTheGridEstimates) {
+  // In a derived series a grid axis's parameter is its IMM estimate: R_psi − R_psi_true is the
+  // slope error whose RMS is rmse.R_psi.
+  auto s = testing::load_model_file(kRadomeFile);
+  ASSERT_TRUE(s);
+  ParamValues v = s->params().defaults();
+  v["Kp"] = 0.45;
+  auto d = s->simulate(v);
+  ASSERT_TRUE(d.ok()) << d.error();
+  auto run = s->run(*d, v);
+  ASSERT_TRUE(run.ok()) << run.error();
+  const Metrics& m = run->get()->metrics;
+  for (const char* axis : {"psi", "theta"}) {
+    const std::string p = std::string("R_") + axis;
+    ASSERT_TRUE(m.count("rmse." + p) && m.count("derived.slope_err_" + std::string(axis) + ".rms"));
+    EXPECT_NEAR(m.at("derived.slope_err_" + std::string(axis) + ".rms"), m.at("rmse." + p),
+                1e-12 * m.at("rmse." + p));
+  }
+  EXPECT_LT(m.at("derived.refraction_err.rms"), 0.5);  // degrees
+}
+
+// RMSE over t ≥ 10 s (the built-in's metrics window) of `est` against `truth`.
+double rmse_after_10s(const std::vector<double>& t, const std::vector<double>& est,
+                      const std::vector<double>& truth) {
+  double sum = 0.0;
+  int n = 0;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    if (t[k] < 10.0 || !std::isfinite(est[k]) || !std::isfinite(truth[k])) continue;
+    sum += (est[k] - truth[k]) * (est[k] - truth[k]);
+    ++n;
+  }
+  return std::sqrt(sum / n);
+}
+
+TEST(ImmModelRadome, RenewalOutcomesAgreeOverSeeds) {
+  // The paper's renewal (Kp 0.45, truth B) over seeds 1..10, paired on the same data: the model
+  // file's slope and position RMSE differ from the built-in's by no more than chance (3 standard
+  // errors of the paired differences), and both meet the paper's slope accuracy.
+  auto s = testing::load_model_file(kRadomeFile);
+  ASSERT_TRUE(s);
+  const int seeds = 10;
+  std::vector<std::vector<double>> diff(3);
+  std::vector<double> mine_mean(3, 0.0), ref_mean(3, 0.0);
+  for (int seed = 1; seed <= seeds; ++seed) {
+    ParamValues v = s->params().defaults();
+    v["sim.seed"] = seed;
+    v["sim.amplitude"] = 0.08;
+    v["Kp"] = 0.45;
+    auto d = radome::simulate(sim_params(v));
+    ASSERT_TRUE(d.ok()) << d.error();
+    auto run = s->run(*d, v);
+    ASSERT_TRUE(run.ok()) << run.error();
+    const auto* m = dynamic_cast<const model::ModelResult*>(run->get());
+    ASSERT_TRUE(m && m->imm);
+    auto ref = run_builtin(*d, d->col("range_m"), v);
+    ASSERT_TRUE(ref.ok()) << ref.error();
+    const auto& t = d->col("t");
+    std::vector<double> pos_m(t.size()), pos_r(t.size()), truth0(t.size(), 0.0);
+    for (std::size_t k = 0; k < t.size(); ++k) {
+      const double ex = m->x[0][k] - d->col("x_m")[k], ey = m->x[1][k] - d->col("y_m")[k],
+                   ez = m->x[2][k] - d->col("z_m")[k];
+      const double rx = ref->x_est[k] - d->col("x_m")[k], ry = ref->y_est[k] - d->col("y_m")[k],
+                   rz = ref->z_est[k] - d->col("z_m")[k];
+      pos_m[k] = std::sqrt(ex * ex + ey * ey + ez * ez);
+      pos_r[k] = std::sqrt(rx * rx + ry * ry + rz * rz);
+    }
+    const double mine[3] = {rmse_after_10s(t, m->imm->axes[0].estimate, d->col("R_psi_true")),
+                            rmse_after_10s(t, m->imm->axes[1].estimate, d->col("R_theta_true")),
+                            rmse_after_10s(t, pos_m, truth0)};
+    const double theirs[3] = {rmse_after_10s(t, ref->slope_psi, d->col("R_psi_true")),
+                              rmse_after_10s(t, ref->slope_theta, d->col("R_theta_true")),
+                              rmse_after_10s(t, pos_r, truth0)};
+    for (std::size_t i = 0; i < 3; ++i) {
+      diff[i].push_back(mine[i] - theirs[i]);
+      mine_mean[i] += mine[i] / seeds;
+      ref_mean[i] += theirs[i] / seeds;
+    }
+  }
+  const char* names[3] = {"slope RMSE psi", "slope RMSE theta", "position RMSE (m)"};
+  for (std::size_t i = 0; i < 3; ++i) {
+    double mean = 0.0, var = 0.0;
+    for (double x : diff[i])
+      mean += x / seeds;
+    for (double x : diff[i])
+      var += (x - mean) * (x - mean) / (seeds - 1);
+    const double se = std::sqrt(var / seeds);
+    std::cout << names[i] << ": model file " << mine_mean[i] << ", built-in " << ref_mean[i]
+              << ", paired difference " << mean << " ± " << se << "\n";
+    EXPECT_LE(std::fabs(mean), 3.0 * se + 1e-12) << names[i];
+  }
+  EXPECT_LE(mine_mean[0], 0.0112);
+  EXPECT_LE(mine_mean[1], 0.0112);
+}
+
+}  // namespace
+}  // namespace kfw

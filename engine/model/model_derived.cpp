@@ -63,14 +63,6 @@ Expected<DerivedSpec> parse_one(const detail::Reader& p, const std::string& name
   auto e = p.expr(*text, j.is_object() ? key + ".expression" : key,
                   kAllSymbols | kTruthSymbol | kMeasuredSymbol, kDerivedWhat);
   if (!e) return e.err();
-  for (const auto& c : m.channels) {
-    for (std::size_t i = 0; i < c.column_slots.size(); ++i) {
-      const auto used = symbols_used(e->text, m.symbols);
-      if (std::find(used.begin(), used.end(), c.column_slots[i]) == used.end()) continue;
-      return p.error(key, "reads the column '" + c.roles[i].name + "', which channel '" + c.name +
-                              "' pre-processes (z): a derived quantity reads its components");
-    }
-  }
   d.e = *e;
   for (int slot : m.grid_param_slots) {
     const auto used = symbols_used(d.e.text, m.symbols);
@@ -181,9 +173,12 @@ Reads copy_of(const ReadsView& now) {
   return k;
 }
 
+// A pre-processed channel's columns as read (its roles' symbols), from the data.
+using RawColumns = std::vector<std::pair<int, const std::vector<double>*>>;
+
 ReadsView reads_of(const ModelSpec& spec, const std::vector<int>& slots,
                    const std::vector<double>& vars, const ModelResult& r,
-                   const std::vector<const std::vector<double>*>& inputs) {
+                   const std::vector<const std::vector<double>*>& inputs, const RawColumns& raw) {
   static const std::vector<double> kNone;
   ReadsView k;
   for (int slot : slots)  // the symbols the series name: parameters, dt (the rest are per row)
@@ -196,13 +191,17 @@ ReadsView reads_of(const ModelSpec& spec, const std::vector<int>& slots,
   for (std::size_t j = 0; j < spec.measured_slots.size() && j < r.z.size(); ++j) {
     if (spec.measured_slots[j] >= 0) k.columns.push_back(&r.z[j]);
   }
+  for (const auto& [slot, col] : raw)
+    k.columns.push_back(col);
   return k;
 }
 
 // Sets row k's symbols of the series: t, states, truth, inputs, measurements.
 void set_row(const ModelSpec& spec, const ModelResult& r,
-             const std::vector<const std::vector<double>*>& inputs, std::size_t k,
-             std::vector<double>& vars) {
+             const std::vector<const std::vector<double>*>& inputs, const RawColumns& raw,
+             std::size_t k, std::vector<double>& vars) {
+  for (const auto& [slot, col] : raw)
+    vars[static_cast<std::size_t>(slot)] = (*col)[k];
   vars[static_cast<std::size_t>(spec.t_slot)] = r.t[k];
   for (std::size_t i = 0; i < spec.states.size(); ++i) {
     vars[static_cast<std::size_t>(spec.state_slots[i])] = r.x[i][k];
@@ -305,6 +304,12 @@ Status add_derived(const ModelSpec& spec, const ParamValues& values, const Datas
   for (std::size_t i = 0; i < spec.inputs.size(); ++i) {
     if (d.has(spec.inputs[i].name)) inputs[i] = &d.col(spec.inputs[i].name);
   }
+  RawColumns raw;
+  for (const auto& c : spec.channels) {
+    for (std::size_t i = 0; i < c.column_slots.size(); ++i) {
+      if (d.has(c.roles[i].name)) raw.emplace_back(c.column_slots[i], &d.col(c.roles[i].name));
+    }
+  }
   ReadsView reads;
   bool hit = false;
   if (cache && !fixed.empty()) {
@@ -314,7 +319,7 @@ Status add_derived(const ModelSpec& spec, const ParamValues& values, const Datas
       for (int slot : symbols_used(ds.e.text, spec.symbols))
         slots.push_back(slot);
     }
-    reads = reads_of(spec, slots, vars, r, inputs);
+    reads = reads_of(spec, slots, vars, r, inputs, raw);
     std::lock_guard lock(cache->mu);
     if (cache->entry && same_reads(cache->entry->reads, reads)) {
       hit = true;
@@ -331,7 +336,7 @@ Status add_derived(const ModelSpec& spec, const ParamValues& values, const Datas
     evaluate.push_back(!hit || spec.derived[q].live());
   }
   for (std::size_t k = 0; k < r.steps(); ++k) {
-    set_row(spec, r, inputs, k, vars);
+    set_row(spec, r, inputs, raw, k, vars);
     live.eval();
     if (!hit) fixed.eval();
     for (std::size_t s = 0; s < series_q.size(); ++s) {

@@ -218,6 +218,8 @@ class ModelScenario final : public Scenario {
         }
       }
     }
+    for (auto& d : model::stat_metric_specs(*spec_))
+      out.push_back(std::move(d));
     for (auto& d : model::derived_metric_specs(*spec_))
       out.push_back(std::move(d));
     for (auto& d : model::imm_metric_specs(*spec_))
@@ -294,6 +296,7 @@ class ModelScenario final : public Scenario {
     model::add_imm_metrics(*spec_, d, res);
     add_consistency_metrics(res.channels(), res.nees_series(), m, res.undefined);
     if (auto st = model::add_derived(*spec_, v, d, res, &derived_cache_); !st) return st.err();
+    model::add_stat_metrics(*spec_, v, res);
     const double dt = d.rows() >= 2 ? d.median_dt() : param(v, spec_->sim_dt_key);
     if (auto st = model::add_plot_points(*spec_, v, dt, res); !st) return st.err();
     return std::shared_ptr<RunResult>(std::move(*r));

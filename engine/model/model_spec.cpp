@@ -237,7 +237,8 @@ Status check_noise_version(const Reader& p, const json& j) {
 // lowest version that holds the file, so a version-1 file never needs them).
 Status check_version_keys(const Reader& p, const json& j, int version) {
   if (version >= 2) return Ok{};
-  for (const char* k : {"expressions", "world", "derived", "sim", "plots", "groups", "modes"}) {
+  for (const char* k :
+       {"expressions", "world", "derived", "sim", "plots", "groups", "modes", "metrics"}) {
     if (j.contains(k))
       return p.error(std::string("model.") + k, "a version-2 key: set \"version\": 2");
   }
@@ -538,11 +539,11 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   Reader p(path, m.symbols);
   const std::string key = "model";
   if (!j.is_object()) return p.error(key, "expected an object");
-  if (auto st =
-          p.only_keys(j, key, {"version", "description", "states",  "inputs",       "expressions",
-                               "x0",      "P0",          "process", "measurements", "truth",
-                               "primary", "filter",      "world",   "derived",      "noise",
-                               "clocks",  "sim",         "plots",   "groups",       "modes"});
+  if (auto st = p.only_keys(
+          j, key,
+          {"version", "description",  "states", "inputs",  "expressions", "x0",    "P0",
+           "process", "measurements", "truth",  "primary", "filter",      "world", "derived",
+           "noise",   "clocks",       "sim",    "plots",   "groups",      "modes", "metrics"});
       !st) {
     return st.err();
   }
@@ -658,6 +659,11 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
       }
       m.filter = choices.front();
     }
+  }
+  if (auto it = j.find("metrics"); it != j.end()) {
+    if (world)
+      return p.error("model.metrics", "a world reports no metrics: declare them in the model");
+    if (auto st = parse_stat_metrics(p, *it, m); !st) return st.err();
   }
   return m;
 }

@@ -14,6 +14,7 @@
 #include "core/param_spec.h"
 #include "filter/angle.h"
 #include "model/expression.h"
+#include "model/model_stat_metrics.h"
 #include "model/plots/model_plots.h"
 
 namespace kfw::model {
@@ -216,6 +217,8 @@ struct ModelSpec {
   // itself.
   std::shared_ptr<const ModelSpec> world;
   std::vector<DerivedSpec> derived;  // in the order of their names
+  // Named statistics of the run's series (version 2, "metrics"), in the order of their names.
+  std::vector<StatMetricSpec> stat_metrics;
   // The plot blocks the file asks for (version 2, model_plots.h), in the file's order.
   std::vector<PlotBlockSpec> plots;
   std::vector<int> truth_slots;  // per state: its truth column's symbol, or -1

@@ -174,11 +174,6 @@ TEST(ImmModelPreprocess, MisusesAreRefusedWithTheKey) {
     expect_error(p, "model.measurements.vel.z[0].expression");
   }
   {
-    json p = pre_preset();  // a derived quantity reading the raw column
-    p["model"]["derived"] = {{"raw", "cm - x"}};
-    expect_error(p, "model.derived.raw");
-  }
-  {
     json p = pre_preset();  // an unknown component
     p["model"]["x0"][0]["first"] = "pos.q";
     expect_error(p, "model.x0[0].first");
@@ -195,17 +190,20 @@ TEST(ImmModelPreprocess, MisusesAreRefusedWithTheKey) {
   }
 }
 
-TEST(ImmModelPreprocess, DerivedQuantitiesReadTheComponents) {
+TEST(ImmModelPreprocess, DerivedQuantitiesReadTheComponentsAndTheColumns) {
   json p = pre_preset();
-  p["model"]["derived"] = {{"err", "p - x_true"}};
+  p["model"]["derived"] = {{"err", "p - x_true"}, {"raw", "cm/100 - offset - x_true"}};
   auto s = make_model_scenario(p, "m.json");
   ASSERT_TRUE(s.ok()) << s.error();
   auto run = (*s)->run(pre_data(40, 0, 2.0), (*s)->params().defaults());
   ASSERT_TRUE(run.ok()) << run.error();
   const auto& r = dynamic_cast<const model::ModelResult&>(**run);
-  ASSERT_EQ(r.derived.size(), 1u);
+  ASSERT_EQ(r.derived.size(), 2u);
   EXPECT_TRUE(std::isnan(r.derived[0][0]));  // the first sample made x0: no component compared
   EXPECT_NEAR(r.derived[0][5], r.z[0][5] - r.truth[0][5], 1e-12);
+  // The channel's column as read, at every row (the first included).
+  EXPECT_NEAR(r.derived[1][0], 0.0, 1e-12);  // x = x_true at t = 0
+  EXPECT_NEAR(r.derived[1][5], r.derived[0][5], 1e-12);
 }
 
 TEST(ImmModelPreprocess, AModelWithZSimulatesOnlyThroughAWorld) {

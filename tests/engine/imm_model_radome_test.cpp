@@ -287,6 +287,45 @@ TEST(ImmModelRadome, DerivedSeriesReadTheGridEstimates) {
   EXPECT_LT(m.at("derived.refraction_err.rms"), 0.5);  // degrees
 }
 
+TEST(ImmModelRadome, NamedMetricsAreTheBuiltInsMetrics) {
+  // The file's `metrics` block declares the built-in's scenario metrics under their names (the
+  // paper's window t ≥ 10 s included; the built-in's rmse is the file's position_rmse). Truth A
+  // without renewal, where both runs are reproducible: equal to 1e-9 relative.
+  auto s = testing::load_model_file(kRadomeFile);
+  ASSERT_TRUE(s);
+  auto made = make_scenario("radome");
+  ASSERT_TRUE(made.ok()) << made.error();
+  const auto& builtin = *made;
+  for (double structure : {0.0, 1.0}) {
+    ParamValues v = s->params().defaults();
+    v["imm.structure"] = structure;
+    v["sim.seed"] = 3;
+    auto d = radome::simulate(sim_params(v));
+    ASSERT_TRUE(d.ok()) << d.error();
+    auto mine = s->run(*d, v);
+    ASSERT_TRUE(mine.ok()) << mine.error();
+    ParamValues bv = builtin->params().defaults();
+    for (auto& [k, x] : bv) {
+      if (v.count(k)) x = v.at(k);
+    }
+    auto ref = builtin->run(*d, bv);
+    ASSERT_TRUE(ref.ok()) << ref.error();
+    const Metrics& a = mine->get()->metrics;
+    const Metrics& b = ref->get()->metrics;
+    std::size_t compared = 0;
+    for (const auto& spec : s->metric_specs()) {
+      const std::string key = spec.key == "position_rmse" ? "rmse" : spec.key;
+      if (!a.count(spec.key) || !b.count(key) || spec.key.rfind("nis", 0) == 0) continue;
+      EXPECT_NEAR(a.at(spec.key), b.at(key), 1e-9 * std::max(1.0, std::fabs(b.at(key))))
+          << spec.key << ", structure " << structure;
+      ++compared;
+    }
+    EXPECT_GE(compared, 21u);  // position_rmse, 2 refraction, 18 per axis
+    EXPECT_NEAR(a.at("nis_mean.seeker"), b.at("nis_mean.position"),
+                1e-9 * b.at("nis_mean.position"));
+  }
+}
+
 // RMSE over t ≥ 10 s (the built-in's metrics window) of `est` against `truth`.
 double rmse_after_10s(const std::vector<double>& t, const std::vector<double>& est,
                       const std::vector<double>& truth) {

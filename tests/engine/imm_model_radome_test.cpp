@@ -18,6 +18,7 @@
 
 #include "common/model_files.h"
 #include "core/scenario.h"
+#include "experiment/monte_carlo.h"
 #include "model/model_result.h"
 #include "scenarios/radome/radome_imm.h"
 #include "scenarios/radome/radome_sim.h"
@@ -324,6 +325,51 @@ TEST(ImmModelRadome, NamedMetricsAreTheBuiltInsMetrics) {
     EXPECT_NEAR(a.at("nis_mean.seeker"), b.at("nis_mean.position"),
                 1e-9 * b.at("nis_mean.position"));
   }
+}
+
+TEST(ImmModelRadome, TheBuiltInsRenewalTestHoldsForTheFile) {
+  // tests/engine/radome_renewal_test.cpp's Figs. 7–9 test, unchanged but for the preset: Monte
+  // Carlo over seeds 1–10 with Kp 0.45 (mix, from 2 s), under the metric names the file declares.
+  auto s = testing::load_model_file(kRadomeFile);
+  ASSERT_TRUE(s);
+  ParamValues v = s->params().defaults();
+  ASSERT_EQ(v.at("renewal.mode"), 3.0);
+  ASSERT_EQ(v.at("renewal.start"), 2.0);
+  v["Kp"] = 0.45;
+  std::vector<long long> seeds;
+  for (long long seed = 1; seed <= 10; ++seed)
+    seeds.push_back(seed);
+  for (double amplitude : {0.08, 0.05}) {
+    v["sim.amplitude"] = amplitude;
+    auto part = run_monte_carlo(*s, v, seeds);
+    ASSERT_TRUE(part.ok()) << part.error();
+    int under = 0;
+    double rmse_psi = 0.0, rmse_theta = 0.0;
+    for (const auto& run : part->runs) {
+      const Metrics& m = run.metrics;
+      under += m.at("refraction_err_max_deg") < 0.5 ? 1 : 0;
+      rmse_psi += m.at("slope_rmse_psi") / 10.0;
+      rmse_theta += m.at("slope_rmse_theta") / 10.0;
+      EXPECT_LE(m.at("grid_span_psi"), 0.1 + 1e-9);
+      EXPECT_LE(m.at("grid_span_theta"), 0.1 + 1e-9);
+    }
+    std::cout << "amplitude " << amplitude << ": " << under << " of 10 under 0.5°, slope RMSE "
+              << rmse_psi << " / " << rmse_theta << "\n";
+    EXPECT_GE(under, amplitude == 0.08 ? 7 : 9) << "amplitude " << amplitude;
+    if (amplitude == 0.08) {
+      EXPECT_LE(rmse_psi, 0.0112);
+      EXPECT_LE(rmse_theta, 0.0112);
+    }
+  }
+  // Without renewal, truth B leaves the grid and the refraction error exceeds 0.5°.
+  v["Kp"] = 0.0;
+  v["sim.amplitude"] = 0.08;
+  v["sim.seed"] = 1;
+  auto d = s->simulate(v);
+  ASSERT_TRUE(d.ok()) << d.error();
+  auto run = s->run(*d, v);
+  ASSERT_TRUE(run.ok()) << run.error();
+  EXPECT_GT(run->get()->metrics.at("refraction_err_max_deg"), 0.5);
 }
 
 // RMSE over t ≥ 10 s (the built-in's metrics window) of `est` against `truth`.

@@ -28,12 +28,14 @@ void shape(MatX& M, const MatrixSpec& s) {
 
 // Routes one entry to when it is evaluated: a constant is written now; the others join the
 // group of their class (state-dependent ones the given `state` group, or `step` when null).
-// `subs` (filter groups only): a state entry that keeps step-level sub-expressions by name is
-// placed as that text, and their slots join `subs` (evaluated once per step).
+// `subs` (filter groups only): a state or step entry that keeps step-level sub-expressions by
+// name is placed as that text, and their slots join `subs` (evaluated once per step, before the
+// step group): seed 001's R reads its corrected angles' cosines six times, computed once.
 void place(const Expr& e, double* target, ExprGroup& param, ExprGroup& dt, ExprGroup& step,
            ExprGroup* state, std::vector<int>* subs = nullptr) {
-  if (e.dep == Dep::kState && state && subs && !e.state_text.empty()) {
-    state->add(e.state_text, target);
+  const bool kept = e.dep == Dep::kState ? state != nullptr : e.dep == Dep::kStep;
+  if (kept && subs && !e.state_text.empty()) {
+    (e.dep == Dep::kState ? *state : step).add(e.state_text, target);
     subs->insert(subs->end(), e.step_subs.begin(), e.step_subs.end());
     return;
   }

@@ -267,6 +267,37 @@ TEST(ImmModelRadome, EqualsTheBuiltInUnderRenewal) {
   }
 }
 
+TEST(ImmModelRadome, BlockFiltersEqualTheWholeStateFilter) {
+  // The axis structure runs three 3-state Kalman filters per mode (imm_blocks.h); the UKF runs
+  // one 9-state filter per mode with the cross-block terms dropped (α = 1, β = 0, κ = 0: the KF
+  // on a linear model to rounding). Truth A, no renewal: the same estimates to 1e-9.
+  auto s = testing::load_model_file(kRadomeFile);
+  ASSERT_TRUE(s);
+  ParamValues v = s->params().defaults();
+  v["sim.seed"] = 4;
+  auto d = s->simulate(v);
+  ASSERT_TRUE(d.ok()) << d.error();
+  auto blocks = s->run(*d, v);
+  ASSERT_TRUE(blocks.ok()) << blocks.error();
+  v["filter"] = 2.0;  // ukf
+  v["ukf.alpha"] = 1.0;
+  v["ukf.beta"] = 0.0;
+  v["ukf.kappa"] = 0.0;
+  auto whole = s->run(*d, v);
+  ASSERT_TRUE(whole.ok()) << whole.error();
+  const auto& a = dynamic_cast<const model::ModelResult&>(**blocks);
+  const auto& b = dynamic_cast<const model::ModelResult&>(**whole);
+  ASSERT_EQ(b.filter, "ukf");
+  for (std::size_t i = 0; i < a.n(); ++i) {
+    std::vector<double> sigma(b.steps());
+    for (std::size_t k = 0; k < b.steps(); ++k)
+      sigma[k] = std::sqrt(b.P[b.diag[i]][k]);
+    expect_close(a.x[i], b.x[i], sigma, 1e-9, "state " + b.state_keys[i]);
+  }
+  expect_close(a.imm->axes[0].estimate, b.imm->axes[0].estimate, constant(b.steps(), 0.1), 1e-9,
+               "slope");
+}
+
 TEST(ImmModelRadome, DerivedSeriesReadTheGridEstimates) {
   // In a derived series a grid axis's parameter is its IMM estimate: R_psi − R_psi_true is the
   // slope error whose RMS is rmse.R_psi.

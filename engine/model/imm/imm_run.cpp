@@ -11,6 +11,7 @@
 #include "core/limits.h"
 #include "filter/imm.h"
 #include "filter/imm_grid.h"
+#include "model/imm/imm_blocks.h"
 #include "model/imm/imm_spec.h"
 #include "model/model_filters.h"
 
@@ -26,6 +27,20 @@ struct RenewalRun {
   bool on = false;
   double kp = 0.0, start = 0.0;
   RenewalReading reading = RenewalReading::kIndex;
+};
+
+// A block filter (imm_blocks.h) is mixed block by block; its block size, or 1 for others.
+template <class F>
+struct BlockOf {
+  static constexpr int value = 1;
+};
+template <int B>
+struct BlockOf<BlockKalman<B>> {
+  static constexpr int value = B;
+};
+template <class F>
+constexpr bool kIsBlock = requires {
+  F::kBlockSize;
 };
 
 // One mode: its evaluator, its context and the filter over them.
@@ -72,7 +87,11 @@ class Imm {
       init_context(*run->ctx);
       run->ctx->group_of.assign(m.model->channels.size(), -1);
       run->ctx->capture = &run->cap;
-      run->f.reset(new Filter{*run->ctx, Vec<N>(p_.x0), Covariance<N>(p_.ev->P0)});
+      if constexpr (kIsBlock<Filter>) {
+        run->f.reset(new Filter(*run->ctx, *st_, p_.x0, p_.ev->P0));
+      } else {
+        run->f.reset(new Filter{*run->ctx, Vec<N>(p_.x0), Covariance<N>(p_.ev->P0)});
+      }
       if constexpr (requires { run->f->Z; }) {
         for (const auto& cs : m.model->channels)
           run->f->Z.push_back(MatX::Zero(cs.size(), run->f->ns));
@@ -169,16 +188,23 @@ class Imm {
     }
     const ImmMixing w = imm_mixing(moved_ ? *moved_ : chain_, log_mu_);
     moved_.reset();
-    gather();
-    imm_mix(w, g_, mixed_);
-    for (std::size_t j = 0; j < runs_.size(); ++j) {
-      runs_[j]->f->x = mixed_[j].x;
-      runs_[j]->f->P = mixed_[j].P;
-      if (st_) {
-        drop_cross(runs_[j]->f->P);  // mixing block by block
-        if (st_->approximate) drop_cross(runs_[j]->ev->Q);
+    if constexpr (kIsBlock<Filter>) {
+      mix_blocks(w);
+      for (auto& m : runs_) {
+        if (auto st = m->f->predict(k); !st) return st;
       }
-      if (auto st = runs_[j]->f->predict(k); !st) return st;
+    } else {
+      gather();
+      imm_mix(w, g_, mixed_);
+      for (std::size_t j = 0; j < runs_.size(); ++j) {
+        runs_[j]->f->x = mixed_[j].x;
+        runs_[j]->f->P = mixed_[j].P;
+        if (st_) {
+          drop_cross(runs_[j]->f->P);  // mixing block by block
+          if (st_->approximate) drop_cross(runs_[j]->ev->Q);
+        }
+        if (auto st = runs_[j]->f->predict(k); !st) return st;
+      }
     }
     log_mu_ = w.log_c_bar;
     return Ok{};
@@ -198,7 +224,9 @@ class Imm {
         if (why.empty()) why = m.cap.why;
         continue;
       }
-      if (st_ && st_->approximate) drop_cross(m.ev->channel(c).R, c);
+      if constexpr (!kIsBlock<Filter>) {
+        if (st_ && st_->approximate) drop_cross(m.ev->channel(c).R, c);
+      }
       if (auto st = m.f->update(c, k); !st) return st;
       const auto jj = static_cast<Eigen::Index>(j);
       if (m.cap.applied) {
@@ -274,23 +302,25 @@ class Imm {
 
   // The state pairs in different blocks, and per channel the component pairs; P0 block-diagonal.
   void set_structure() {
-    if (!st_) return;
-    const auto n = st_->block_of.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t k = 0; k < n; ++k) {
-        if (st_->block_of[i] != st_->block_of[k]) cross_.emplace_back(i, k);
-      }
-    }
-    for (const auto& blocks : st_->component_block) {
-      cross_R_.emplace_back();
-      for (std::size_t a = 0; a < blocks.size(); ++a) {
-        for (std::size_t b = 0; b < blocks.size(); ++b) {
-          if (blocks[a] != blocks[b]) cross_R_.back().emplace_back(a, b);
+    if constexpr (!kIsBlock<Filter>) {  // a block filter holds the blocks alone
+      if (!st_) return;
+      const auto n = st_->block_of.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t k = 0; k < n; ++k) {
+          if (st_->block_of[i] != st_->block_of[k]) cross_.emplace_back(i, k);
         }
       }
+      for (const auto& blocks : st_->component_block) {
+        cross_R_.emplace_back();
+        for (std::size_t a = 0; a < blocks.size(); ++a) {
+          for (std::size_t b = 0; b < blocks.size(); ++b) {
+            if (blocks[a] != blocks[b]) cross_R_.back().emplace_back(a, b);
+          }
+        }
+      }
+      for (auto& m : runs_)
+        drop_cross(m->f->P);
     }
-    for (auto& m : runs_)
-      drop_cross(m->f->P);
   }
   template <class M>
   void drop_cross(M& P) const {
@@ -341,8 +371,35 @@ class Imm {
   void gather() {
     g_.resize(runs_.size());
     for (std::size_t j = 0; j < runs_.size(); ++j) {
-      g_[j].x = runs_[j]->f->x;
-      g_[j].P = runs_[j]->f->P;
+      if constexpr (kIsBlock<Filter>) {
+        const auto n = static_cast<Eigen::Index>(main_.spec.n());
+        if (g_[j].x.size() != n) {
+          g_[j].x.setZero(n);
+          g_[j].P.setZero(n, n);  // the entries between blocks stay 0
+        }
+        runs_[j]->f->full(g_[j].x, g_[j].P);
+      } else {
+        g_[j].x = runs_[j]->f->x;
+        g_[j].P = runs_[j]->f->P;
+      }
+    }
+  }
+
+  // Block filters: each block mixed over the modes (the spread terms between blocks dropped).
+  void mix_blocks(const ImmMixing& w) {
+    constexpr int B = BlockOf<Filter>::value;
+    const std::size_t r = runs_.size(), blocks = runs_.front()->f->x.size();
+    gb_.resize(r);
+    for (std::size_t b = 0; b < blocks; ++b) {
+      for (std::size_t j = 0; j < r; ++j) {
+        gb_[j].x = runs_[j]->f->x[b];
+        gb_[j].P = runs_[j]->f->P[b];
+      }
+      imm_mix<B>(w, gb_, mb_);
+      for (std::size_t j = 0; j < r; ++j) {
+        runs_[j]->f->x[b] = mb_[j].x;
+        runs_[j]->f->P[b] = mb_[j].P;
+      }
     }
   }
 
@@ -380,6 +437,7 @@ class Imm {
   std::vector<std::unique_ptr<ModeRun<Filter>>> runs_;
   VecX log_mu_;
   std::vector<Gaussian<N>> g_, mixed_;
+  std::vector<Gaussian<BlockOf<Filter>::value>> gb_, mb_;  // block filters: one block
   RenewalRun ren_;
   const StructureSpec* st_;                                                // blocks, or null
   std::vector<std::pair<std::size_t, std::size_t>> cross_;                 // states
@@ -409,6 +467,24 @@ Status run_sized(Prepared& p, std::vector<Mode> modes, MarkovChain chain, Renewa
     return run_with<N, UnscentedFilter<N>>(p, std::move(modes), std::move(chain), ren, structure);
   }
   return run_with<N, KalmanFilter<N>>(p, std::move(modes), std::move(chain), ren, structure);
+}
+
+// The block filters apply: the Kalman filter (or the EKF, which is the KF on a linear model) of
+// linear modes whose Q and R do not depend on the states.
+bool blocks_apply(const Prepared& p, const std::vector<Mode>& modes) {
+  if (p.ctx->options.kind == FilterKind::kUkf) return false;
+  const auto linear = [](const ModelSpec& m) {
+    if (m.nonlinear_process() || m.process_noise_at_state()) return false;
+    for (const auto& c : m.channels) {
+      if (!c.linear || c.R.dep() == Dep::kState) return false;
+    }
+    return true;
+  };
+  if (!linear(p.ctx->spec)) return false;
+  for (const Mode& m : modes) {
+    if (m.model && !linear(*m.model)) return false;
+  }
+  return true;
 }
 
 // x0 from a channel's first sample, evaluated with each grid axis at its centre (seed 001
@@ -473,6 +549,18 @@ Status run_imm(Prepared& p, const ParamValues& values) {
     }
   }
   const StructureSpec* st = ms.structure.at(values);
+  if (st && blocks_apply(p, *modes)) {  // one small filter per block and mode
+    switch (equal_block_size(*st)) {
+      case 2:
+        return run_with<Eigen::Dynamic, BlockKalman<2>>(p, std::move(*modes), std::move(*chain),
+                                                        ren, st);
+      case 3:
+        return run_with<Eigen::Dynamic, BlockKalman<3>>(p, std::move(*modes), std::move(*chain),
+                                                        ren, st);
+      default:
+        break;
+    }
+  }
   switch (spec.n()) {
     case 1:
       return run_sized<1>(p, std::move(*modes), std::move(*chain), ren, st);

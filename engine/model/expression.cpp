@@ -561,8 +561,12 @@ Status ExprGroup::bind(const Symbols& symbols, double* vars) {
   parser_ = std::make_unique<mu::Parser>();
   try {
     setup_parser(*parser_);
-    for (std::size_t i = 0; i < symbols.names.size(); ++i)
-      parser_->DefineVar(symbols.names[i], vars + i);
+    // Only the symbols the group reads: an IMM binds an evaluator per mode, and defining every
+    // symbol of a large model in every group was most of that.
+    for (const std::string& name : identifiers(source_)) {
+      const int slot = symbols.find(name);
+      if (slot >= 0) parser_->DefineVar(name, vars + slot);
+    }
     parser_->SetExpr(source_);
     int n = 0;
     parser_->Eval(n);

@@ -121,6 +121,22 @@ double min_eigenvalue(const MatX& M) {
   return es.eigenvalues().minCoeff();
 }
 
+namespace {
+// The pivots of M = L D Lᵀ (M symmetric, 2 × 2 or 3 × 3) are all positive: M is positive
+// definite.
+bool positive_pivots(const MatX& M) {
+  const double d1 = M(0, 0);
+  if (!(d1 > 0.0)) return false;
+  const double l21 = M(1, 0) / d1;
+  const double d2 = M(1, 1) - l21 * M(1, 0);
+  if (!(d2 > 0.0)) return false;
+  if (M.rows() == 2) return true;
+  const double l31 = M(2, 0) / d1;
+  const double l32 = (M(2, 1) - l31 * M(1, 0)) / d2;
+  return M(2, 2) - l31 * M(2, 0) - l32 * l32 * d2 > 0.0;
+}
+}  // namespace
+
 bool is_psd(const MatX& M) {
   if (M.size() == 0) return true;
   // A diagonal matrix in one pass (a jittered clock checks Q = q² dt I at every row).
@@ -145,8 +161,10 @@ bool is_psd(const MatX& M) {
     return false;
   }
   // Positive definite (a Cholesky factor exists): PSD without the eigen-solver, which was ~10 %
-  // of an IMM whose R depends on the measurement (seed 001's, per mode and row).
-  if (Eigen::LLT<MatX>(M).info() == Eigen::Success) return true;
+  // of an IMM whose R depends on the measurement (seed 001's, per mode and row); up to 3 × 3 by
+  // the pivots of LDLᵀ written out.
+  if (M.rows() <= 3 && positive_pivots(M)) return true;
+  if (M.rows() > 3 && Eigen::LLT<MatX>(M).info() == Eigen::Success) return true;
   return min_eigenvalue(M) >= -1e-12 * M.diagonal().cwiseAbs().maxCoeff();
 }
 
@@ -281,6 +299,7 @@ Status ModelEval::bind(const ParamValues& values) {
     ch.R_varies = cs.R.dep() >= Dep::kStep;
     ch.R_at_state = cs.R.dep() == Dep::kState;
     ch.R_dt = cs.R.dep() == Dep::kDt;
+    r_dt_ = r_dt_ || ch.R_dt;
     ch.every = cs.every;
     if (!cs.every_param.empty()) {
       const auto it = values.find(cs.every_param);
@@ -364,12 +383,16 @@ Status ModelEval::check_dt(double dt, const std::string& where) {
 Status ModelEval::check_at(double dt, const std::function<std::string()>& where) {
   const auto at = [&] { return " at dt = " + number(dt) + " s (" + where() + ")"; };
   if (auto st = eval_dt(dt, false); !st) return Error{st.error() + at()};
+  // A cached interval whose matrices were checked (an irregular time column repeats a few
+  // intervals: seed 001's 0.05 s takes 11 values over 1 200 rows), unless an R depends on dt.
+  if (hit_ && hit_->checked && !r_dt_) return Ok{};
   const MatX* M = nullptr;
   if (const MatrixSpec* s = noise_not_psd(M)) {
     if (!M->allFinite()) return Error{spec_.path + ": " + s->key + ": not finite" + at()};
     return Error{spec_.path + ": " + s->key + ": not positive semidefinite" + at() +
                  " (smallest eigenvalue " + number(min_eigenvalue(*M)) + ")"};
   }
+  if (hit_) hit_->checked = true;
   return Ok{};
 }
 
@@ -415,7 +438,9 @@ Status ModelEval::set_params(const std::vector<std::pair<int, double>>& values) 
   }
   param_.eval();
   if (process) {
+    process_source_ = nullptr;  // this mode's process moved away from the source's
     cache_.clear();
+    hit_ = nullptr;
     evict_ = 0;
     dt_ = std::numeric_limits<double>::quiet_NaN();  // what depends on dt: at the next set_dt
   } else {
@@ -439,6 +464,7 @@ Status ModelEval::set_params(const std::vector<std::pair<int, double>>& values) 
 
 Status ModelEval::eval_dt(double dt, bool check_q) {
   if (dt == dt_) return Ok{};
+  hit_ = nullptr;
   dt_ = dt;
   vars_[static_cast<std::size_t>(spec_.dt_slot)] = dt;
   for (auto& ch : channels_)
@@ -462,6 +488,18 @@ Status ModelEval::eval_dt(double dt, bool check_q) {
       B = e.B;
       Q = e.Q;
       fx = e.fx;
+      hit_ = &e;
+      return Ok{};
+    }
+  }
+  if (process_source_) {
+    for (const auto& e : process_source_->cache_) {
+      if (e.dt != dt) continue;
+      F = e.F;
+      B = e.B;
+      Q = e.Q;
+      fx = e.fx;
+      remember(e);
       return Ok{};
     }
   }
@@ -476,14 +514,29 @@ Status ModelEval::eval_dt(double dt, bool check_q) {
                    " (smallest eigenvalue " + number(min_eigenvalue(Q)) + ")"};
     }
   }
-  DtEntry e{dt, F, B, Q, fx};
+  remember(DtEntry{dt, F, B, Q, fx, check_q});
+  return Ok{};
+}
+
+void ModelEval::remember(DtEntry e) {
   if (cache_.size() < kDtCacheSize) {
+    cache_.reserve(kDtCacheSize);  // hit_ points into it
     cache_.push_back(std::move(e));
+    hit_ = &cache_.back();
   } else {
     cache_[evict_] = std::move(e);
+    hit_ = &cache_[evict_];
     evict_ = (evict_ + 1) % kDtCacheSize;
   }
-  return Ok{};
+}
+
+bool ModelEval::share_process(ModelEval& source) {
+  if (&source.spec_ != &spec_ || spec_.process.form != ProcessForm::kContinuous) return false;
+  for (std::size_t slot = 0; slot < vars_.size(); ++slot) {
+    if (process_reads(static_cast<int>(slot)) && vars_[slot] != source.vars_[slot]) return false;
+  }
+  process_source_ = &source;
+  return true;
 }
 
 }  // namespace kfw::model

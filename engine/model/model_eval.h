@@ -68,6 +68,11 @@ class ModelEval {
   // Q, Qc or R of parameters only that is then not PSD is an Error naming the key.
   Status set_params(const std::vector<std::pair<int, double>>& values);
 
+  // An IMM's modes that share the process (the same model, the same value of every parameter
+  // the process reads): this evaluator takes its discretisations from `source`'s cache when
+  // there (seed 001's 49 modes: one Van Loan per interval instead of 49). False: not shared.
+  bool share_process(ModelEval& source);
+
   // The process at the current symbols. step: entries of t and inputs (once per step);
   // f / f_jacobian / noise: what depends on states, at the state set by set_state: fx = f(x) (or
   // the RK4 step of ẋ over dt), F = ∂fx/∂x, Q (or Van Loan of A(x), G Qc Gᵀ over dt).
@@ -207,7 +212,12 @@ class ModelEval {
     double dt;
     MatX F, B, Q;
     VecX fx;
+    bool checked = false;  // Q found PSD at this dt (check_at, or set_dt's own check)
   };
+  DtEntry* hit_ = nullptr;  // the entry the last eval_dt used or made (null: not cached)
+  const ModelEval* process_source_ = nullptr;  // share_process
+  void remember(DtEntry e);                    // into cache_, hit_ at it
+  bool r_dt_ = false;  // some channel's R depends on dt (checked at every interval)
   std::vector<DtEntry> cache_;
   std::size_t evict_ = 0;
 };

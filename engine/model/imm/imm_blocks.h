@@ -119,6 +119,10 @@ struct BlockKalman {
     for (std::size_t b = 0; b < idx.size(); ++b) {
       const auto& cb = comps[c][b];
       if (cb.empty()) continue;
+      if (cb.size() == 1) {  // one component in the block (seed 001's axes): a scalar update
+        if (auto st = update_scalar(c, k, b, cb[0], m, nis, log_det); !st) return st;
+        continue;
+      }
       const auto mb = static_cast<Eigen::Index>(cb.size());
       JacB H(mb, B);
       CovB R(mb, mb);
@@ -176,6 +180,37 @@ struct BlockKalman {
   }
 
  private:
+  // Component j alone in block b: S = h P hᵀ + r, K = P hᵀ / S, the Joseph form.
+  Status update_scalar(std::size_t c, std::size_t k, std::size_t b, Eigen::Index j, std::size_t m,
+                       double& nis, double& log_det) {
+    const ModelEval::Channel& ch = ctx.ev.channel(c);
+    Vec<B> h;
+    for (int i = 0; i < B; ++i)
+      h(i) = ch.H(j, idx[b][static_cast<std::size_t>(i)]);
+    const double r = ch.R(j, j);
+    const Vec<B> Ph = P[b] * h;
+    const double S = h.dot(Ph) + r;
+    const double y = wrap(ctx.z_buf[static_cast<std::size_t>(j)] - h.dot(x[b]),
+                          ctx.role_angle[c][static_cast<std::size_t>(j)]);
+    if (!(S > 0.0) || !std::isfinite(S)) {
+      return ctx.skip(c, k, ctx.s_not_pd(c, MatX::Constant(1, 1, S), false));
+    }
+    const Vec<B> K = Ph / S;
+    const Covariance<B> A = Covariance<B>::Identity() - K * h.transpose();
+    P[b] = A * P[b] * A.transpose() + (r * K) * K.transpose();
+    P[b] = (0.5 * (P[b] + P[b].transpose())).eval();
+    x[b] += K * y;
+    nis += y * y / S;
+    log_det += std::log(S);
+    keep(j, y, S);
+    Context::Capture& cap = *ctx.capture;
+    for (int i = 0; i < B; ++i) {
+      const auto state = static_cast<std::size_t>(idx[b][static_cast<std::size_t>(i)]);
+      cap.K[state * m + static_cast<std::size_t>(j)] = K(i);
+    }
+    return check(k, b);
+  }
+
   void keep(Eigen::Index j, double y, double S) {
     Context::Capture& cap = *ctx.capture;
     cap.y[j] = y;

@@ -96,6 +96,7 @@ class Imm {
         for (const auto& cs : m.model->channels)
           run->f->Z.push_back(MatX::Zero(cs.size(), run->f->ns));
       }
+      if (!runs_.empty()) run->ev->share_process(*runs_.front()->ev);
       runs_.push_back(std::move(run));
     }
     log_mu_ = VecX::Constant(static_cast<Eigen::Index>(r), -std::log(static_cast<double>(r)));

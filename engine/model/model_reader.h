@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 
 #include "core/suggest.h"
@@ -194,11 +195,18 @@ Status parse_process(const Reader& p, const json& j, ModelSpec& m);
 // components); an expression reading only channel c's columns; x0 entries naming a channel's
 // component ("CHANNEL.COMPONENT", after the channels).
 Status add_column_symbols(const Reader& p, const json& j, ModelSpec& m);
+// One channel of model.measurements (roles read are recorded in `roles_seen`).
+Expected<ChannelSpec> parse_channel(const Reader& p, const std::string& name, const json& j,
+                                    const ModelSpec& m, const ParamTable& params,
+                                    std::set<std::string>& roles_seen);
 Status parse_preprocess(const Reader& p, const json& j, const std::string& key, const ModelSpec& m,
                         ChannelSpec& c);
 Status check_own_columns(const Reader& p, const Expr& e, const std::string& key, const ModelSpec& m,
                          const ChannelSpec& c);
 Status resolve_initial_channels(const Reader& p, ModelSpec& m);
+// Before the derived quantities: each grid axis's parameter slot and its truth column as a symbol
+// (ModelSpec::grid_param_slots, grid_truth_slots; the axes are checked with the modes).
+void add_grid_symbols(const json& j, ModelSpec& m);
 
 // A world's own keys (world/model_world_parse.cpp): its noise sources (symbols), its clocks, and a
 // sensor's clock, dropout and outliers (`j` the channel's object, `key` its key).

@@ -46,131 +46,6 @@ Status check_name(const Reader& p, const Symbols& symbols, const std::string& na
   return Ok{};
 }
 
-Expected<ChannelSpec> parse_channel(const Reader& p, const std::string& name, const json& j,
-                                    const ModelSpec& m, const ParamTable& params,
-                                    std::set<std::string>& roles_seen) {
-  const std::string key = "model.measurements." + name;
-  ChannelSpec c;
-  c.name = name;
-  if (!j.is_object()) return p.error(key, "expected an object");
-  if (auto st = p.only_keys(j, key,
-                            {"roles", "label", "z", "H", "h", "R", "every", "gate", "noise_param",
-                             "clock", "dropout", "outliers", "outlier_column"});
-      !st) {
-    return st.err();
-  }
-  for (const char* k : {"clock", "dropout", "outliers"}) {
-    if (j.contains(k) && !m.world_block) {
-      return p.error(key + "." + k,
-                     "a sensor's key: only a world's sensors (model.world."
-                     "measurements) have a clock, dropouts and outliers");
-    }
-  }
-  auto label = p.string(j, "label", key, false, name);
-  if (!label) return label.err();
-  c.label = *label;
-  if (!j.contains("roles") || !j["roles"].is_array() || j["roles"].empty()) {
-    return p.error(key + ".roles", "expected a non-empty list of roles (the columns read)");
-  }
-  for (std::size_t i = 0; i < j["roles"].size(); ++i) {
-    const json& r = j["roles"][i];
-    const std::string rkey = idx(key + ".roles", i);
-    RoleSpec role;
-    if (r.is_string()) {
-      role.name = r.get<std::string>();
-    } else if (r.is_object()) {
-      if (auto st = p.only_keys(r, rkey, {"name", "unit", "angle"}); !st) return st.err();
-      auto nm = p.string(r, "name", rkey, true);
-      if (!nm) return nm.err();
-      role.name = *nm;
-      auto unit = p.string(r, "unit", rkey, false);
-      if (!unit) return unit.err();
-      role.unit = *unit;
-      auto a = p.angle(r, rkey);
-      if (!a) return a.err();
-      role.angle = *a;
-    } else {
-      return p.error(rkey, "expected a role name or {\"name\", \"unit\", \"angle\"}");
-    }
-    if (role.name.empty() || role.name == "t") {
-      return p.error(rkey, "a role needs a name other than the time column 't'");
-    }
-    if (!roles_seen.insert(role.name).second) {
-      return p.error(rkey,
-                     "role " + quote_token(role.name) + " is read by another channel or an input");
-    }
-    c.roles.push_back(role);
-  }
-  if (c.roles.size() > static_cast<std::size_t>(kMaxChannelSize)) {
-    return p.error(key + ".roles",
-                   "at most " + std::to_string(kMaxChannelSize) + " components per channel");
-  }
-  if (auto st = detail::parse_preprocess(p, j, key, m, c); !st) return st.err();
-  if (c.size() > kMaxChannelSize) {
-    return p.error(key + ".z",
-                   "at most " + std::to_string(kMaxChannelSize) + " components per channel");
-  }
-  const int mdim = c.size(), n = m.n();
-  if (j.contains("H") == j.contains("h")) {
-    return p.error(key, "declare exactly one of H (linear) or h (nonlinear)");
-  }
-  if (j.contains("H")) {
-    auto H = p.matrix(j["H"], key + ".H", mdim, n, kLinear, kLinearWhat);
-    if (!H) return H.err();
-    c.H = *H;
-  } else {
-    c.linear = false;
-    const json& h = j["h"];
-    if (!h.is_array() || h.size() != static_cast<std::size_t>(mdim)) {
-      return p.error(key + ".h", "wrong dimensions: expected a list of " + std::to_string(mdim) +
-                                     " expressions, one per role");
-    }
-    c.H.key = key + ".h (Jacobian)";
-    c.H.rows = mdim;
-    c.H.cols = n;
-    for (std::size_t i = 0; i < h.size(); ++i) {
-      auto e = p.expr(h[i], idx(key + ".h", i), kAllSymbols, "");
-      if (!e) return e.err();
-      c.h.push_back(*e);
-      auto d = derivatives(*e, idx(key + ".h", i), m.symbols, m.state_slots);
-      if (!d) return d.err();
-      c.H.e.insert(c.H.e.end(), d->begin(), d->end());
-    }
-  }
-  if (!j.contains("R")) return p.error(key, "missing key 'R'");
-  const KindMask r_kinds = kAllSymbols | (c.preprocessed() ? kMeasuredSymbol : 0u);
-  auto R = p.matrix(j["R"], key + ".R", mdim, mdim, r_kinds, "", true);
-  if (!R) return R.err();
-  c.R = *R;
-  for (std::size_t i = 0; i < c.R.e.size() && c.preprocessed(); ++i) {
-    if (auto st = detail::check_own_columns(p, c.R.e[i], c.R.key, m, c); !st) return st.err();
-  }
-  if (auto st = p.symmetric(c.R); !st) return st.err();
-  if (auto it = j.find("every"); it != j.end()) {
-    if (it->is_number_integer() && it->get<long long>() >= 1) {
-      if (it->get<long long>() > static_cast<long long>(limits::kMaxEvery)) {
-        return p.error(key + ".every",
-                       std::to_string(it->get<long long>()) + " is more than " + "the limit of " +
-                           std::to_string(static_cast<long long>(limits::kMaxEvery)) +
-                           " steps between updates (docs/limits.md)");
-      }
-      c.every = static_cast<int>(it->get<long long>());
-    } else if (it->is_string()) {
-      c.every_param = it->get<std::string>();
-      if (!params.find(c.every_param)) {
-        std::vector<std::string> names;
-        for (const auto& spec : params.specs())
-          names.push_back(spec.key);
-        return p.error(key + ".every", unknown_message("parameter", c.every_param, names));
-      }
-    } else {
-      return p.error(key + ".every", "expected an integer ≥ 1 or a parameter name");
-    }
-  }
-  if (auto st = detail::parse_gate(p, j, key, m.version, c); !st) return st.err();
-  return c;
-}
-
 // A world's symbols for the simulator's parameters: the declared sim.X as X. Where the filter has
 // a parameter X too (seed 004's sigma_range and sim.sigma_range), the world's X is sim.X: the
 // simulator's value shadows the filter's, which the world never reads.
@@ -193,23 +68,6 @@ Status add_sim_symbols(const Reader& p, const ParamTable& params, ModelSpec& m) 
     m.param_keys.push_back(spec.key);
   }
   return Ok{};
-}
-
-// The grid axes' parameters (model.modes.grid[a].param; checked when the modes are parsed).
-void set_grid_param_slots(const json& j, ModelSpec& m) {
-  const auto modes = j.find("modes");
-  if (modes == j.end() || !modes->is_object() || !modes->contains("grid")) return;
-  const json& grid = (*modes)["grid"];
-  if (!grid.is_array()) return;
-  for (const json& axis : grid) {
-    const bool named = axis.is_object() && axis.contains("param") && axis["param"].is_string();
-    m.grid_param_slots.push_back(named ? m.symbols.find(axis["param"].get<std::string>()) : -1);
-    const bool truth = axis.is_object() && axis.contains("truth") && axis["truth"].is_string();
-    const std::string col = truth ? axis["truth"].get<std::string>() : std::string();
-    const bool free =
-        truth && is_identifier(col) && !is_reserved_name(col) && m.symbols.find(col) < 0;
-    m.grid_truth_slots.push_back(free ? m.symbols.add(col, kTruthSymbol) : -1);
-  }
 }
 
 // noise_param on an input or a channel (version 2), refused in a version-1 file.
@@ -611,7 +469,7 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
       return p.error("model.measurements." + it.key(),
                      "a channel name is a name (letters, digits and _)");
     }
-    auto c = parse_channel(p, it.key(), it.value(), m, params, roles_seen);
+    auto c = detail::parse_channel(p, it.key(), it.value(), m, params, roles_seen);
     if (!c) return c.err();
     if (world) {
       if (auto st =
@@ -631,7 +489,7 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   if (auto st = parse_noise_params(j, m, params, world); !st) return st.err();
   if (auto st = parse_outputs(p, j, m, roles_seen); !st) return st.err();
   if (auto it = j.find("derived"); it != j.end()) {
-    set_grid_param_slots(j, m);
+    detail::add_grid_symbols(j, m);
     if (auto st = parse_derived(p, *it, m); !st) return st.err();
   }
   if (auto it = j.find("plots"); it != j.end()) {

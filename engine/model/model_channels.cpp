@@ -225,8 +225,10 @@ Status parse_preprocess(const Reader& p, const json& j, const std::string& key, 
     auto nm = p.string(e, "name", ekey, true);
     if (!nm) return nm.err();
     comp.name = *nm;
-    if (!is_identifier(comp.name)) {
-      return p.error(ekey + ".name", quote_token(comp.name) + " is not a name");
+    if (!is_identifier(comp.name) || comp.name.size() > limits::kMaxNameChars) {
+      return p.error(ekey + ".name", quote_token(comp.name) + " is not a name (letters, digits " +
+                                         "and _, at most " + std::to_string(limits::kMaxNameChars) +
+                                         " characters)");
     }
     if (!names.insert(comp.name).second) {
       return p.error(ekey + ".name", quote_token(comp.name) + " names two components");

@@ -5,6 +5,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "core/limits.h"
 #include "core/suggest.h"
 #include "model/imm/imm_spec.h"
 #include "model/model_eval.h"
@@ -174,7 +175,11 @@ Status parse_stat_metrics(const detail::Reader& p, const json& block, ModelSpec&
     const bool ok = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
       return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.';
     });
-    if (!ok) return p.error("model.metrics." + name, "a metric's name: letters, digits, _ and .");
+    if (!ok || name.size() > limits::kMaxNameChars) {
+      return p.error("model.metrics." + name.substr(0, 40),
+                     "a metric's name: letters, digits, _ and ., at most " +
+                         std::to_string(limits::kMaxNameChars) + " characters");
+    }
     bool taken = name.rfind("derived.", 0) == 0 || name.rfind("imm.", 0) == 0 ||
                  name.rfind("K.", 0) == 0 || name.rfind("rmse", 0) == 0;
     for (const auto& shared : shared_metric_specs()) {

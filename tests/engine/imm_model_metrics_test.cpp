@@ -124,6 +124,9 @@ TEST(ImmModelMetrics, MisusesAreRefusedWithTheKey) {
   p["model"]["metrics"]["err_max"]["direction"] = "up";
   expect_error(p, "model.metrics.err_max.direction", "lower, higher or none");
   p = met_preset();
+  p["model"]["metrics"][std::string(101, 'm')] = {{"of", "derived.err"}, {"stat", "rms"}};
+  expect_error(p, "model.metrics.mmm", "at most 100 characters");
+  p = met_preset();
   p["model"]["version"] = 1;
   p["model"].erase("derived");
   expect_error(p, "model.metrics", "version-2");

@@ -558,15 +558,9 @@ void ExprGroup::add(const std::string& text, double* target) {
 
 Status ExprGroup::bind(const Symbols& symbols, double* vars) {
   if (targets_.empty()) return Ok{};
-  // A copy of one parser set up per thread: the language's functions defined once, not per group
-  // (an IMM builds a few groups per mode).
-  static thread_local const std::unique_ptr<mu::Parser> prototype = [] {
-    auto p = std::make_unique<mu::Parser>();
-    setup_parser(*p);
-    return p;
-  }();
-  parser_ = std::make_unique<mu::Parser>(*prototype);
+  parser_ = std::make_unique<mu::Parser>();
   try {
+    setup_parser(*parser_);
     // Only the symbols the group reads: an IMM binds an evaluator per mode, and defining every
     // symbol of a large model in every group was most of that.
     for (const std::string& name : identifiers(source_)) {

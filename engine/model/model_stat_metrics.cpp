@@ -216,7 +216,9 @@ void add_stat_metrics(const ModelSpec& spec, const ParamValues& values, ModelRes
     vars[static_cast<std::size_t>(spec.param_slots[i])] = param(values, spec.param_keys[i]);
   for (const auto& s : spec.stat_metrics) {
     double from = -std::numeric_limits<double>::infinity();
-    if (!s.from.text.empty()) {
+    if (s.from.dep == Dep::kConst && !s.from.text.empty()) {
+      from = s.from.value;  // a number ("10"): no parser on the run's path
+    } else if (!s.from.text.empty()) {
       ExprGroup g;
       g.add(s.from.text, &from);
       if (g.bind(spec.symbols, vars.data()).ok()) g.eval();

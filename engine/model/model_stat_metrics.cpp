@@ -237,7 +237,10 @@ void add_stat_metrics(const ModelSpec& spec, const ParamValues& values, ModelRes
     if (std::isfinite(v)) {
       r.metrics[s.name] = v;
     } else {
-      r.undefined[s.name] = "no finite value of " + s.of + " from t = " + number(from) + " s";
+      const bool reached = !r.t.empty() && r.t.back() >= from;
+      r.undefined[s.name] = reached
+                                ? "no finite value of " + s.of + " from t = " + number(from) + " s"
+                                : "the run ends before t = " + number(from) + " s";
     }
   }
 }

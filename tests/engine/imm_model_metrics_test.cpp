@@ -99,7 +99,9 @@ TEST(ImmModelMetrics, StatisticsOfASeriesFromATime) {
   auto run2 = (*s)->run(*d, late);
   ASSERT_TRUE(run2.ok());
   EXPECT_EQ((*run2)->metrics.count("err_rms_late"), 0u);
-  EXPECT_EQ((*run2)->undefined.count("err_rms_late"), 1u);
+  ASSERT_EQ((*run2)->undefined.count("err_rms_late"), 1u);
+  // Not "no finite value": nothing was wrong with the series, the run was shorter.
+  EXPECT_EQ((*run2)->undefined.at("err_rms_late"), "the run ends before t = 99 s");
 }
 
 TEST(ImmModelMetrics, MisusesAreRefusedWithTheKey) {

@@ -1,7 +1,8 @@
 // Issue 28: a model's modes filtered block by block (model.modes.structure): equal to Table 2 with
 // each mode's mixed covariance block-diagonal (tests/oracles/imm_table2.h, 1e-9), `approximate`
 // dropping R's cross-block entries, a choice parameter selecting the structure, and the
-// refusals of blocks that F, H, Q, R or P0 couple.
+// refusals of blocks that F, H, Q, R or P0 couple; "detect" finding the blocks a model keeps apart
+// exactly.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -170,6 +171,44 @@ TEST(ImmModelStructure, AChoiceParameterSelectsTheStructure) {
 std::string error_of(const json& preset) {
   auto s = make_model_scenario(preset, "st.json");
   return s.ok() ? std::string() : s.error();
+}
+
+// "detect": the finest blocks that F, Q, P0, H and R keep apart exactly — here the two axes, the
+// same filter as declaring them; a model that couples every state is refused, naming the key.
+TEST(ImmModelStructure, DetectFindsTheBlocksTheModelKeepsApart) {
+  const StructureRun detected = run_structure(two_axis_preset("detect"));
+  const StructureRun declared = run_structure(two_axis_preset(axis_blocks(false)));
+  ASSERT_TRUE(detected.r && declared.r);
+  const auto& rd = dynamic_cast<const model::ModelResult&>(*detected.r);
+  const auto& rb = dynamic_cast<const model::ModelResult&>(*declared.r);
+  ASSERT_EQ(rd.steps(), rb.steps());
+  for (std::size_t i = 0; i < 4; ++i) {
+    for (std::size_t k = 0; k < rd.steps(); ++k)
+      ASSERT_EQ(rd.x[i][k], rb.x[i][k]) << "state " << i << " row " << k;
+  }
+  EXPECT_LT(largest_difference(rd, detected.v, detected.d, {0, 0, 1, 1}, 0.0), 1e-9);
+  const std::string refused =
+      "st.json: model.modes.structure: \"detect\": the model couples all its states (F, Q, P0, "
+      "H or R), so there are no blocks to filter apart; declare {\"blocks\", \"approximate\": "
+      "true} to drop cross-block terms, or \"none\"";
+  EXPECT_EQ(error_of(two_axis_preset("detect", "c")), refused);  // R correlates x and y
+  json p = two_axis_preset("detect");
+  p["model"]["P0"] = st_list({st_list({"20", "0", "1", "0"}), st_list({"0", "4", "0", "0"}),
+                              st_list({"1", "0", "20", "0"}), st_list({"0", "0", "0", "4"})});
+  EXPECT_EQ(error_of(p), refused);
+  // A mode of the list that couples the axes couples them for every mode.
+  p = two_axis_preset("detect");
+  p["model"]["modes"]["list"][1]["process"] = p["model"]["process"];
+  p["model"]["modes"]["list"][1]["process"]["F"][1][3] = "dt";
+  EXPECT_EQ(error_of(p), refused);
+  // Blocks of one state each where nothing couples them: three blocks, the filter runs.
+  p = two_axis_preset("detect");
+  p["model"]["process"]["F"][0][1] = "0";
+  p["model"]["process"]["Q"] =
+      st_list({st_list({"q^2", "0", "0", "0"}), st_list({"0", "q^2", "0", "0"}),
+               st_list({"0", "0", "q^2", "0"}), st_list({"0", "0", "0", "q^2"})});
+  auto three = make_model_scenario(p, "st.json");
+  ASSERT_TRUE(three.ok()) << three.error();
 }
 
 TEST(ImmModelStructure, CoupledBlocksAreRefused) {

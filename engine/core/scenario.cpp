@@ -106,7 +106,7 @@ Status finalize_run(RunResult& r, const Scenario& s, bool check_finite) {
     }
     if (st.truth && st.estimate) {
       const std::string key = "rmse." + st.key;
-      if (!r.metrics.count(key)) {
+      if (!r.metrics.count(key) && !r.undefined.count(key)) {  // kept: the scenario's own
         if (count_finite(*st.truth) == 0) {
           r.undefined.emplace(key, "no truth for '" + st.key + "' in the data");
         } else {

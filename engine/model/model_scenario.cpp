@@ -282,19 +282,22 @@ class ModelScenario final : public Scenario {
     if (!r) return r.err();
     model::ModelResult& res = **r;
     Metrics& m = res.metrics;
-    // An angle state's RMSE from the wrapped error (the shared rmse.<state> would not wrap).
-    for (std::size_t i = 0; i < res.n(); ++i) {
-      const Angle a = spec_->states[i].angle;
-      if (a == Angle::kNone || res.truth[i].empty()) continue;
-      std::vector<double> e(res.steps(), kNoSample), zero(res.steps(), 0.0);
-      for (std::size_t k = 0; k < res.steps(); ++k)
-        e[k] = wrap(res.x[i][k] - res.truth[i][k], a);
-      m["rmse." + spec_->states[i].name] = rmse_finite(e, zero);
+    double at = 0.0;  // model.metrics_from: the accuracy and consistency metrics start there
+    const std::size_t from = model::metrics_from_row(*spec_, v, res.t, at);
+    if (from >= res.steps() && from > 0) {
+      ends_before(res, at);
+    } else {
+      state_rmse(res, from);
+      if (spec_->primary.size() > 1) primary_rmse(res, from);
     }
-    if (spec_->primary.size() > 1) primary_rmse(res);
     model::add_gate_metrics(*spec_, res, m, res.undefined);
     model::add_imm_metrics(*spec_, d, res);
-    add_consistency_metrics(res.channels(), res.nees_series(), m, res.undefined);
+    if (from > 0 && from < res.steps()) {
+      add_consistency_metrics(model::channels_from(res.channels(), from),
+                              model::nees_from(res.nees_series(), from), m, res.undefined);
+    } else if (from == 0) {
+      add_consistency_metrics(res.channels(), res.nees_series(), m, res.undefined);
+    }
     if (auto st = model::add_derived(*spec_, v, d, res, &derived_cache_); !st) return st.err();
     model::add_stat_metrics(*spec_, v, res);
     const double dt = d.rows() >= 2 ? d.median_dt() : param(v, spec_->sim_dt_key);
@@ -303,9 +306,34 @@ class ModelScenario final : public Scenario {
   }
 
  private:
+  // rmse.<state> from row `from`: an angle state's from the wrapped error (the shared one would
+  // not wrap); with model.metrics_from every state's here (the shared one counts every row).
+  void state_rmse(model::ModelResult& res, std::size_t from) const {
+    for (std::size_t i = 0; i < res.n(); ++i) {
+      const Angle a = spec_->states[i].angle;
+      if ((a == Angle::kNone && from == 0) || res.truth[i].empty()) continue;
+      std::vector<double> e(res.steps() - from, kNoSample), zero(res.steps() - from, 0.0);
+      for (std::size_t k = from; k < res.steps(); ++k)
+        e[k - from] = wrap(res.x[i][k] - res.truth[i][k], a);
+      res.metrics["rmse." + spec_->states[i].name] = rmse_finite(e, zero);
+    }
+  }
+
+  // A run that ends before model.metrics_from: its accuracy and consistency metrics say so.
+  void ends_before(model::ModelResult& res, double at) const {
+    const std::string why =
+        "the run ends before t = " + model::number(at) + " s (model.metrics_from)";
+    res.undefined.emplace("rmse", why);
+    for (const auto& st : spec_->states)
+      res.undefined.emplace("rmse." + st.name, why);
+    for (const char* k :
+         {"nis_mean", "nis_in_bounds", "nll", "whiteness_p", "nees_mean", "nees_in_bounds"})
+      res.undefined.emplace(k, why);
+  }
+
   // `rmse` of several primary states: sqrt(mean over the steps of Σ err_i²), angles wrapped,
-  // over the steps where every one has an estimate and a truth value.
-  void primary_rmse(model::ModelResult& res) const {
+  // over the steps from `from` where every one has an estimate and a truth value.
+  void primary_rmse(model::ModelResult& res, std::size_t from) const {
     std::vector<std::size_t> idx;
     for (const auto& name : spec_->primary) {
       const auto i = static_cast<std::size_t>(spec_->state_index(name));
@@ -317,7 +345,7 @@ class ModelScenario final : public Scenario {
     }
     double sum = 0.0;
     std::size_t count = 0;
-    for (std::size_t k = 0; k < res.steps(); ++k) {
+    for (std::size_t k = from; k < res.steps(); ++k) {
       double e2 = 0.0;
       for (std::size_t i : idx) {
         const double e = wrap(res.x[i][k] - res.truth[i][k], spec_->states[i].angle);

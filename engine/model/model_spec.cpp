@@ -95,8 +95,8 @@ Status check_noise_version(const Reader& p, const json& j) {
 // lowest version that holds the file, so a version-1 file never needs them).
 Status check_version_keys(const Reader& p, const json& j, int version) {
   if (version >= 2) return Ok{};
-  for (const char* k :
-       {"expressions", "world", "derived", "sim", "plots", "groups", "modes", "metrics"}) {
+  for (const char* k : {"expressions", "world", "derived", "sim", "plots", "groups", "modes",
+                        "metrics", "metrics_from"}) {
     if (j.contains(k))
       return p.error(std::string("model.") + k, "a version-2 key: set \"version\": 2");
   }
@@ -398,10 +398,10 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   const std::string key = "model";
   if (!j.is_object()) return p.error(key, "expected an object");
   if (auto st = p.only_keys(
-          j, key,
-          {"version", "description",  "states", "inputs",  "expressions", "x0",    "P0",
-           "process", "measurements", "truth",  "primary", "filter",      "world", "derived",
-           "noise",   "clocks",       "sim",    "plots",   "groups",      "modes", "metrics"});
+          j, key, {"version", "description", "states",       "inputs",      "expressions", "x0",
+                   "P0",      "process",     "measurements", "truth",       "primary",     "filter",
+                   "world",   "derived",     "noise",        "clocks",      "sim",         "plots",
+                   "groups",  "modes",       "metrics",      "metrics_from"});
       !st) {
     return st.err();
   }
@@ -522,6 +522,12 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
     if (world)
       return p.error("model.metrics", "a world reports no metrics: declare them in the model");
     if (auto st = parse_stat_metrics(p, *it, m); !st) return st.err();
+  }
+  if (auto it = j.find("metrics_from"); it != j.end()) {
+    if (world) return p.error("model.metrics_from", "a world reports no metrics");
+    auto e = p.expr(*it, "model.metrics_from", kParamsOnly, kParamsOnlyWhat);
+    if (!e) return e.err();
+    m.metrics_from = *e;
   }
   return m;
 }

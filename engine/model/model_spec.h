@@ -219,6 +219,7 @@ struct ModelSpec {
   std::vector<DerivedSpec> derived;  // in the order of their names
   // Named statistics of the run's series (version 2, "metrics"), in the order of their names.
   std::vector<StatMetricSpec> stat_metrics;
+  Expr metrics_from;  // model.metrics_from (s, parameters only); empty text: the whole run
   // The plot blocks the file asks for (version 2, model_plots.h), in the file's order.
   std::vector<PlotBlockSpec> plots;
   std::vector<int> truth_slots;  // per state: its truth column's symbol, or -1

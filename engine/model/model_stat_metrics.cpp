@@ -209,20 +209,57 @@ std::vector<MetricSpec> stat_metric_specs(const ModelSpec& spec) {
   return out;
 }
 
-void add_stat_metrics(const ModelSpec& spec, const ParamValues& values, ModelResult& r) {
-  if (spec.stat_metrics.empty()) return;
+namespace {
+
+// A time of parameters only (a metric's `from`, model.metrics_from); −∞ where none is given.
+double time_at(const ModelSpec& spec, const ParamValues& values, const Expr& e) {
+  double from = -std::numeric_limits<double>::infinity();
+  if (e.text.empty()) return from;
+  if (e.dep == Dep::kConst) return e.value;  // a number ("10"): no parser on the run's path
   std::vector<double> vars(spec.symbols.names.size(), 0.0);
   for (std::size_t i = 0; i < spec.param_slots.size(); ++i)
     vars[static_cast<std::size_t>(spec.param_slots[i])] = param(values, spec.param_keys[i]);
+  ExprGroup g;
+  g.add(e.text, &from);
+  if (g.bind(spec.symbols, vars.data()).ok()) g.eval();
+  return from;
+}
+
+template <class V>
+void drop_front(V& v, std::size_t n) {
+  v.erase(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(std::min(n, v.size())));
+}
+
+}  // namespace
+
+std::size_t metrics_from_row(const ModelSpec& spec, const ParamValues& values,
+                             const std::vector<double>& t, double& at) {
+  at = time_at(spec, values, spec.metrics_from);
+  if (!(at > -std::numeric_limits<double>::infinity())) return 0;
+  return static_cast<std::size_t>(std::lower_bound(t.begin(), t.end(), at) - t.begin());
+}
+
+std::vector<InnovationChannel> channels_from(std::vector<InnovationChannel> channels,
+                                             std::size_t from) {
+  for (auto& c : channels) {
+    drop_front(c.nis, from);
+    drop_front(c.normalized, from);
+    drop_front(c.log_det_s, from);
+    drop_front(c.nll, from);
+    for (auto& comp : c.components)
+      drop_front(comp.normalized, from);
+  }
+  return channels;
+}
+
+NeesSeries nees_from(NeesSeries nees, std::size_t from) {
+  drop_front(nees.nees, from);
+  return nees;
+}
+
+void add_stat_metrics(const ModelSpec& spec, const ParamValues& values, ModelResult& r) {
   for (const auto& s : spec.stat_metrics) {
-    double from = -std::numeric_limits<double>::infinity();
-    if (s.from.dep == Dep::kConst && !s.from.text.empty()) {
-      from = s.from.value;  // a number ("10"): no parser on the run's path
-    } else if (!s.from.text.empty()) {
-      ExprGroup g;
-      g.add(s.from.text, &from);
-      if (g.bind(spec.symbols, vars.data()).ok()) g.eval();
-    }
+    const double from = time_at(spec, values, s.from);
     std::vector<double> series;
     std::string what;
     if (const int a = grid_axis_of(spec, s.of, what); a >= 0 && r.imm) {

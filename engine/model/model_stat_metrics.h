@@ -11,6 +11,7 @@
 #include "core/expected.h"
 #include "core/metrics.h"
 #include "core/param_spec.h"
+#include "core/scenario.h"
 #include "model/expression.h"
 
 namespace kfw::model {
@@ -36,5 +37,14 @@ Status parse_stat_metrics(const detail::Reader& p, const nlohmann::json& block, 
 std::vector<MetricSpec> stat_metric_specs(const ModelSpec& spec);
 // After add_derived and add_imm_metrics: each named metric, or why it is undefined.
 void add_stat_metrics(const ModelSpec& spec, const ParamValues& values, ModelResult& r);
+
+// model.metrics_from (version 2): the first row at or after that time (`at`, s; 0 and −∞ when the
+// file has no such key), from which the standard accuracy and consistency metrics count (seed
+// 001's "metrics over t ≥ 10 s"); the innovation channels and the NEES from that row on.
+std::size_t metrics_from_row(const ModelSpec& spec, const ParamValues& values,
+                             const std::vector<double>& t, double& at);
+std::vector<InnovationChannel> channels_from(std::vector<InnovationChannel> channels,
+                                             std::size_t from);
+NeesSeries nees_from(NeesSeries nees, std::size_t from);
 
 }  // namespace kfw::model

@@ -134,5 +134,64 @@ TEST(ImmModelMetrics, MisusesAreRefusedWithTheKey) {
   expect_error(p, "model.metrics", "version-2");
 }
 
+// model.metrics_from: the standard accuracy and consistency metrics count the rows from that time
+// (seed 001's t ≥ 10 s); a run that ends before says so; a version-1 file cannot carry the key.
+TEST(ImmModelMetrics, MetricsFromStartsTheStandardMetrics) {
+  json p = met_preset();
+  p["model"]["metrics_from"] = "t0";
+  auto s = make_model_scenario(p, "m.json");
+  ASSERT_TRUE(s.ok()) << s.error();
+  const ParamValues v = (*s)->params().defaults();
+  auto d = (*s)->simulate(v);
+  ASSERT_TRUE(d.ok()) << d.error();
+  auto run = (*s)->run(*d, v);
+  ASSERT_TRUE(run.ok()) << run.error();
+  const auto& r = dynamic_cast<const model::ModelResult&>(**run);
+  double se = 0.0, nis = 0.0, nees = 0.0;
+  int n = 0, updates = 0;
+  const auto channels = r.channels();
+  const auto ne = r.nees_series();
+  for (std::size_t k = 0; k < r.steps(); ++k) {
+    if (r.t[k] < 5.0) continue;
+    const double e = r.x[0][k] - r.truth[0][k];
+    se += e * e;
+    nees += ne.nees[k];
+    ++n;
+    if (std::isfinite(channels[0].nis[k])) {
+      nis += channels[0].nis[k];
+      ++updates;
+    }
+  }
+  ASSERT_GT(n, 10);
+  EXPECT_NEAR(r.metrics.at("rmse.x"), std::sqrt(se / n), 1e-12);
+  EXPECT_DOUBLE_EQ(r.metrics.at("rmse"), r.metrics.at("rmse.x"));
+  EXPECT_NEAR(r.metrics.at("nis_mean"), nis / updates, 1e-12);
+  EXPECT_NEAR(r.metrics.at("nees_mean"), nees / n / ne.dof, 1e-12);
+  // The same run without the key counts every row: a different number.
+  auto whole = make_model_scenario(met_preset(), "m.json");
+  ASSERT_TRUE(whole.ok());
+  auto all = (*whole)->run(*d, v);
+  ASSERT_TRUE(all.ok());
+  EXPECT_GT(std::fabs((*all)->metrics.at("rmse.x") - r.metrics.at("rmse.x")), 1e-6);
+  // Past the end: undefined, with the reason and the key.
+  ParamValues late = v;
+  late["t0"] = 99.0;
+  auto none = (*s)->run(*d, late);
+  ASSERT_TRUE(none.ok()) << none.error();
+  for (const char* k : {"rmse", "rmse.x", "rmse.v", "nis_mean", "nees_mean", "nll"}) {
+    EXPECT_EQ((*none)->metrics.count(k), 0u) << k;
+    ASSERT_EQ((*none)->undefined.count(k), 1u) << k;
+    EXPECT_EQ((*none)->undefined.at(k), "the run ends before t = 99 s (model.metrics_from)") << k;
+  }
+  json p1 = met_preset();
+  p1["model"]["version"] = 1;
+  p1["model"].erase("metrics");
+  p1["model"].erase("derived");
+  p1["model"]["metrics_from"] = "1";
+  EXPECT_EQ(met_error(p1), "m.json: model.metrics_from: a version-2 key: set \"version\": 2");
+  p["model"]["metrics_from"] = "x";
+  EXPECT_NE(met_error(p).find("model.metrics_from"), std::string::npos) << met_error(p);
+}
+
 }  // namespace
 }  // namespace kfw

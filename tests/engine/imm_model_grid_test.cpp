@@ -3,6 +3,7 @@
 // the true parameter finds it with Kp > 0 under every reading, and not with Kp = 0.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -107,6 +108,29 @@ TEST(ImmModelGrid, RenewalFindsAParameterTheGridMisses) {
       EXPECT_EQ(late->get()->metrics.at("imm.r.final"), still->get()->metrics.at("imm.r.final"));
     }
   }
+}
+
+// Equal ends with several values (a slider passing through equality): the run is valid and says
+// that the grid cannot tell its values apart, naming the keys (as the built-in radome did).
+TEST(ImmModelGrid, EqualEndsAreAWarningNamingTheKeys) {
+  auto s = make_model_scenario(grid_model("index"), "grid.json");
+  ASSERT_TRUE(s.ok()) << s.error();
+  ParamValues v = (*s)->params().defaults();
+  v["sim.duration"] = 5;
+  auto d = (*s)->simulate(v);
+  ASSERT_TRUE(d.ok());
+  v["grid.r.max"] = 2.0;
+  auto r = (*s)->run(*d, v);
+  ASSERT_TRUE(r.ok()) << r.error();
+  const auto& w = r->get()->warnings;
+  const std::string want =
+      "grid.r.min = grid.r.max = 2 with grid.r.n = 5: the 5 values of r are the same, so its "
+      "estimate cannot move";
+  EXPECT_NE(std::find(w.begin(), w.end(), want), w.end());
+  v["grid.r.n"] = 1;  // one mode: nothing to tell apart, no warning
+  auto one = (*s)->run(*d, v);
+  ASSERT_TRUE(one.ok());
+  EXPECT_TRUE(one->get()->warnings.empty());
 }
 
 TEST(ImmModelGrid, RenewalRefusals) {

@@ -512,6 +512,18 @@ Status start_at_centre(Prepared& p, const ModesSpec& ms, const std::vector<Mode>
   return start_from_channel(p, **ev);
 }
 
+// Equal ends with several values on an axis (a slider passing through equality, say) make
+// identical modes: the run is valid, but the grid cannot tell the values apart.
+void warn_equal_ends(const ModesSpec& ms, const ParamValues& v, std::vector<std::string>& out) {
+  for (const GridAxisSpec& a : ms.grid) {
+    const double lo = a.min.at(v), hi = a.max.at(v), n = a.n.at(v);
+    if (lo != hi || n <= 1.0) continue;
+    out.push_back(a.min.key + " = " + a.max.key + " = " + number(lo) + " with " + a.n.key + " = " +
+                  number(n) + ": the " + number(n) + " values of " + a.param +
+                  " are the same, so its estimate cannot move");
+  }
+}
+
 }  // namespace
 
 Status run_imm(Prepared& p, const ParamValues& values) {
@@ -519,6 +531,7 @@ Status run_imm(Prepared& p, const ParamValues& values) {
   const ModesSpec& ms = *spec.modes;
   auto modes = ms.modes(spec, values);
   if (!modes) return modes.err();
+  warn_equal_ends(ms, values, p.ctx->r.warnings);
   if (auto st = start_at_centre(p, ms, *modes, values); !st) return st;
   const int r = static_cast<int>(modes->size());
   Expected<MarkovChain> chain = Error{""};

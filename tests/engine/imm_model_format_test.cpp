@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/scenario.h"
+#include "model/imm/imm_spec.h"
 #include "model/model_result.h"
 #include "model/model_scenario.h"
 
@@ -275,7 +276,8 @@ TEST(ImmModelFormat, TwoAxesShareDeclaredKeysFirstAxisFastest) {
   ASSERT_EQ(res.imm->modes(), 6u);
   EXPECT_EQ(res.imm->axes[0].values, (std::vector<double>{0.1, 1.0, 0.1, 1.0, 0.1, 1.0}));
   EXPECT_EQ(res.imm->axes[1].values, (std::vector<double>{0.1, 0.1, 0.55, 0.55, 1.0, 1.0}));
-  EXPECT_EQ(res.imm->labels[3], "q = 1, r = 0.55");
+  // Each axis's values with as few decimals as tell them apart: q's 0.1 and 1.0, r's 0.55.
+  EXPECT_EQ(res.imm->labels[3], "q = 1.0, r = 0.55");
 }
 
 TEST(ImmModelFormat, AnUnstableUnobservedStateEndsTheRunNamingIt) {
@@ -303,6 +305,23 @@ TEST(ImmModelFormat, AnUnstableUnobservedStateEndsTheRunNamingIt) {
         << r.error();
   }
   EXPECT_EQ(refused_runs, 2);
+}
+
+// Grid values in labels and ticks: the fewest decimals that put every value within a twentieth of
+// the step; one value, or values 10 decimals cannot place, keep number()'s form.
+TEST(ImmModelFormat, GridValuesReadWithTheDecimalsTheirStepNeeds) {
+  using model::grid_decimals;
+  using model::grid_value_text;
+  const auto seven = model::ModesSpec::axis_values(-0.05, 0.05, 7);
+  EXPECT_EQ(grid_decimals(seven), 3);
+  EXPECT_EQ(grid_value_text(seven[1], 3), "-0.033");
+  EXPECT_EQ(grid_value_text(-1e-18, 3), "0.000");  // no "-0.000"
+  EXPECT_EQ(grid_decimals({2.0, 2.5, 3.0}), 1);
+  EXPECT_EQ(grid_decimals({1000.0, 2000.0, 3000.0}), 0);
+  EXPECT_EQ(grid_decimals({0.5}), -1);
+  EXPECT_EQ(grid_value_text(0.5, -1), "0.5");
+  EXPECT_EQ(grid_decimals({0.0, 1e-12}), -1);  // a step below 10 decimals
+  EXPECT_EQ(grid_value_text(1e300, 2), "1e+300");
 }
 
 }  // namespace

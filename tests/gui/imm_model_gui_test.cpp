@@ -1,17 +1,22 @@
 // Issue 28: the IMM panels of a model with modes in the generic view — mode probabilities, the
 // grid's heat map, each axis's estimate — and the grid sliders: changing an axis's n or bounds
-// re-runs the IMM with the new grid (the heat map's size and the lines follow).
+// re-runs the IMM with the new grid (the heat map's size and the lines follow); the heat map's
+// ticks on the grid values, and under renewal lines named by their values at the cursor.
 #include <qcustomplot.h>
 
 #include <gtest/gtest.h>
 
+#include <QRegularExpression>
+#include <QSet>
 #include <QTemporaryDir>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "common/plot_probe.h"
 #include "main_window.h"
 #include "model/model_result.h"
+#include "transport_bar.h"
 
 namespace kfw {
 namespace {
@@ -108,6 +113,68 @@ TEST_F(ImmModelWindow, GridSlidersReRunWithTheNewGrid) {
   ASSERT_TRUE(w.waitForRun());
   EXPECT_DOUBLE_EQ(heat->data()->keyRange().upper, 4.0);
   EXPECT_DOUBLE_EQ(heat->data()->keyRange().lower, 0.1);
+}
+
+// The heat map's ticks sit on the grid's values, each with as few decimals as tell them apart
+// (q: 0.1 … 2 in 4, r: 0.5 … 2 in 3); the 8 lines have 8 different colours.
+TEST_F(ImmModelWindow, HeatMapTicksSitOnTheGridValuesAndLinesDiffer) {
+  QCustomPlot* heat = plotNamed(w, "mode_heatmap");
+  ASSERT_NE(heat, nullptr);
+  const auto ticks = [](QCPAxis* a) {
+    auto t = a->ticker().dynamicCast<QCPAxisTickerText>();
+    return t ? t->ticks() : QMap<double, QString>();
+  };
+  const auto x = ticks(heat->xAxis), y = ticks(heat->yAxis);
+  ASSERT_EQ(x.size(), 4);
+  ASSERT_EQ(y.size(), 3);
+  EXPECT_EQ(x.values(), QList<QString>({"0.10", "0.73", "1.37", "2.00"}));
+  EXPECT_EQ(y.values(), QList<QString>({"0.50", "1.25", "2.00"}));
+  EXPECT_NEAR(x.keys()[1], 0.1 + 1.9 / 3, 1e-12);
+  QCustomPlot* lines = plotNamed(w, "mode_probabilities");
+  ASSERT_NE(lines, nullptr);
+  QSet<QRgb> colours;
+  for (int i = 0; i < lines->graphCount(); ++i)
+    colours.insert(lines->graph(i)->pen().color().rgb());
+  EXPECT_EQ(colours.size(), lines->graphCount());
+  // A fixed grid names its modes by their values, with no time.
+  EXPECT_EQ(lines->graph(0)->name(), "q = 0.10, r = 0.50");
+}
+
+// Under renewal a line stands for its grid values moved to the cursor, and says when.
+TEST(ImmModelWindowRenewal, LinesAreNamedByTheirValuesAtTheCursor) {
+  QTemporaryDir dir;
+  ASSERT_TRUE(dir.isValid());
+  json p = grid_preset();
+  p["model"]["modes"]["renewal"] = {{"gain", 0.0}, {"start", 0.0}, {"mode", "index"}};
+  const QString path = dir.filePath("renew.json");
+  std::ofstream(path.toStdString()) << p.dump(2);
+  MainWindow w;
+  ASSERT_TRUE(w.loadPreset(path, {}, {"Kp=0.05"}).ok());
+  ASSERT_TRUE(w.waitForRun());
+  auto r = std::dynamic_pointer_cast<const model::ModelResult>(w.result());
+  ASSERT_TRUE(r && r->imm);
+  const auto& q = r->imm->axes[0];
+  ASSERT_GT(std::fabs(q.centre.back() - q.centre.front()), 0.01);  // the grid moved
+  QCustomPlot* lines = plotNamed(w, "mode_probabilities");
+  ASSERT_NE(lines, nullptr);
+  for (std::size_t k : {r->steps() - 1, r->steps() / 2}) {
+    w.transport()->seek(k);
+    const std::size_t at = w.transport()->index();
+    static const QRegularExpression re(R"(^q = (-?[0-9.]+), r = (-?[0-9.]+) at t = ([0-9.]+) s$)");
+    int named = 0;
+    for (int i = 0; i < lines->graphCount(); ++i) {
+      const auto m = re.match(lines->graph(i)->name());
+      ASSERT_TRUE(m.hasMatch()) << lines->graph(i)->name().toStdString();
+      EXPECT_NEAR(m.captured(3).toDouble(), r->t[at], 0.051);
+      const double shift = q.centre[at] - q.centre.front();
+      bool some_mode = false;  // the value is one of the grid's, moved by the shift
+      for (double v : q.values)
+        some_mode = some_mode || std::fabs(m.captured(1).toDouble() - (v + shift)) < 0.006;
+      EXPECT_TRUE(some_mode) << lines->graph(i)->name().toStdString();
+      ++named;
+    }
+    EXPECT_EQ(named, 8);
+  }
 }
 
 }  // namespace

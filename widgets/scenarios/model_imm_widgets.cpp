@@ -13,10 +13,35 @@ namespace kfw {
 namespace {
 
 constexpr std::size_t kMaxModeLines = 8;
-constexpr double kLogMuFloor = -8.0;  // log₁₀ μ below this is drawn as the floor
+constexpr double kLogMuFloor = -8.0;    // log₁₀ μ below this is drawn as the floor
+constexpr std::size_t kMaxTicked = 15;  // up to this many values on a heat-map axis: a tick each
 
 QString q(const std::string& s) {
   return QString::fromStdString(s);
+}
+
+// How far renewal has moved an axis's grid at step k (0 for a grid that stays).
+double shift_at(const model::ImmSeries::Axis& a, std::size_t k) {
+  return a.centre.size() > k && std::isfinite(a.centre[k]) ? a.centre[k] - a.centre.front() : 0.0;
+}
+
+bool moves(const model::ImmSeries::Axis& a) {
+  return std::any_of(a.centre.begin(), a.centre.end(),
+                     [&](double c) { return std::isfinite(c) && c != a.centre.front(); });
+}
+
+// Ticks at an axis's grid values (moved to step k) for a small grid, the normal ticker otherwise.
+void grid_ticks(QCPAxis* axis, const std::vector<double>& values, double shift, int decimals,
+                const QSharedPointer<QCPAxisTickerText>& text,
+                const QSharedPointer<QCPAxisTicker>& normal) {
+  if (values.size() > kMaxTicked) {
+    if (axis->ticker() != normal) axis->setTicker(normal);
+    return;
+  }
+  text->clear();
+  for (double v : values)
+    text->addTick(v + shift, q(model::grid_value_text(v + shift, decimals)));
+  if (axis->ticker() != text) axis->setTicker(text);
 }
 
 }  // namespace
@@ -50,6 +75,11 @@ void ImmPanels::create(QWidget* parent, const ModelLayout& layout, QList<PlotPan
     heat_map_->setGradient(QCPColorGradient(QCPColorGradient::gpThermal));
     heat_map_->setInterpolate(false);
     heat_map_->setDataRange(QCPRange(kLogMuFloor, 0.0));
+    for (int i = 0; i < 2; ++i) {
+      text_ticker_[i].reset(new QCPAxisTickerText);
+      text_ticker_[i]->setSubTickCount(0);
+      normal_ticker_[i].reset(new QCPAxisTicker);
+    }
     out.push_back({"mode_heatmap", "Mode probabilities on the grid", heat_});
   }
   for (const auto& g : layout.grid) {
@@ -92,13 +122,22 @@ void ImmPanels::setResult(const model::ModelResult& r) {
                    [&](std::size_t a, std::size_t b) { return mean[a] > mean[b]; });
   if (order.size() > kMaxModeLines) order.resize(kMaxModeLines);
   std::sort(order.begin(), order.end());
+  line_modes_ = order;
   for (std::size_t j : order) {
     std::vector<double> mu(steps);
     for (std::size_t k = 0; k < steps; ++k)
       mu[k] = imm.mu_at(k, j);
     mu_.push_back(std::move(mu));
+    // Colours by the line's place, not the mode's index: 8 lines, 8 different colours.
     graphs_.push_back(plot::addGraph(lines_, q(imm.labels[j]),
-                                     plot::color::cycle(static_cast<int>(j)), plot::Style::kLine));
+                                     plot::color::cycle(static_cast<int>(graphs_.size())),
+                                     plot::Style::kLine));
+  }
+  decimals_.clear();
+  moving_ = false;
+  for (const auto& a : imm.axes) {
+    decimals_.push_back(model::grid_decimals(a.values));
+    moving_ = moving_ || moves(a);
   }
   if (heat_map_ && imm.axes.size() == 2) {
     heat_map_->data()->setSize(static_cast<int>(imm.axes[0].n), static_cast<int>(imm.axes[1].n));
@@ -128,6 +167,7 @@ void ImmPanels::draw(const plot::Frame& f, std::size_t index) {
   const model::ModelResult& r = *result_;
   for (std::size_t g = 0; g < graphs_.size(); ++g)
     plot::setSeries(graphs_[g], r.t, mu_[g], f.n);
+  if (moving_) nameLinesAt(std::min(index, r.steps() - 1));
   plot::rescale(lines_, f.t0, f.t1, f.settle());
   lines_->yAxis->setRange(0.0, 1.0);
   plot::setCursorAt(lines_cursor_, f.tc, !f.all);
@@ -150,6 +190,23 @@ void ImmPanels::draw(const plot::Frame& f, std::size_t index) {
   }
 }
 
+// Under renewal a mode stands for its grid value moved to the shown step: the legend says which
+// value, and when.
+void ImmPanels::nameLinesAt(std::size_t k) {
+  const model::ImmSeries& imm = *result_->imm;
+  for (std::size_t g = 0; g < graphs_.size(); ++g) {
+    const std::size_t j = line_modes_[g];
+    QString name;
+    for (std::size_t a = 0; a < imm.axes.size(); ++a) {
+      const auto& axis = imm.axes[a];
+      if (j >= axis.values.size()) return;
+      name += (a ? ", " : "") + q(axis.label) + " = " +
+              q(model::grid_value_text(axis.values[j] + shift_at(axis, k), decimals_[a]));
+    }
+    graphs_[g]->setName(name + QString(" at t = %1 s").arg(result_->t[k], 0, 'f', 1));
+  }
+}
+
 // μ on the grid at step k: cell (i₀, i₁) is mode i₀ + n₀ i₁ (the first axis fastest).
 void ImmPanels::drawHeatMap(std::size_t k) {
   const model::ImmSeries& imm = *result_->imm;
@@ -159,10 +216,7 @@ void ImmPanels::drawHeatMap(std::size_t k) {
   const auto& v0 = imm.axes[0].values;
   const auto& v1 = imm.axes[1].values;
   // The grid at step k: moved by renewal from its first values.
-  const auto shift = [k](const model::ImmSeries::Axis& a) {
-    return a.centre.size() > k ? a.centre[k] - a.centre.front() : 0.0;
-  };
-  const double s0 = shift(imm.axes[0]), s1 = shift(imm.axes[1]);
+  const double s0 = shift_at(imm.axes[0], k), s1 = shift_at(imm.axes[1], k);
   const double a0 = v0.front() + s0, a1 = v0[static_cast<std::size_t>(n0 - 1)] + s0;
   const double b0 = v1.front() + s1, b1 = v1.back() + s1;
   d->setRange(QCPRange(a0, a1 > a0 ? a1 : a0 + 1e-9), QCPRange(b0, b1 > b0 ? b1 : b0 + 1e-9));
@@ -174,6 +228,12 @@ void ImmPanels::drawHeatMap(std::size_t k) {
   }
   const double h0 = n0 > 1 ? (a1 - a0) / (2.0 * (n0 - 1)) : 0.5 * std::max(std::abs(a0), 1e-3);
   const double h1 = n1 > 1 ? (b1 - b0) / (2.0 * (n1 - 1)) : 0.5 * std::max(std::abs(b0), 1e-3);
+  const std::vector<double> g0(v0.begin(), v0.begin() + n0);  // the first axis varies fastest
+  std::vector<double> g1;
+  for (int i1 = 0; i1 < n1; ++i1)
+    g1.push_back(v1[static_cast<std::size_t>(i1 * n0)]);
+  grid_ticks(heat_->xAxis, g0, s0, decimals_[0], text_ticker_[0], normal_ticker_[0]);
+  grid_ticks(heat_->yAxis, g1, s1, decimals_[1], text_ticker_[1], normal_ticker_[1]);
   if (!plot::userZoomedX(heat_)) heat_->xAxis->setRange(a0 - h0, a1 + h0);
   if (!plot::userZoomedY(heat_)) heat_->yAxis->setRange(b0 - h1, b1 + h1);
   plot::replot(heat_);

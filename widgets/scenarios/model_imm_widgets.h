@@ -3,13 +3,16 @@
 // bigger grid), for a two-axis grid the probabilities on the grid at the replay cursor (a heat
 // map, log₁₀ μ), and per grid axis the μ-weighted estimate over time with the grid's ends and the
 // truth when mapped. Laid out from the model; rebuilt at each result, so a grid's n or bounds
-// redraw the lines and the heat map's cells.
+// redraw the lines and the heat map's cells. Grid values read as few decimals as tell them apart
+// (model::grid_value_text); under renewal the lines are named by their values at the cursor.
 #pragma once
 
 #include <QList>
+#include <QSharedPointer>
 #include <memory>
 #include <vector>
 
+#include "model/imm/imm_spec.h"
 #include "model/model_result.h"
 #include "model/model_scenario.h"
 #include "plot_blocks.h"
@@ -18,6 +21,8 @@
 class QCustomPlot;
 class QCPGraph;
 class QCPColorMap;
+class QCPAxisTicker;
+class QCPAxisTickerText;
 class QCPItemStraightLine;
 class QWidget;
 
@@ -38,12 +43,18 @@ class ImmPanels {
     std::vector<double> lo_v, hi_v;
   };
   void drawHeatMap(std::size_t k);
+  void nameLinesAt(std::size_t k);
 
   const model::ModelResult* result_ = nullptr;
   QCustomPlot* lines_ = nullptr;
   QCPItemStraightLine* lines_cursor_ = nullptr;
   std::vector<QCPGraph*> graphs_;
   std::vector<std::vector<double>> mu_;
+  std::vector<std::size_t> line_modes_;  // per line: its mode
+  std::vector<int> decimals_;            // per grid axis: grid_decimals of its values
+  bool moving_ = false;                  // renewal moves the grid in this result
+  QSharedPointer<QCPAxisTickerText> text_ticker_[2];
+  QSharedPointer<QCPAxisTicker> normal_ticker_[2];
   QCustomPlot* heat_ = nullptr;
   QCPColorMap* heat_map_ = nullptr;
   std::vector<Axis> axes_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -27,6 +28,32 @@ RenewalReading RenewalSpec::at(const ParamValues& v) const {
   if (it == v.end() || !(it->second >= 0.0)) return fixed;
   const auto i = static_cast<std::size_t>(it->second);
   return i < by_choice.size() ? by_choice[i] : fixed;
+}
+
+int grid_decimals(const std::vector<double>& values) {
+  double step = 0.0;
+  for (std::size_t i = 1; i < values.size(); ++i) {
+    const double d = std::fabs(values[i] - values[i - 1]);
+    if (d > 0.0 && (step == 0.0 || d < step)) step = d;
+  }
+  if (!(step > 0.0) || !std::isfinite(step)) return -1;
+  for (int d = 0; d <= 10; ++d) {
+    const double unit = std::pow(10.0, -d);
+    bool close = true;
+    for (double v : values)
+      close = close && std::fabs(std::round(v / unit) * unit - v) <= step / 20.0;
+    if (close) return d;
+  }
+  return -1;
+}
+
+std::string grid_value_text(double v, int decimals) {
+  if (decimals < 0 || !std::isfinite(v) || std::fabs(v) >= 1e15) return number(v);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  std::string s = buf;
+  if (s.find_first_not_of("-0.") == std::string::npos && s[0] == '-') s.erase(0, 1);  // "-0.000"
+  return s;
 }
 
 std::vector<double> ModesSpec::axis_values(double min, double max, int n) {
@@ -67,6 +94,9 @@ Expected<std::vector<Mode>> ModesSpec::modes(const ModelSpec& base, const ParamV
                    std::to_string(limits::kMaxModes) + " modes (docs/limits.md)"};
     }
   }
+  std::vector<int> decimals;
+  for (const auto& values : axes)
+    decimals.push_back(grid_decimals(values));
   for (std::size_t j = 0; j < count; ++j) {
     Mode mode{"g" + std::to_string(j), "", v, &base, {}};
     std::size_t rest = j;
@@ -77,7 +107,7 @@ Expected<std::vector<Mode>> ModesSpec::modes(const ModelSpec& base, const ParamV
       mode.values[grid[a].param] = value;
       mode.grid.push_back(value);
       mode.grid_index.push_back(i);
-      mode.label += (a ? ", " : "") + grid[a].label + " = " + number(value);
+      mode.label += (a ? ", " : "") + grid[a].label + " = " + grid_value_text(value, decimals[a]);
     }
     out.push_back(std::move(mode));
   }

@@ -96,6 +96,12 @@ struct ModesSpec {
   static std::vector<double> axis_values(double min, double max, int n);
 };
 
+// A grid axis's values as labels and ticks show them: the fewest decimals (0 to 10) that put every
+// value within a twentieth of the axis's step (seed 001's 7 slopes on [−0.05, 0.05]: "-0.033");
+// −1 where no step exists (one value) or 10 decimals are not enough, then number()'s form.
+int grid_decimals(const std::vector<double>& values);
+std::string grid_value_text(double v, int decimals);
+
 namespace detail {
 class Reader;
 // Parses model.modes of the block `model` (its keys sorted): `base` is the model parsed so far

@@ -138,6 +138,26 @@ TEST_F(ImmModelWindow, HeatMapTicksSitOnTheGridValuesAndLinesDiffer) {
   EXPECT_EQ(colours.size(), lines->graphCount());
   // A fixed grid names its modes by their values, with no time.
   EXPECT_EQ(lines->graph(0)->name(), "q = 0.10, r = 0.50");
+  // The note at the cursor (the last step): the time, the most probable mode, the estimate; no
+  // truth (these axes map none).
+  auto r = std::dynamic_pointer_cast<const model::ModelResult>(w.result());
+  ASSERT_TRUE(r && r->imm);
+  const std::size_t k = r->steps() - 1;
+  std::size_t best = 0;
+  for (std::size_t j = 0; j < r->imm->modes(); ++j) {
+    if (r->imm->mu_at(k, j) > r->imm->mu_at(k, best)) best = j;
+  }
+  QCPItemText* note = nullptr;  // the first text item (the plot kit adds a readout after it)
+  for (int i = 0; i < heat->itemCount() && !note; ++i)
+    note = qobject_cast<QCPItemText*>(heat->item(i));
+  ASSERT_NE(note, nullptr);
+  const QString want = QString("t = %1 s   max μ = %2 at (%3, %4)\nestimate (")
+                           .arg(r->t[k], 0, 'f', 2)
+                           .arg(r->imm->mu_at(k, best), 0, 'f', 3)
+                           .arg(x.values()[static_cast<int>(best % 4)])
+                           .arg(y.values()[static_cast<int>(best / 4)]);
+  EXPECT_TRUE(note->text().startsWith(want)) << note->text().toStdString();
+  EXPECT_FALSE(note->text().contains("truth")) << note->text().toStdString();
 }
 
 // Under renewal a line stands for its grid values moved to the cursor, and says when.

@@ -80,6 +80,12 @@ void ImmPanels::create(QWidget* parent, const ModelLayout& layout, QList<PlotPan
       text_ticker_[i]->setSubTickCount(0);
       normal_ticker_[i].reset(new QCPAxisTicker);
     }
+    info_ = new QCPItemText(heat_);
+    info_->position->setType(QCPItemPosition::ptAxisRectRatio);
+    info_->position->setCoords(0.02, 0.03);
+    info_->setPositionAlignment(Qt::AlignLeft | Qt::AlignTop);
+    info_->setBrush(QBrush(QColor(255, 255, 255, 210)));
+    info_->setPadding(QMargins(4, 2, 4, 2));
     out.push_back({"mode_heatmap", "Mode probabilities on the grid", heat_});
   }
   for (const auto& g : layout.grid) {
@@ -207,6 +213,34 @@ void ImmPanels::nameLinesAt(std::size_t k) {
   }
 }
 
+// The heat map's note at step k: the time, the most probable mode and its values, the IMM
+// estimate of each axis and, where both axes have one, the truth.
+QString ImmPanels::heatInfo(std::size_t k) const {
+  const model::ImmSeries& imm = *result_->imm;
+  std::size_t best = 0;
+  double top = -1.0;
+  for (std::size_t j = 0; j < imm.modes(); ++j) {
+    const double m = imm.mu_at(k, j);
+    if (m > top) top = m, best = j;
+  }
+  const auto pair = [&](double a, double b) {
+    return QString("(%1, %2)")
+        .arg(q(model::grid_value_text(a, decimals_[0])),
+             q(model::grid_value_text(b, decimals_[1])));
+  };
+  const auto& a = imm.axes[0];
+  const auto& b = imm.axes[1];
+  QString text = QString("t = %1 s   ").arg(result_->t[k], 0, 'f', 2);
+  text += top >= 0.0
+              ? QString("max μ = %1 at %2")
+                    .arg(top, 0, 'f', 3)
+                    .arg(pair(a.values[best] + shift_at(a, k), b.values[best] + shift_at(b, k)))
+              : QString("no μ");
+  text += "\nestimate " + pair(a.estimate[k], b.estimate[k]);
+  if (a.truth.size() > k && b.truth.size() > k) text += "   truth " + pair(a.truth[k], b.truth[k]);
+  return text;
+}
+
 // μ on the grid at step k: cell (i₀, i₁) is mode i₀ + n₀ i₁ (the first axis fastest).
 void ImmPanels::drawHeatMap(std::size_t k) {
   const model::ImmSeries& imm = *result_->imm;
@@ -234,6 +268,7 @@ void ImmPanels::drawHeatMap(std::size_t k) {
     g1.push_back(v1[static_cast<std::size_t>(i1 * n0)]);
   grid_ticks(heat_->xAxis, g0, s0, decimals_[0], text_ticker_[0], normal_ticker_[0]);
   grid_ticks(heat_->yAxis, g1, s1, decimals_[1], text_ticker_[1], normal_ticker_[1]);
+  info_->setText(heatInfo(k));
   if (!plot::userZoomedX(heat_)) heat_->xAxis->setRange(a0 - h0, a1 + h0);
   if (!plot::userZoomedY(heat_)) heat_->yAxis->setRange(b0 - h1, b1 + h1);
   plot::replot(heat_);

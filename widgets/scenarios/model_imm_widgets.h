@@ -9,6 +9,7 @@
 
 #include <QList>
 #include <QSharedPointer>
+#include <QString>
 #include <memory>
 #include <vector>
 
@@ -21,6 +22,7 @@
 class QCustomPlot;
 class QCPGraph;
 class QCPColorMap;
+class QCPItemText;
 class QCPAxisTicker;
 class QCPAxisTickerText;
 class QCPItemStraightLine;
@@ -44,6 +46,7 @@ class ImmPanels {
   };
   void drawHeatMap(std::size_t k);
   void nameLinesAt(std::size_t k);
+  QString heatInfo(std::size_t k) const;
 
   const model::ModelResult* result_ = nullptr;
   QCustomPlot* lines_ = nullptr;
@@ -57,6 +60,7 @@ class ImmPanels {
   QSharedPointer<QCPAxisTicker> normal_ticker_[2];
   QCustomPlot* heat_ = nullptr;
   QCPColorMap* heat_map_ = nullptr;
+  QCPItemText* info_ = nullptr;  // the heat map's note: time, top mode, estimate, truth
   std::vector<Axis> axes_;
 };
 

@@ -239,7 +239,7 @@ class ModelScenario final : public Scenario {
   Expected<Dataset> simulate(const ParamValues& v) const override {
     if (auto st = params().check(v); !st) return st.err();
     // A world block generates the data; without one the model simulates itself.
-    return model::simulate_model(spec_->world ? *spec_->world : *spec_, v,
+    return model::simulate_model(spec_->world ? *spec_->world : *spec_, with_mode_params(v),
                                  "model '" + title_ + "'");
   }
 
@@ -267,9 +267,10 @@ class ModelScenario final : public Scenario {
   }
 
  protected:
-  Expected<std::shared_ptr<RunResult>> run_impl(const Dataset& d, const ParamValues& v,
+  Expected<std::shared_ptr<RunResult>> run_impl(const Dataset& d, const ParamValues& checked,
                                                 const RunControl& control) const override {
-    if (auto st = params().check(v); !st) return st.err();
+    if (auto st = params().check(checked); !st) return st.err();
+    const ParamValues v = with_mode_params(checked);
     if (auto st = require_columns(d, columns()); !st) return st.err();
     model::FilterOptions o;
     auto kind = model::filter_kind(table_.format("filter", param(v, "filter")));
@@ -306,6 +307,14 @@ class ModelScenario final : public Scenario {
   }
 
  private:
+  // The values with the grid's mode parameters (no slider) at their grid's centre.
+  ParamValues with_mode_params(const ParamValues& v) const {
+    if (spec_->mode_params.empty() || !spec_->modes) return v;
+    ParamValues all = v;
+    spec_->modes->set_mode_params(*spec_, all);
+    return all;
+  }
+
   // rmse.<state> from row `from`: an angle state's from the wrapped error (the shared one would
   // not wrap); with model.metrics_from every state's here (the shared one counts every row).
   void state_rmse(model::ModelResult& res, std::size_t from) const {
@@ -387,8 +396,9 @@ class ModelScenario final : public Scenario {
   mutable model::DerivedCache derived_cache_;  // series that read no estimate, between runs
 };
 
-Expected<Metrics> ModelScenario::gain(const ParamValues& v, const Dataset* data) const {
-  if (auto st = params().check(v); !st) return st.err();
+Expected<Metrics> ModelScenario::gain(const ParamValues& checked, const Dataset* data) const {
+  if (auto st = params().check(checked); !st) return st.err();
+  const ParamValues v = with_mode_params(checked);
   const model::ModelSpec& s = *spec_;
   if (!s.time_invariant()) {
     return Error{s.path + ": no steady-state gain: the model is not linear time-invariant (F, B, " +
@@ -554,7 +564,8 @@ Expected<std::unique_ptr<Scenario>> make_model_scenario(const OJson& preset,
   auto shared = std::make_shared<const model::ModelSpec>(std::move(*spec));
   // P0, Q, R and Qc that depend on parameters only must be PSD at the preset's values, and a Q
   // or R that depends on dt at sim.dt.
-  const ParamValues defaults = table.defaults();
+  ParamValues defaults = table.defaults();
+  if (shared->modes) shared->modes->set_mode_params(*shared, defaults);
   auto ev = model::ModelEval::create(*shared, defaults);
   if (!ev) return ev.err();
   if (shared->world) {

@@ -106,6 +106,27 @@ Status check_version_keys(const Reader& p, const json& j, int version) {
   return check_noise_version(p, j);
 }
 
+// Grid axes over a name the preset does not declare (model.modes.grid[i].param): a symbol of the
+// expressions, set by the modes (and to the grid's centre outside them), with no slider.
+Status add_mode_params(const Reader& p, const json& j, const ParamTable& params, ModelSpec& m) {
+  const auto modes = j.find("modes");
+  if (modes == j.end() || !modes->is_object() || !modes->contains("grid")) return Ok{};
+  const json& grid = (*modes)["grid"];
+  if (!grid.is_array()) return Ok{};  // parse_modes says what is wrong
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    if (!grid[i].is_object() || !grid[i].contains("param") || !grid[i]["param"].is_string())
+      continue;
+    const std::string name = grid[i]["param"].get<std::string>();
+    if (params.find(name) || m.symbols.find(name) >= 0) continue;
+    const std::string key = idx("model.modes.grid", i) + ".param";
+    if (auto st = check_name(p, m.symbols, name, key); !st) return st;
+    m.param_slots.push_back(m.symbols.add(name, kParamSymbol));
+    m.param_keys.push_back(name);
+    m.mode_params.push_back(name);
+  }
+  return Ok{};
+}
+
 // "sim": {"dt": "sim.Ts"}: the declared parameter that is the simulation's step.
 Status parse_sim_keys(const Reader& p, const json& j, const ParamTable& params, ModelSpec& m) {
   auto it = j.find("sim");
@@ -426,6 +447,8 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   }
   if (world) {
     if (auto st = add_sim_symbols(p, params, m); !st) return st.err();
+  } else if (auto st = add_mode_params(p, j, params, m); !st) {
+    return st.err();
   }
   m.dt_slot = m.symbols.add("dt", kDtSymbol);
   m.t_slot = m.symbols.add("t", kTimeSymbol);

@@ -219,6 +219,8 @@ struct ModelSpec {
   std::vector<DerivedSpec> derived;  // in the order of their names
   // Named statistics of the run's series (version 2, "metrics"), in the order of their names.
   std::vector<StatMetricSpec> stat_metrics;
+  // Grid axes over names the preset does not declare (imm_spec.h): symbols the modes set.
+  std::vector<std::string> mode_params;
   Expr metrics_from;  // model.metrics_from (s, parameters only); empty text: the whole run
   // The plot blocks the file asks for (version 2, model_plots.h), in the file's order.
   std::vector<PlotBlockSpec> plots;

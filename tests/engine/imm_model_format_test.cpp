@@ -324,5 +324,44 @@ TEST(ImmModelFormat, GridValuesReadWithTheDecimalsTheirStepNeeds) {
   EXPECT_EQ(grid_value_text(1e300, 2), "1e+300");
 }
 
+// A grid over a name the preset does not declare (a mode parameter): a symbol of the expressions
+// with no slider, its gained keys ranging over three times the span, its value outside the modes
+// the grid's centre; a name that is taken or not a name is refused naming the key.
+TEST(ImmModelFormat, AGridOverAnUndeclaredNameIsAModeParameter) {
+  json p = imm_base_preset();
+  p["model"]["measurements"]["pos"]["R"] = fmt_list({"(r*s)^2"});
+  p["model"]["modes"] = {
+      {"grid", {{{"param", "s"}, {"min", 0.5}, {"max", 1.5}, {"n", 3}, {"unit", "m/m"}}}}};
+  auto sc = make_model_scenario(p, "m.json");
+  ASSERT_TRUE(sc.ok()) << sc.error();
+  const ParamTable& t = (*sc)->params();
+  EXPECT_EQ(t.find("s"), nullptr);  // no slider
+  ASSERT_NE(t.find("grid.s.min"), nullptr);
+  EXPECT_DOUBLE_EQ(t.find("grid.s.min")->min, -1.0);  // [0.5 − 1.5, 1.5 + 1.5]
+  EXPECT_DOUBLE_EQ(t.find("grid.s.max")->max, 3.0);
+  ParamValues v = t.defaults();
+  auto d = (*sc)->simulate(v);  // the model simulates itself at s = 1, the centre
+  ASSERT_TRUE(d.ok()) << d.error();
+  auto r = (*sc)->run(*d, v);
+  ASSERT_TRUE(r.ok()) << r.error();
+  const auto& res = dynamic_cast<const model::ModelResult&>(**r);
+  ASSERT_EQ(res.imm->axes.size(), 1u);
+  EXPECT_EQ(res.imm->axes[0].values, (std::vector<double>{0.5, 1.0, 1.5}));
+  EXPECT_EQ(res.imm->axes[0].unit, "m/m");
+  EXPECT_EQ(res.imm->labels[2], "s = 1.5");
+  v["grid.s.min"] = 0.9;  // the keys move the grid
+  r = (*sc)->run(*d, v);
+  ASSERT_TRUE(r.ok()) << r.error();
+  EXPECT_EQ(dynamic_cast<const model::ModelResult&>(**r).imm->axes[0].values.front(), 0.9);
+  // --set of the mode parameter itself: not a key.
+  ParamValues bad = t.defaults();
+  bad["s"] = 1.0;
+  EXPECT_FALSE((*sc)->run(*d, bad).ok());
+  p["model"]["modes"]["grid"][0]["param"] = "t";
+  EXPECT_EQ(imm_load_error(p), "m.json: model.modes.grid[0].param: 't' is reserved");
+  p["model"]["modes"]["grid"][0]["param"] = "x";  // a state's name: taken when the states come
+  EXPECT_NE(imm_load_error(p).find("model.states"), std::string::npos) << imm_load_error(p);
+}
+
 }  // namespace
 }  // namespace kfw

@@ -56,6 +56,14 @@ std::string grid_value_text(double v, int decimals) {
   return s;
 }
 
+void ModesSpec::set_mode_params(const ModelSpec& base, ParamValues& v) const {
+  for (const std::string& name : base.mode_params) {
+    for (const GridAxisSpec& a : grid) {
+      if (a.param == name) v[name] = 0.5 * (a.min.at(v) + a.max.at(v));
+    }
+  }
+}
+
 std::vector<double> ModesSpec::axis_values(double min, double max, int n) {
   if (n <= 1) return {0.5 * (min + max)};
   std::vector<double> g(static_cast<std::size_t>(n));
@@ -171,6 +179,30 @@ Expected<ParamRef> gained_ref(const Reader& p, const json& j, const std::string&
   return ParamRef{spec.key, v};
 }
 
+// The parameter an axis runs over: a declared one, or a mode parameter (a name the preset does not
+// declare: a symbol only the modes set, no slider), whose gained grid keys range over three times
+// the axis's span around it.
+Expected<ParamSpec> axis_parameter(const Reader& p, const json& a, const std::string& akey,
+                                   const std::string& name, const ParamTable& params) {
+  if (const ParamSpec* ps = params.find(name)) return *ps;
+  ParamSpec ps;
+  ps.key = name;
+  ps.label = name;
+  ps.group = "IMM";
+  double lo = 0.0, hi = 0.0;
+  for (auto [end, out] : {std::pair{"min", &lo}, std::pair{"max", &hi}}) {
+    auto r = a.contains(end)
+                 ? param_ref(p, a[end], akey + "." + end, params)
+                 : Expected<ParamRef>(p.error(akey, std::string("missing key '") + end + "'"));
+    if (!r) return r.err();
+    *out = r->key.empty() ? r->value : params.find(r->key)->def;
+  }
+  const double span = std::max({std::fabs(hi - lo), std::fabs(lo), std::fabs(hi), 1e-9});
+  ps.min = std::min(lo, hi) - span;
+  ps.max = std::max(lo, hi) + span;
+  return ps;
+}
+
 Status parse_grid(const Reader& p, const json& j, const ParamTable& params, const ModelSpec& base,
                   ModesSpec& out) {
   const std::string key = "model.modes.grid";
@@ -180,14 +212,16 @@ Status parse_grid(const Reader& p, const json& j, const ParamTable& params, cons
     const std::string akey = idx(key, i);
     const json& a = j[i];
     if (!a.is_object()) return p.error(akey, "expected {\"param\", \"min\", \"max\", \"n\"}");
-    if (auto st = p.only_keys(a, akey, {"param", "min", "max", "n", "label", "truth"}); !st)
+    if (auto st = p.only_keys(a, akey, {"param", "min", "max", "n", "label", "truth", "unit"}); !st)
       return st;
     GridAxisSpec ax;
     auto name = p.string(a, "param", akey, true);
     if (!name) return name.err();
     if (auto st = model_parameter(p, akey + ".param", *name, base, params); !st) return st;
     if (!seen.insert(*name).second) return p.error(akey + ".param", "'" + *name + "' twice");
-    const ParamSpec& ps = *params.find(*name);
+    auto found = axis_parameter(p, a, akey, *name, params);
+    if (!found) return found.err();
+    const ParamSpec& ps = *found;
     ax.param = *name;
     auto label = p.string(a, "label", akey, false, *name);
     auto truth = p.string(a, "truth", akey, false);
@@ -195,7 +229,9 @@ Status parse_grid(const Reader& p, const json& j, const ParamTable& params, cons
     if (!truth) return truth.err();
     ax.label = *label;
     ax.truth = *truth;
-    ax.unit = ps.unit;
+    auto unit = p.string(a, "unit", akey, false, ps.unit);
+    if (!unit) return unit.err();
+    ax.unit = *unit;
     const std::string g = "grid." + *name + ".";
     for (const char* end : {"min", "max", "n"}) {
       if (!a.contains(end)) return p.error(akey, std::string("missing key '") + end + "'");

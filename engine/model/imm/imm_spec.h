@@ -94,6 +94,9 @@ struct ModesSpec {
   Expected<std::vector<Mode>> modes(const ModelSpec& base, const ParamValues& v) const;
   // Each grid axis's values at v (min + i·(max − min)/(n − 1); the mid-point when n = 1).
   static std::vector<double> axis_values(double min, double max, int n);
+  // A grid over a mode parameter (ModelSpec::mode_params, no slider): outside the modes — a
+  // self-simulation, x0, the base evaluator — it takes its grid's centre at v.
+  void set_mode_params(const ModelSpec& base, ParamValues& v) const;
 };
 
 // A grid axis's values as labels and ticks show them: the fewest decimals (0 to 10) that put every

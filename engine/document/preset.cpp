@@ -355,8 +355,12 @@ Expected<Preset> preset_from_json(const OJson& j, const std::string& path) {
     if (p.sim_x0_from_prior) {
       auto drawn = p.instance->with_x0_from_prior();
       if (!drawn) {
-        return Error{path + ": sim.x0_from_prior: scenario '" + p.instance->name() +
-                     "' cannot draw its initial state from the filter's prior"};
+        const std::string who = p.instance->name() == "model"
+                                    ? "the model's world simulates its own initial state and the "
+                                      "filter starts from a channel's first sample, so it "
+                                    : "scenario '" + p.instance->name() + "' ";
+        return Error{path + ": sim.x0_from_prior: " + who +
+                     "cannot draw its initial state from the filter's prior"};
       }
       p.instance = std::move(drawn);
     }

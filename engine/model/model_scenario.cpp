@@ -229,7 +229,13 @@ class ModelScenario final : public Scenario {
 
   // The simulator already draws x0 ~ N(x0, P0); the filter's prior mean becomes the x0
   // expressions (a `first` sample would make the prior depend on the simulated data).
+  // Not where a world simulates the truth and the filter starts at a channel's first sample
+  // (`{"first": "CHANNEL.COMPONENT"}`, seed 001): the world's initial state is its own, and the
+  // filter has no x0 expressions to draw it from.
   std::shared_ptr<const Scenario> with_x0_from_prior() const override {
+    if (spec_->world && spec_->start_channel >= 0) {
+      return nullptr;
+    }
     auto spec = std::make_shared<model::ModelSpec>(*spec_);
     for (auto& x0 : spec->x0)
       x0.first_column.clear();
@@ -504,6 +510,17 @@ Expected<std::unique_ptr<Scenario>> make_model_scenario(const OJson& preset,
   if (!preset.contains("model")) return Error{path + ": missing key 'model'"};
   auto spec = model::parse_model(json(preset["model"]), *declared, path);
   if (!spec) return spec.err();
+  // Named metrics in the file's order (the parse sorts an object's keys), as parameters are.
+  if (const auto& m = preset["model"]; m.contains("metrics") && m["metrics"].is_object()) {
+    std::vector<std::string> order;
+    for (const auto& [key, value] : m["metrics"].items())
+      order.push_back(key);
+    const auto at = [&](const model::StatMetricSpec& s) {
+      return std::find(order.begin(), order.end(), s.name) - order.begin();
+    };
+    std::stable_sort(spec->stat_metrics.begin(), spec->stat_metrics.end(),
+                     [&](const auto& a, const auto& b) { return at(a) < at(b); });
+  }
 
   const auto filters = model::filter_choices(*spec);
   std::string filter = spec->filter;

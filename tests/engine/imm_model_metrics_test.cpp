@@ -193,5 +193,20 @@ TEST(ImmModelMetrics, MetricsFromStartsTheStandardMetrics) {
   EXPECT_NE(met_error(p).find("model.metrics_from"), std::string::npos) << met_error(p);
 }
 
+// Named metrics are listed in the file's order (the metrics table, tune, sweep), not sorted.
+TEST(ImmModelMetrics, ListedInTheFilesOrder) {
+  nlohmann::ordered_json p = nlohmann::ordered_json::parse(met_preset().dump());
+  p["model"]["metrics"] = nlohmann::ordered_json::parse(
+      R"({"z_last": {"of": "derived.err", "stat": "final"},
+          "a_max": {"of": "derived.err", "stat": "max_abs"}})");
+  auto s = make_model_scenario(p, "m.json");
+  ASSERT_TRUE(s.ok()) << s.error();
+  std::vector<std::string> keys;
+  for (const auto& m : (*s)->metric_specs()) {
+    if (m.key == "z_last" || m.key == "a_max") keys.push_back(m.key);
+  }
+  EXPECT_EQ(keys, (std::vector<std::string>{"z_last", "a_max"}));
+}
+
 }  // namespace
 }  // namespace kfw

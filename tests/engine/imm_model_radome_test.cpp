@@ -12,12 +12,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "common/model_files.h"
 #include "core/scenario.h"
+#include "document/preset.h"
 #include "experiment/monte_carlo.h"
 #include "model/model_result.h"
 #include "scenarios/radome/radome_imm.h"
@@ -480,6 +483,21 @@ TEST(ImmModelRadome, RenewalOutcomesAgreeOverSeeds) {
   }
   EXPECT_LE(mine_mean[0], 0.0112);
   EXPECT_LE(mine_mean[1], 0.0112);
+}
+
+// Monte Carlo's x0 from the prior: the file's world simulates its own engagement and the filter
+// starts at the first pseudo-measurement, so there is no prior to draw the truth from (the
+// built-in radome refused it too).
+TEST(ImmModelRadome, X0FromThePriorIsRefused) {
+  std::ifstream in(kRadomeFile);
+  auto j = nlohmann::ordered_json::parse(in);
+  j["sim"] = {{"x0_from_prior", true}};
+  auto p = parse_preset(j.dump(), "r.json");
+  ASSERT_FALSE(p.ok());
+  EXPECT_EQ(p.error(),
+            "r.json: sim.x0_from_prior: the model's world simulates its own initial state and the "
+            "filter starts from a channel's first sample, so it cannot draw its initial state "
+            "from the filter's prior");
 }
 
 }  // namespace

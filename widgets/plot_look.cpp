@@ -294,6 +294,18 @@ QString wrapText(const QString& text, const QFont& font, int width) {
 bool wrapTitlesToWidth(QCustomPlot* plot) {
   bool changed = false;
   if (plot->property(kExportingProperty).toBool()) return false;
+  // A resize sets the layout's outer rect; its cells follow at the next replot. A plot resized
+  // while out of view (drawn when shown) would wrap to its old cells: lay them out now.
+  QCPLayoutGrid* top = plot->plotLayout();
+  int right = top->rect().left();
+  for (QCPLayoutElement* e : top->elements(false)) {
+    if (e) right = std::max(right, e->outerRect().right());
+  }
+  if (right != top->rect().right()) {
+    for (auto phase :
+         {QCPLayoutElement::upPreparation, QCPLayoutElement::upMargins, QCPLayoutElement::upLayout})
+      top->update(phase);
+  }
   for (QCPLayoutElement* e : plot->plotLayout()->elements(true)) {
     auto* t = qobject_cast<QCPTextElement*>(e);
     if (!t) continue;

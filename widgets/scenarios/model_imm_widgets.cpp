@@ -13,8 +13,8 @@ namespace kfw {
 namespace {
 
 constexpr std::size_t kMaxModeLines = 8;
-constexpr double kLogMuFloor = -8.0;    // log₁₀ μ below this is drawn as the floor
-constexpr std::size_t kMaxTicked = 15;  // up to this many values on a heat-map axis: a tick each
+constexpr double kLogMuFloor = -8.0;   // log₁₀ μ below this is drawn as the floor
+constexpr std::size_t kMaxTicked = 9;  // up to this many values on a heat-map axis: a tick each
 
 QString q(const std::string& s) {
   return QString::fromStdString(s);
@@ -94,12 +94,11 @@ void ImmPanels::create(QWidget* parent, const ModelLayout& layout, QList<PlotPan
     a.plot =
         plot::makePlot(parent, QString("IMM estimate of %1 (μ-weighted) and the grid").arg(label),
                        "time (s)", plot::withUnit(label, g.unit));
+    // The grid's extent first (a band under the lines), moved by renewal.
+    a.envelope = plot::addBand(a.plot, "grid envelope", plot::color::kSensor);
     a.truth = plot::addGraph(a.plot, "truth", plot::color::kTruth, plot::Style::kLine);
     a.estimate = plot::addGraph(a.plot, "IMM estimate Σ μʲ " + label + "ʲ", plot::color::kEstimate,
                                 plot::Style::kLine);
-    a.lo = plot::addGraph(a.plot, "grid ends", plot::color::kSensor, plot::Style::kDashed);
-    a.hi = plot::addGraph(a.plot, "", plot::color::kSensor, plot::Style::kDashed);
-    a.hi->removeFromLegend();
     a.cursor = plot::addCursor(a.plot);
     out.push_back({q("grid." + g.param), "IMM " + label, a.plot});
     axes_.push_back(a);
@@ -188,11 +187,35 @@ void ImmPanels::draw(const plot::Frame& f, std::size_t index) {
     } else {
       p.truth->data()->clear();
     }
-    plot::setSeries(p.lo, r.t, p.lo_v, f.n);
-    plot::setSeries(p.hi, r.t, p.hi_v, f.n);
+    plot::setBandLimits(p.envelope, r.t, p.lo_v, p.hi_v, f.n);
+    for (std::size_t g = 0; g < p.ghosts.size() && g < ghosts_.size(); ++g) {
+      const auto& gt = ghosts_[g]->t;
+      plot::setSeries(p.ghosts[g], gt, ghosts_[g]->imm->axes[a].estimate,
+                      f.all ? gt.size() : plot::stepsUpTo(gt, f));
+    }
     plot::rescale(p.plot, f.t0, f.t1, f.settle());
     plot::setCursorAt(p.cursor, f.tc, !f.all);
     plot::replot(p.plot);
+  }
+}
+
+// Each pinned run's estimate of each axis, faded, as "estimate [pinned: NAME]" (runs of the same
+// grid axes only).
+void ImmPanels::setSnapshots(
+    const std::vector<std::pair<QString, std::shared_ptr<const model::ModelResult>>>& pins) {
+  ghosts_.clear();
+  for (Axis& a : axes_) {
+    for (QCPGraph* g : a.ghosts)
+      a.plot->removeGraph(g);
+    a.ghosts.clear();
+  }
+  int colour = 0;
+  for (const auto& [name, r] : pins) {
+    if (!r || !r->imm || r->imm->axes.size() != axes_.size()) continue;
+    ghosts_.push_back(r);
+    for (Axis& a : axes_)
+      a.ghosts.push_back(plot::addGhost(a.plot, "estimate [pinned: " + name + "]", colour));
+    ++colour;
   }
 }
 

@@ -11,12 +11,14 @@
 #include <QSharedPointer>
 #include <QString>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "model/imm/imm_spec.h"
 #include "model/model_result.h"
 #include "model/model_scenario.h"
 #include "plot_blocks.h"
+#include "plot_kit.h"
 #include "scenario_view.h"
 
 class QCustomPlot;
@@ -36,11 +38,16 @@ class ImmPanels {
   void create(QWidget* parent, const ModelLayout& layout, QList<PlotPanel>& out);
   void setResult(const model::ModelResult& r);
   void draw(const plot::Frame& f, std::size_t index);
+  // Pinned runs: their estimates of the grid axes as ghosts.
+  void setSnapshots(
+      const std::vector<std::pair<QString, std::shared_ptr<const model::ModelResult>>>& pins);
 
  private:
   struct Axis {
     QCustomPlot* plot = nullptr;
-    QCPGraph *estimate = nullptr, *truth = nullptr, *lo = nullptr, *hi = nullptr;
+    QCPGraph *estimate = nullptr, *truth = nullptr;
+    plot::Band envelope;
+    std::vector<QCPGraph*> ghosts;  // per pinned run
     QCPItemStraightLine* cursor = nullptr;
     std::vector<double> lo_v, hi_v;
   };
@@ -62,6 +69,7 @@ class ImmPanels {
   QCPColorMap* heat_map_ = nullptr;
   QCPItemText* info_ = nullptr;  // the heat map's note: time, top mode, estimate, truth
   std::vector<Axis> axes_;
+  std::vector<std::shared_ptr<const model::ModelResult>> ghosts_;  // pinned runs with the axes
 };
 
 }  // namespace kfw

@@ -196,6 +196,10 @@ class ModelView final : public ScenarioView {
       states_[i]->setGhosts(per_state[i]);
     for (auto& b : blocks_)
       b->setGhosts(block_ghosts);
+    std::vector<std::pair<QString, std::shared_ptr<const ModelResult>>> imm_pins;
+    for (const auto& [name, result] : snapshots)
+      imm_pins.emplace_back(name, std::dynamic_pointer_cast<const ModelResult>(result));
+    imm_.setSnapshots(imm_pins);
     if (result_) drawUpTo(cursor_);
   }
 

@@ -80,11 +80,11 @@ void BM_RadomeDefaultRun(benchmark::State& state) {
 }
 BENCHMARK(BM_RadomeDefaultRun)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
-// The same run from seed 001's model file (tests/models/radome_model.json, issue 28) on the
+// The same run from seed 001's model file (presets/radome.json, issue 28) on the
 // built-in's data: the target is 1.5x BM_RadomeDefaultRun (axis 0, full 1).
 void BM_RadomeModelRun(benchmark::State& state) {
-  std::ifstream in(KFW_SOURCE_DIR "/tests/models/radome_model.json");
-  auto s = make_model_scenario(nlohmann::json::parse(in), "radome_model.json");
+  std::ifstream in(KFW_SOURCE_DIR "/presets/radome.json");
+  auto s = make_model_scenario(nlohmann::json::parse(in), "radome.json");
   if (!s) {
     state.SkipWithError(s.error().c_str());
     return;

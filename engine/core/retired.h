@@ -1,5 +1,5 @@
-// The built-in scenarios that shipped model files replace (issue 27). A preset or a session that
-// names one loads as the model file of that name in preset_dir() (document/preset.h), with its
+// The built-in scenarios that shipped model files replace (issues 27 and 28). A preset or a session
+// that names one loads as the model file of that name in preset_dir() (document/preset.h), with its
 // values overlaid and one notice; `kfw-cli upgrade` rewrites it in the current form. A retired
 // built-in stays compiled (make_scenario() builds it for tests and bench) but is listed nowhere a
 // user sees scenarios (ScenarioRegistry::listed_names()). One line per retired scenario.
@@ -17,6 +17,7 @@ struct RetiredScenario {
 inline constexpr RetiredScenario kRetiredScenarios[] = {
     {"helicopter", "helicopter.json"},
     {"underwater", "underwater.json"},
+    {"radome", "radome.json"},
 };
 
 // The entry of a retired scenario, or nullptr.

@@ -40,7 +40,10 @@ TEST(RadomeCli, ReproducesSeed001) {
     ASSERT_TRUE(m->contains("nees_mean") && (*m)["nees_mean"].is_number());
   EXPECT_NEAR(a["nees_mean"].get<double>(), 60.70 / 3, 0.1);
   EXPECT_NEAR(b["nees_mean"].get<double>(), 1632.6 / 3, 5.0);
-  EXPECT_NEAR(c["nees_mean"].get<double>(), 77.53 / 3, 0.1);  // renewal.mode=mix
+  // renewal.mode=mix: a chaotic run (the built-in against itself with ranges × (1 + 1e-13)
+  // drifts by several σ by 60 s, tests/engine/imm_model_radome_test.cpp), so two implementations
+  // agree on its NEES to a few per cent, not to 0.1 (the model file: 76.12 / 3; issue 28).
+  EXPECT_NEAR(c["nees_mean"].get<double>(), 77.53 / 3, 0.05 * 77.53 / 3);
 }
 
 TEST(RadomeCli, EqualGridEndsAreAWarningNamingTheKeys) {

@@ -1,7 +1,7 @@
 // The differences between a seed preset's `kfw-cli metrics` listing today and the one saved in
 // tests/fixtures/metrics/ that CHANGES.md lists (issue 27: presets/helicopter.json, broad_imu.json
-// and underwater.json became model files; the tables under "... are model files"), and nothing
-// else.
+// and underwater.json became model files; issue 28: radome.json; the tables under "... are model
+// files"), and nothing else.
 // tests/engine/format_fixtures_test.cpp and tests/cli/format_fixtures_cli_test.cpp read it.
 #pragma once
 
@@ -44,8 +44,32 @@ inline const std::vector<MetricChange>& fixture_metric_changes(const std::string
     }
     return c;
   }();
+  // presets/radome.json (issue 28): the built-in's counters went (imm.modes is the mode count);
+  // the gains, the derived series, each axis's final estimate and RMSE and the pseudo-measurement's
+  // component whiteness came. Every metric of the built-in's scenario is kept by name.
+  static const std::vector<MetricChange> radome_model = [] {
+    std::vector<MetricChange> c;
+    for (const char* k : {"Ts", "modes", "steps", "updates"})
+      c.push_back({k, false});
+    for (const char* s : {"x", "vx", "ax", "y", "vy", "ay", "z", "vz", "az"}) {
+      for (const char* y : {"Yx", "Yy", "Yz"})
+        c.push_back({std::string("K.") + s + "." + y, true});
+    }
+    for (const char* d :
+         {"alpha_est", "los_err_psi", "los_err_theta", "los_est_err_psi", "los_est_err_theta",
+          "position_err", "refraction_err", "slope_err_psi", "slope_err_theta"}) {
+      c.push_back({std::string("derived.") + d + ".rms", true});
+      c.push_back({std::string("derived.") + d + ".max", true});
+    }
+    for (const char* k :
+         {"imm.modes", "imm.R_psi.final", "imm.R_theta.final", "rmse.R_psi", "rmse.R_theta",
+          "whiteness_p.seeker.Yx", "whiteness_p.seeker.Yy", "whiteness_p.seeker.Yz"})
+      c.push_back({k, true});
+    return c;
+  }();
   static const std::vector<MetricChange> none;
   if (preset == "helicopter" || preset == "broad_imu") return helicopter_model;
+  if (preset == "radome") return radome_model;
   return preset == "underwater" ? underwater_model : none;
 }
 

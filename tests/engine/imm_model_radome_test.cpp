@@ -1,4 +1,4 @@
-// Issue 28: seed 001's radome as a model file (tests/models/radome_model.json) equals the built-in
+// Issue 28: seed 001's radome as a model file (presets/radome.json) equals the built-in
 // scenario: its world simulates the built-in's data to 1e-12, and on the same data its IMM gives
 // the built-in's combined position and slope estimates to 1e-9 (../shared/STAGE.md's rule), in
 // the axis and full structures, without and with renewal, under every reading and start.
@@ -29,7 +29,7 @@
 namespace kfw {
 namespace {
 
-const std::string kRadomeFile = KFW_SOURCE_DIR "/tests/models/radome_model.json";
+const std::string kRadomeFile = KFW_SOURCE_DIR "/presets/radome.json";
 
 double max_abs(const std::vector<double>& v) {
   double m = 0.0;

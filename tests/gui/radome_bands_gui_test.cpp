@@ -1,18 +1,17 @@
-// Radome's innovation plot draws three overlapping ± 2√S bands: each is named in the legend and
-// told apart where they overlap by its edges, drawn opaque in the band's colour and its own dash;
-// in the rendered plot each band's edge shows in its colour.
+// Radome's innovations with their ± 2√S bands: the built-in drew the three components' bands in
+// one plot, overlapping, each told apart by its colour and dash. Since issue 28 the preset is seed
+// 001's model file and the generic view draws each component in its own plot
+// (innovation.seeker.Yx, .Yy, .Yz), so no two bands overlap; each is named in the legend and
+// rendered in its colour under the innovation.
 #include <qcustomplot.h>
 
 #include <gtest/gtest.h>
 
-#include <QImage>
 #include <cmath>
-#include <set>
-#include <utility>
 
 #include "common/plot_probe.h"
 #include "main_window.h"
-#include "plot_readout.h"
+#include "plot_kit.h"
 
 namespace kfw {
 namespace {
@@ -28,57 +27,42 @@ TEST(RadomeBands, EveryBandNamedAndDistinguishableWhereTheyOverlap) {
   w.resize(1600, 1000);
   w.show();
   ASSERT_TRUE(w.waitForRun(60000));
-  QCustomPlot* p = testing::plotNamed(w, "innovation");
-  ASSERT_NE(p, nullptr);
-  QList<const QCPGraph*> uppers;
-  for (int i = 0; i < p->graphCount(); ++i) {
-    const QCPGraph* g = p->graph(i);
-    if (g->channelFillGraph()) uppers << g->channelFillGraph();
-  }
-  ASSERT_EQ(uppers.size(), 3);
-  std::set<std::pair<QRgb, int>> looks;
-  for (const QCPGraph* u : uppers) {
-    EXPECT_FALSE(u->name().isEmpty());
-    EXPECT_TRUE(p->legend->hasItemWithPlottable(u)) << u->name().toStdString();
-    EXPECT_EQ(u->pen().color().alpha(), 255) << u->name().toStdString() << ": edge not opaque";
-    EXPECT_GE(u->pen().widthF(), 1.5);
-    looks.insert({u->pen().color().rgb(), static_cast<int>(u->pen().style())});
-  }
-  EXPECT_EQ(looks.size(), 3u) << "two bands share colour and dash";
-  std::set<int> styles;
-  for (const QCPGraph* u : uppers)
-    styles.insert(static_cast<int>(u->pen().style()));
-  EXPECT_EQ(styles.size(), 3u) << "each band its own dash (colour-blind readers)";
-
-  // Rendered: along each band's upper edge, pixels nearest its own colour (not a blend).
-  const QImage img = p->toPixmap(p->width(), p->height(), 1.0).toImage();
-  const QRect rect = p->axisRect()->rect();
-  for (const QCPGraph* u : uppers) {
-    const QColor mine = u->pen().color();
+  for (const char* name :
+       {"innovation.seeker.Yx", "innovation.seeker.Yy", "innovation.seeker.Yz"}) {
+    SCOPED_TRACE(name);
+    QCustomPlot* p = testing::plotNamed(w, name);
+    ASSERT_NE(p, nullptr);
+    QList<const QCPGraph*> lowers;
+    for (int i = 0; i < p->graphCount(); ++i) {
+      if (p->graph(i)->channelFillGraph()) lowers << p->graph(i);
+    }
+    ASSERT_EQ(lowers.size(), 1);  // one band a plot: nothing overlaps
+    const QCPGraph* lower = lowers.front();
+    const QCPGraph* upper = lower->channelFillGraph();
+    const QCPGraph* named = p->legend->hasItemWithPlottable(lower) ? lower : upper;
+    EXPECT_FALSE(named->name().isEmpty());
+    EXPECT_TRUE(p->legend->hasItemWithPlottable(named));
+    // Rendered: between the band's edges, where it is a few pixels wide, its fill's colour.
+    p->replot();
+    const QImage img = p->toPixmap(p->width(), p->height(), 1.0).toImage();
+    const QRect rect = p->axisRect()->rect();
+    const QColor fill = lower->brush().color();
     int columns = 0, hits = 0;
     for (int x = rect.left() + 10; x < rect.right() - 10; x += 7) {
       const double t = p->xAxis->pixelToCoord(x);
-      const double v = plot::valueAt(u, t);
-      if (!std::isfinite(v)) continue;
-      const int y = static_cast<int>(std::lround(p->yAxis->coordToPixel(v)));
-      if (y < rect.top() + 2 || y > rect.bottom() - 2) continue;
+      const double lo = plot::valueAt(lower, t), hi = plot::valueAt(upper, t);
+      if (!std::isfinite(lo) || !std::isfinite(hi)) continue;
+      const double ylo = p->yAxis->coordToPixel(lo), yhi = p->yAxis->coordToPixel(hi);
+      if (std::fabs(ylo - yhi) < 8 || std::min(ylo, yhi) < rect.top() ||
+          std::max(ylo, yhi) > rect.bottom())
+        continue;
       ++columns;
-      bool hit = false;
-      for (int dx = 0; dx < 7 && !hit; ++dx) {
-        for (int dy = -1; dy <= 1 && !hit; ++dy) {
-          const QColor c = img.pixelColor(x + dx, y + dy);
-          bool nearest = distance(c, mine) < 120;
-          for (const QCPGraph* o : uppers) {
-            if (o != u && distance(c, o->pen().color()) <= distance(c, mine)) nearest = false;
-          }
-          hit = nearest;
-        }
-      }
-      hits += hit;
+      // A quarter of the way in from an edge: away from the innovation line in the middle.
+      const int y = static_cast<int>(std::lround(0.75 * ylo + 0.25 * yhi));
+      hits += distance(img.pixelColor(x, y), fill) < 60;
     }
-    ASSERT_GT(columns, 20) << u->name().toStdString();
-    EXPECT_GE(hits, columns * 6 / 10) << u->name().toStdString() << ": " << hits << " of "
-                                      << columns << " columns show the edge in its colour";
+    ASSERT_GT(columns, 20);
+    EXPECT_GE(hits, columns * 6 / 10) << hits << " of " << columns << " columns";
   }
 }
 

@@ -25,6 +25,7 @@
 #include "model/model_noise.h"
 #include "model/model_spec.h"
 #include "model/model_stats.h"
+#include "model/plots/model_plots.h"
 #include "model/world/model_sim.h"
 
 namespace kfw {
@@ -484,6 +485,8 @@ std::optional<ModelLayout> model_layout_of(const Scenario& s) {
       l.grid.push_back({a.param, a.label, a.unit});
   }
   l.plots = m->spec()->plots;
+  l.first_panels = m->spec()->first_panels;
+  l.panels = model::panel_names(*m->spec());
   return l;
 }
 

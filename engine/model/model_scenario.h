@@ -41,6 +41,8 @@ struct ModelLayout {
   };
   std::vector<GridAxis> grid;               // a grid IMM's axes (model.modes.grid), in order
   std::vector<model::PlotBlockSpec> plots;  // the blocks the file asks for ("plots"), in order
+  std::vector<std::string> first_panels;    // model.first_panels: shown first, in this order
+  std::vector<std::string> panels;  // every panel's name (model::panel_names), the view's order
 };
 
 // Builds a Scenario from a whole preset JSON whose "scenario" is "model": the preset's

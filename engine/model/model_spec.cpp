@@ -96,7 +96,7 @@ Status check_noise_version(const Reader& p, const json& j) {
 Status check_version_keys(const Reader& p, const json& j, int version) {
   if (version >= 2) return Ok{};
   for (const char* k : {"expressions", "world", "derived", "sim", "plots", "groups", "modes",
-                        "metrics", "metrics_from"}) {
+                        "metrics", "metrics_from", "first_panels"}) {
     if (j.contains(k))
       return p.error(std::string("model.") + k, "a version-2 key: set \"version\": 2");
   }
@@ -419,10 +419,11 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   const std::string key = "model";
   if (!j.is_object()) return p.error(key, "expected an object");
   if (auto st = p.only_keys(
-          j, key, {"version", "description", "states",       "inputs",      "expressions", "x0",
-                   "P0",      "process",     "measurements", "truth",       "primary",     "filter",
-                   "world",   "derived",     "noise",        "clocks",      "sim",         "plots",
-                   "groups",  "modes",       "metrics",      "metrics_from"});
+          j, key,
+          {"version", "description", "states",       "inputs",       "expressions", "x0",
+           "P0",      "process",     "measurements", "truth",        "primary",     "filter",
+           "world",   "derived",     "noise",        "clocks",       "sim",         "plots",
+           "groups",  "modes",       "metrics",      "metrics_from", "first_panels"});
       !st) {
     return st.err();
   }
@@ -551,6 +552,10 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
     auto e = p.expr(*it, "model.metrics_from", kParamsOnly, kParamsOnlyWhat);
     if (!e) return e.err();
     m.metrics_from = *e;
+  }
+  if (auto it = j.find("first_panels"); it != j.end()) {
+    if (world) return p.error("model.first_panels", "a world draws no panels");
+    if (auto st = parse_first_panels(p, *it, m); !st) return st.err();
   }
   return m;
 }

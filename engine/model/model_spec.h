@@ -224,7 +224,8 @@ struct ModelSpec {
   Expr metrics_from;  // model.metrics_from (s, parameters only); empty text: the whole run
   // The plot blocks the file asks for (version 2, model_plots.h), in the file's order.
   std::vector<PlotBlockSpec> plots;
-  std::vector<int> truth_slots;  // per state: its truth column's symbol, or -1
+  std::vector<std::string> first_panels;  // model.first_panels: shown first, in this order
+  std::vector<int> truth_slots;           // per state: its truth column's symbol, or -1
   // Per role of every channel, in channel order (ModelResult::z's): its symbol in derived
   // quantities (kMeasuredSymbol), or -1.
   std::vector<int> measured_slots;

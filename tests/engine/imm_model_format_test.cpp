@@ -363,5 +363,30 @@ TEST(ImmModelFormat, AGridOverAnUndeclaredNameIsAModeParameter) {
   EXPECT_NE(imm_load_error(p).find("model.states"), std::string::npos) << imm_load_error(p);
 }
 
+// model.first_panels: names of the view's panels (model::panel_names), each once; refused
+// otherwise, naming the key and the nearest names.
+TEST(ImmModelFormat, FirstPanelsNameTheViewsPanels) {
+  json p = imm_base_preset();
+  p["model"]["modes"] = imm_two_modes();
+  p["model"]["version"] = 2;
+  p["model"]["first_panels"] = fmt_list({"mode_probabilities", "state.v"});
+  auto s = make_model_scenario(p, "m.json");
+  ASSERT_TRUE(s.ok()) << s.error();
+  const auto layout = model_layout_of(**s);
+  ASSERT_TRUE(layout);
+  EXPECT_EQ(layout->first_panels, (std::vector<std::string>{"mode_probabilities", "state.v"}));
+  EXPECT_EQ(layout->panels,
+            (std::vector<std::string>{"state.x", "state.v", "measured.pos.z", "innovation.pos.z",
+                                      "nis.pos", "gain", "mode_probabilities"}));
+  p["model"]["first_panels"] = fmt_list({"state.w"});
+  EXPECT_NE(imm_load_error(p).find("m.json: model.first_panels[0]: unknown panel 'state.w'"),
+            std::string::npos)
+      << imm_load_error(p);
+  p["model"]["first_panels"] = fmt_list({"gain", "gain"});
+  EXPECT_EQ(imm_load_error(p), "m.json: model.first_panels[1]: 'gain' twice");
+  p["model"]["first_panels"] = "gain";
+  EXPECT_EQ(imm_load_error(p), "m.json: model.first_panels: expected a list of panel names");
+}
+
 }  // namespace
 }  // namespace kfw

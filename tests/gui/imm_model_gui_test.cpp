@@ -16,6 +16,7 @@
 #include "common/plot_probe.h"
 #include "main_window.h"
 #include "model/model_result.h"
+#include "model/model_scenario.h"
 #include "transport_bar.h"
 
 namespace kfw {
@@ -194,6 +195,30 @@ TEST(ImmModelWindowRenewal, LinesAreNamedByTheirValuesAtTheCursor) {
       ++named;
     }
     EXPECT_EQ(named, 8);
+  }
+}
+
+// model.first_panels: those panels first, in the file's order (radome: the slopes, refraction and
+// LOS errors, the heat map, as the built-in view had them); the view's names are the engine's
+// panel_names, which the file's names are checked against.
+TEST(ImmModelWindowPanels, FirstPanelsComeFirstAndNamesAreTheEngines) {
+  for (const char* preset : {"radome", "helicopter", "models/cv_ct_imm"}) {
+    SCOPED_TRACE(preset);
+    MainWindow w;
+    ASSERT_TRUE(w.loadPreset(QString(KFW_SOURCE_DIR) + "/presets/" + preset + ".json").ok());
+    ASSERT_TRUE(w.waitForRun(60000));
+    const auto layout = model_layout_of(*w.scenario());
+    ASSERT_TRUE(layout);
+    std::vector<std::string> engine = layout->panels;
+    std::vector<std::string> window;
+    for (const PlotPanel& p : w.plots())
+      window.push_back(p.name.toStdString());
+    const auto& first = layout->first_panels;
+    ASSERT_GE(window.size(), first.size());
+    EXPECT_EQ(std::vector<std::string>(window.begin(), window.begin() + first.size()), first);
+    std::sort(engine.begin(), engine.end());
+    std::sort(window.begin(), window.end());
+    EXPECT_EQ(window, engine);
   }
 }
 

@@ -3,7 +3,8 @@
 // and the innovation ± 2√S; per channel the NIS with χ² bounds; the gains over time with the DARE
 // steady state; the steady-state gains versus a parameter chosen under the sliders; and one panel
 // per plot block the file asks for ("plots", widgets/plots/); a model with modes adds the IMM
-// panels (model_imm_widgets.h). Nothing here knows a particular model.
+// panels (model_imm_widgets.h); model.first_panels puts panels first. Nothing here knows a
+// particular model.
 #include <qcustomplot.h>
 
 #include <QComboBox>
@@ -12,6 +13,7 @@
 #include <QGroupBox>
 #include <QSignalBlocker>
 #include <QtConcurrent/QtConcurrentRun>
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -133,6 +135,13 @@ class ModelView final : public ScenarioView {
         blocks_.push_back(std::move(d));
       }
     }
+    // model.first_panels first, in the file's order; the others after, in theirs.
+    const auto& first = layout_->first_panels;
+    const auto rank = [&](const PlotPanel& p) {
+      return std::find(first.begin(), first.end(), p.name.toStdString()) - first.begin();
+    };
+    std::stable_sort(out.begin(), out.end(),
+                     [&](const PlotPanel& a, const PlotPanel& b) { return rank(a) < rank(b); });
     return out;
   }
 

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/suggest.h"
+#include "model/imm/imm_spec.h"
 #include "model/model_reader.h"
 #include "model/model_spec.h"
 
@@ -158,5 +159,46 @@ Expected<PlotLine> plot_line(const Reader& p, const std::string& name, const std
 }
 
 }  // namespace detail
+
+std::vector<std::string> panel_names(const ModelSpec& m) {
+  std::vector<std::string> out;
+  for (const auto& st : m.states)
+    out.push_back("state." + st.name);
+  for (const auto& c : m.channels) {
+    for (const auto& r : c.comps) {
+      out.push_back("measured." + c.name + "." + r.name);
+      out.push_back("innovation." + c.name + "." + r.name);
+    }
+    out.push_back("nis." + c.name);
+  }
+  out.push_back("gain");
+  if (m.time_invariant()) out.push_back("gain_curve");
+  if (m.modes) {
+    out.push_back("mode_probabilities");
+    if (m.modes->grid.size() == 2) out.push_back("mode_heatmap");
+    for (const auto& a : m.modes->grid)
+      out.push_back("grid." + a.param);
+  }
+  for (const auto& b : m.plots)
+    out.push_back(b.id);
+  return out;
+}
+
+Status parse_first_panels(const detail::Reader& p, const nlohmann::json& list, ModelSpec& m) {
+  const std::string key = "model.first_panels";
+  if (!list.is_array()) return p.error(key, "expected a list of panel names");
+  const std::vector<std::string> names = panel_names(m);
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string k = detail::idx(key, i);
+    if (!list[i].is_string()) return p.error(k, "expected a panel's name");
+    const std::string name = list[i].get<std::string>();
+    if (std::find(names.begin(), names.end(), name) == names.end())
+      return p.error(k, unknown_message("panel", name, names));
+    if (std::find(m.first_panels.begin(), m.first_panels.end(), name) != m.first_panels.end())
+      return p.error(k, "'" + name + "' twice");
+    m.first_panels.push_back(name);
+  }
+  return Ok{};
+}
 
 }  // namespace kfw::model

@@ -80,6 +80,15 @@ const std::vector<PlotKind>& plot_kinds();
 Status parse_plots(const detail::Reader& p, const nlohmann::json& block, const ParamTable& params,
                    ModelSpec& m);
 
+// The generic model view's panels of m, by the names `kfw --list-plots` prints, in the view's order
+// (before first_panels): state.S, measured.C.R and innovation.C.R, nis.C, gain, gain_curve (a
+// linear time-invariant model), mode_probabilities, mode_heatmap (two grid axes), grid.P, then
+// the file's plot blocks.
+std::vector<std::string> panel_names(const ModelSpec& m);
+// "first_panels" (version 2, issue 28): panels to show first, in this order; each a name of
+// panel_names(m), once.
+Status parse_first_panels(const detail::Reader& p, const nlohmann::json& list, ModelSpec& m);
+
 // The kinds' readers (plot_gain_curve.cpp, plot_series.cpp, plot_trajectory.cpp,
 // plot_covariance.cpp).
 Status parse_gain_curve_block(const detail::Reader& p, const nlohmann::json& j,

@@ -63,7 +63,7 @@ Json metrics_json(const Metrics& m, const UndefinedMetrics& undefined) {
 // errors make NLL/NIS pick a tuning that trusts that sensor far too much).
 void warn_if_not_white(const Metrics& m, const TuneObjective& obj, std::ostream& err) {
   auto it = m.find("whiteness_p");
-  if (obj.spec.key == "rmse" || it == m.end() || !std::isfinite(it->second)) return;
+  if (!obj.truth_free() || it == m.end() || !std::isfinite(it->second)) return;
   if (it->second < 0.01) {
     err << "kfw-cli: warning: innovations are not white (Ljung-Box p = " << it->second
         << " < 0.01): a tuning by '" << obj.name << "' without truth is not trustworthy here\n";

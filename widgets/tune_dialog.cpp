@@ -226,7 +226,7 @@ void TuneDialog::finished() {
       text += QString("\n  %1: %2").arg(q(l.name)).arg(l.value, 0, 'g', 5);
   }
   auto w = r->metrics.find("whiteness_p");
-  if (running_objective_.spec.key != "rmse" && w != r->metrics.end() && w->second < 0.01) {
+  if (running_objective_.truth_free() && w != r->metrics.end() && w->second < 0.01) {
     warn = true;
     text += QString(
                 "\n⚠ The innovations are not white (Ljung–Box p = %1): a tuning without truth "

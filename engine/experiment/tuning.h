@@ -43,6 +43,9 @@ struct TuneObjective {
   // rmse+anis: RMSE + |ln NIS mean| (NIS mean is NIS / dof).
   double badness(const Metrics& m) const;
   bool combined() const { return with_nis || with_log_nis; }
+  // Ranks by the innovations alone (nll, nis_mean, …: a consistency metric), so coloured
+  // innovations mislead it; an objective that reads truth (rmse, a scenario's error) does not.
+  bool truth_free() const { return !combined() && spec.group == MetricGroup::kConsistency; }
 };
 
 // Any metric key of the scenario with a direction ("nis" is short for nis_mean), or a combined

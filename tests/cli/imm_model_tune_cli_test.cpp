@@ -69,7 +69,11 @@ TEST(ImmModelTuneCli, NoReportWhenConsistencyIsFreeOrNotAsked) {
 // and its default tune leaves it no worse than the preset's values (the combined
 // objective made it 0.41° → 0.73° worst case before issue 28).
 TEST(ImmModelTuneCli, RadomesDefaultTuneKeepsTheRefractionError) {
-  const auto j = stdout_json("tune " + kPresetDir + "radome.json --budget 30");
+  const auto all = cli("tune " + kPresetDir + "radome.json --budget 30");
+  ASSERT_EQ(all.code, 0) << all.text;
+  // The objective reads truth: the innovations' whiteness does not make it untrustworthy.
+  EXPECT_EQ(all.text.find("not trustworthy"), std::string::npos) << all.text;
+  const auto j = nlohmann::json::parse(all.text.substr(all.text.find("{\n")), nullptr, false);
   ASSERT_FALSE(j.is_discarded());
   EXPECT_EQ(j["objective"], "refraction_err_max_deg");
   EXPECT_EQ(j["objective_from"], "declared by the preset (default_objective)");

@@ -357,6 +357,12 @@ TEST(ImmModelFormat, AGridOverAnUndeclaredNameIsAModeParameter) {
   ParamValues bad = t.defaults();
   bad["s"] = 1.0;
   EXPECT_FALSE((*sc)->run(*d, bad).ok());
+  // An axis near the largest double: the gained keys' ranges stay finite, the value is refused.
+  json huge = p;
+  huge["model"]["modes"]["grid"][0]["min"] = -1e308;
+  EXPECT_EQ(imm_load_error(huge),
+            "m.json: model.modes.grid[0].min: -1e+308 is outside the range [-1e+300, 1e+300] of "
+            "grid.s.min");
   p["model"]["modes"]["grid"][0]["param"] = "t";
   EXPECT_EQ(imm_load_error(p), "m.json: model.modes.grid[0].param: 't' is reserved");
   p["model"]["modes"]["grid"][0]["param"] = "x";  // a state's name: taken when the states come

@@ -197,9 +197,13 @@ Expected<ParamSpec> axis_parameter(const Reader& p, const json& a, const std::st
     if (!r) return r.err();
     *out = r->key.empty() ? r->value : params.find(r->key)->def;
   }
-  const double span = std::max({std::fabs(hi - lo), std::fabs(lo), std::fabs(hi), 1e-9});
-  ps.min = std::min(lo, hi) - span;
-  ps.max = std::max(lo, hi) + span;
+  // Finite slider ends whatever the axis: ±1e300 at most (an axis at ±1e308 is then refused,
+  // naming its key, by the range check of its gained keys).
+  constexpr double kEnd = 1e300;
+  const double span =
+      std::min(std::max({std::fabs(hi - lo), std::fabs(lo), std::fabs(hi), 1e-9}), kEnd);
+  ps.min = std::max(std::min(lo, hi) - span, -kEnd);
+  ps.max = std::min(std::max(lo, hi) + span, kEnd);
   return ps;
 }
 

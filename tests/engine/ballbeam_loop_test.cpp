@@ -268,12 +268,12 @@ TEST(BallbeamLoop, SettledGainEndsTheLongestUnbrokenRunOfUpdates) {
 TEST(BallbeamScenario, KfFinalGainIsTheSettledGainNotThePostGapOne) {
   Fixture f;
   f.v["filter"] = 0;  // kf
-  f.v["sim.seed"] = 14;
+  f.v["sim.seed"] = 6;
   auto r = run(*f.s, Dataset{}, f.v);
   ASSERT_TRUE(r);
   const Metrics& m = r->metrics;
-  // The last update of seed 14's run follows a contact loss: its gain is still well above α
-  // (2.76 α; on the default seed 3 the last update is settled, 1.002 α).
+  // The last update of seed 6's run follows a contact loss: its gain is still well above α
+  // (2.16 α; issue 30's streams — seed 14 before, 2.76 α).
   EXPECT_GT(last_finite(r->trace.K1), 1.2 * r->alpha);
   // Between contact losses the KF's gain settles on the steady-state (DARE, eq. 16) gain.
   EXPECT_NEAR(m.at("K1_final"), r->alpha, 1e-6);

@@ -3,9 +3,11 @@
 //   channel.position   one normal per sample: the position reading's noise while in contact
 //   dropout.position   one uniform per sample: outside a contact loss, u < contact_loss_rate
 //                      starts one at that sample (inside one, the uniform is drawn and unused)
-//   noise.burst        one uniform u per contact loss: it lasts 1 + ⌊ln u / ln(1 − 1/burst)⌋
+//   burst.position     one uniform u per contact loss: it lasts 1 + ⌊ln u / ln(1 − 1/burst)⌋
 //                      samples (geometric, mean burst; 1 sample when burst = 1)
-//   noise.spike        one uniform u per lost sample: the spike reading at Vcc·u along the wire
+//   impulse.position   one uniform u per lost sample: the spike reading −L/2 + L·u along the wire
+// The names and draws of a model world's sensor `position` with impulses (issue 30), so that
+// presets/ballbeam.json's world draws the same numbers.
 #include "scenarios/ballbeam/ballbeam_loop.h"
 
 #include <algorithm>
@@ -82,7 +84,7 @@ Disturbances make_disturbances(std::size_t n, const LoopParams& p) {
   d.lost.assign(n, 0);
   d.spike_m.assign(n, kNaN);
   RandomStream noise(p.seed, "channel.position"), loss(p.seed, "dropout.position");
-  RandomStream burst(p.seed, "noise.burst"), spike(p.seed, "noise.spike");
+  RandomStream burst(p.seed, "burst.position"), spike(p.seed, "impulse.position");
   // Geometric number of extra lost samples, P(extra ≥ j) = (1 − 1/burst)^j: mean burst − 1.
   const double log_stay = p.burst > 1 ? std::log(1.0 - 1.0 / p.burst) : 0.0;
   for (std::size_t k = 0; k < n; ++k)
@@ -97,7 +99,8 @@ Disturbances make_disturbances(std::size_t n, const LoopParams& p) {
     for (std::size_t j = k; j < std::min(n, lost_until); ++j) {
       d.lost[j] = 1;
       // A floating wiper reads anything between the rails: a spike anywhere along the beam.
-      d.spike_m[j] = p.sensor.position(p.sensor.Vcc_V * spike.uniform());
+      const double L = p.sensor.beam_length_m;
+      d.spike_m[j] = -0.5 * L + L * spike.uniform();
     }
   }
   return d;

@@ -1,7 +1,11 @@
 // Speed of the seed 003 ball tracker (α-β and KF steps) and of the closed-loop simulation.
 #include <benchmark/benchmark.h>
 
+#include <fstream>
+#include <nlohmann/json.hpp>
+
 #include "core/scenario.h"
+#include "model/model_scenario.h"
 #include "scenarios/ballbeam/ball_tracker.h"
 #include "scenarios/ballbeam/ballbeam_loop.h"
 
@@ -81,5 +85,35 @@ void BM_ScenarioRun(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_ScenarioRun)->Arg(15)->Arg(600)->Unit(benchmark::kMillisecond);
+
+std::unique_ptr<Scenario> model_file() {
+  std::ifstream in(KFW_SOURCE_DIR "/presets/ballbeam.json");
+  auto s = make_model_scenario(nlohmann::json::parse(in), "ballbeam.json");
+  if (!s) throw std::runtime_error(s.error());
+  return std::move(*s);
+}
+
+// Issue 30: the model file's closed loop. Arg 0: one loop of 15 s (Scenario::simulate: world,
+// sensors, filter, controller — the work of BM_ClosedLoop15s; target ≤ 2× per step). Arg 1: a
+// slider move, Scenario::run with the noise-free twin and every metric (BM_ScenarioRun/15 runs
+// three loops).
+void BM_ModelLoop15s(benchmark::State& state) {
+  auto s = model_file();
+  const ParamValues v = s->params().defaults();
+  const Dataset d;
+  for (auto _ : state) {
+    if (state.range(0) == 0) {
+      auto r = s->simulate(v);
+      if (!r) state.SkipWithError(r.error().c_str());
+      benchmark::DoNotOptimize(r);
+    } else {
+      auto r = s->run(d, v);
+      if (!r) state.SkipWithError(r.error().c_str());
+      benchmark::DoNotOptimize(r);
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(1501));
+}
+BENCHMARK(BM_ModelLoop15s)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace

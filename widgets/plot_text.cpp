@@ -37,7 +37,11 @@ QString axisLabel(const std::vector<std::string>& labels, const std::vector<std:
 
 QString symbolOf(const std::string& label) {
   std::string s = label.rfind("derived.", 0) == 0 ? label.substr(8) : label;
-  s = s.substr(0, s.find_first_of(", "));
+  // A gain entry's "K[x, x_meas]" is one symbol: cut after its bracket, not inside.
+  const std::size_t open = s.find('[');
+  const std::size_t close = open == std::string::npos ? std::string::npos : s.find(']', open);
+  const std::size_t from = close == std::string::npos ? 0 : close;
+  s = s.substr(0, s.find_first_of(", ", from));
   return QString::fromStdString(s.empty() ? label : s);
 }
 

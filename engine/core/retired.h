@@ -1,8 +1,8 @@
-// The built-in scenarios that shipped model files replace (issues 27 and 28). A preset or a session
-// that names one loads as the model file of that name in preset_dir() (document/preset.h), with its
-// values overlaid and one notice; `kfw-cli upgrade` rewrites it in the current form. A retired
-// built-in stays compiled (make_scenario() builds it for tests and bench) but is listed nowhere a
-// user sees scenarios (ScenarioRegistry::listed_names()). One line per retired scenario.
+// The built-in scenarios that shipped model files replace (issues 27, 28 and 30). A preset or a
+// session that names one loads as the model file of that name in preset_dir() (document/preset.h),
+// with its values overlaid and one notice; `kfw-cli upgrade` rewrites it in the current form. A
+// retired built-in stays compiled (make_scenario() builds it for tests and bench) but is listed
+// nowhere a user sees scenarios (ScenarioRegistry::listed_names()). One line per retired scenario.
 #pragma once
 
 #include <string_view>
@@ -18,6 +18,7 @@ inline constexpr RetiredScenario kRetiredScenarios[] = {
     {"helicopter", "helicopter.json"},
     {"underwater", "underwater.json"},
     {"radome", "radome.json"},
+    {"ballbeam", "ballbeam.json"},
 };
 
 // The entry of a retired scenario, or nullptr.

@@ -91,6 +91,8 @@ void setup_parser(mu::Parser& p) {
   p.DefineFun(
       "max", +[](double a, double b) { return std::fmax(a, b); });
   p.DefineFun("sinc", &sinc);
+  p.DefineFun(
+      "heaviside", +[](double x) { return x >= 0.0 ? 1.0 : (x < 0.0 ? 0.0 : x); });
   p.DefineFun("dsinc", &dsinc);
   p.DefineFun("sign", &sign_fn);
   p.DefineFun("step", &step_fn);
@@ -344,9 +346,10 @@ std::vector<int> Symbols::slots(SymbolKind kind) const {
 
 const std::vector<LanguageFunction>& language_functions() {
   static const std::vector<LanguageFunction> f = {
-      {"sin", 1},   {"cos", 1},  {"tan", 1},  {"asin", 1}, {"acos", 1}, {"atan", 1},
-      {"atan2", 2}, {"sinh", 1}, {"cosh", 1}, {"tanh", 1}, {"exp", 1},  {"log", 1},
-      {"sqrt", 1},  {"abs", 1},  {"pow", 2},  {"min", 2},  {"max", 2},  {"sinc", 1}};
+      {"sin", 1},  {"cos", 1},   {"tan", 1},  {"asin", 1},     {"acos", 1},
+      {"atan", 1}, {"atan2", 2}, {"sinh", 1}, {"cosh", 1},     {"tanh", 1},
+      {"exp", 1},  {"log", 1},   {"sqrt", 1}, {"abs", 1},      {"pow", 2},
+      {"min", 2},  {"max", 2},   {"sinc", 1}, {"heaviside", 1}};
   return f;
 }
 

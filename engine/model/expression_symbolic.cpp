@@ -42,6 +42,16 @@ static GiNaC::ex sinc_deriv(const GiNaC::ex& x, unsigned) {
 }
 
 REGISTER_FUNCTION(kfw_sinc, derivative_func(sinc_deriv).set_name("sinc"))
+
+// heaviside(x): 1 for x ≥ 0, else 0 (issue 30: a set-point step, a saturation's anti-windup);
+// its derivative is 0 wherever it exists.
+DECLARE_FUNCTION_1P(kfw_heaviside)
+
+static GiNaC::ex heaviside_deriv(const GiNaC::ex&, unsigned) {
+  return 0;
+}
+
+REGISTER_FUNCTION(kfw_heaviside, derivative_func(heaviside_deriv).set_name("heaviside"))
 REGISTER_FUNCTION(kfw_dsinc, set_name("dsinc"))
 
 }  // namespace kfw::model::symbolic

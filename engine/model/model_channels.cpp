@@ -38,18 +38,25 @@ Expected<ChannelSpec> parse_channel(const Reader& p, const std::string& name, co
   ChannelSpec c;
   c.name = name;
   if (!j.is_object()) return p.error(key, "expected an object");
-  if (auto st = p.only_keys(j, key,
-                            {"roles", "label", "z", "H", "h", "R", "every", "gate", "noise_param",
-                             "clock", "dropout", "outliers", "outlier_column"});
+  if (auto st =
+          p.only_keys(j, key,
+                      {"roles", "label", "z", "H", "h", "R", "every", "gate", "noise_param",
+                       "clock", "dropout", "outliers", "outlier_column", "impulses", "missing"});
       !st) {
     return st.err();
   }
-  for (const char* k : {"clock", "dropout", "outliers"}) {
+  for (const char* k : {"clock", "dropout", "outliers", "impulses"}) {
     if (j.contains(k) && !m.world_block) {
       return p.error(key + "." + k,
                      "a sensor's key: only a world's sensors (model.world."
-                     "measurements) have a clock, dropouts and outliers");
+                     "measurements) have a clock, dropouts, outliers and impulses");
     }
+  }
+  if (j.contains("missing") && m.world_block) {
+    return p.error(
+        key + ".missing",
+        "a filter channel's key: a world's sensor writes the flag column (impulses.flag), "
+        "the filter's channel reads it");
   }
   auto label = p.string(j, "label", key, false, name);
   if (!label) return label.err();

@@ -310,6 +310,10 @@ Status add_derived(const ModelSpec& spec, const ParamValues& values, const Datas
       if (d.has(c.roles[i].name)) raw.emplace_back(c.column_slots[i], &d.col(c.roles[i].name));
     }
   }
+  // A closed loop's columns (its reference, outputs, noise-free responses); NaN on a log.
+  const std::vector<double> none(r.steps(), kNoSample);
+  for (const auto& [slot, col] : spec.loop_columns)
+    raw.emplace_back(slot, d.has(col) && d.col(col).size() >= r.steps() ? &d.col(col) : &none);
   ReadsView reads;
   bool hit = false;
   if (cache && !fixed.empty()) {

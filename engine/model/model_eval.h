@@ -105,6 +105,24 @@ class ModelEval {
   // Q depends on t, inputs or states: its definiteness is checked where it is evaluated.
   bool process_noise_varies() const { return q_varies_; }
 
+  // A state held within [lo, hi] (a world's limits, issue 30): applied after every RK4 sub-step
+  // of the continuous nonlinear process; at a limit the state `rate` (−1: none) is set to 0 where
+  // it points further out.
+  struct Limit {
+    int state = -1, rate = -1;
+    double lo = 0.0, hi = 0.0;
+  };
+  void set_limits(std::vector<Limit> limits) { limits_ = std::move(limits); }
+  template <class V>
+  static void apply_limits(const std::vector<Limit>& limits, V& x) {
+    for (const Limit& l : limits) {
+      double& v = x(l.state);
+      if (!(v < l.lo || v > l.hi)) continue;
+      v = v < l.lo ? l.lo : l.hi;
+      if (l.rate >= 0 && x(l.rate) * (v < 0.0 ? -1.0 : 1.0) > 0.0) x(l.rate) = 0.0;
+    }
+  }
+
   // Step-level sub-expressions read by state entries (Expr::state_text), one group per nesting
   // level (a group writes its results after evaluating all of them).
   struct StepSubs {
@@ -133,6 +151,7 @@ class ModelEval {
     StepSubs subs;
   };
   Channel& channel(std::size_t c) { return channels_[c]; }
+  const Channel& channel(std::size_t c) const { return channels_[c]; }
   // Channel c's entries of t and inputs at its sample `z` (the columns read); a pre-processed
   // channel's columns are its symbols, and `z` becomes its components.
   void channel_step(std::size_t c, double* z) {
@@ -202,6 +221,7 @@ class ModelEval {
   ExprGroup xdot_state_, A_state_;  // continuous nonlinear: ẋ and A = ∂ẋ/∂x at the symbols
   VecX xdot_;
   double substep_ = 0.0;
+  std::vector<Limit> limits_;
   int rk4_steps_ = 1;
   bool rk4_ = false;  // the continuous nonlinear form
   bool q_varies_ = false;

@@ -4,6 +4,8 @@
 #include <sstream>
 
 #include "model/model_filter_detail.h"
+#include "model/model_steady.h"
+#include "model/world/model_world_noise.h"
 
 namespace kfw::model {
 
@@ -49,6 +51,8 @@ Dataset ModelResult::table() const {
     }
   }
   if (nees_dof > 0) put("nees", nees);
+  for (const auto& [name, v] : loop_columns)
+    put(name, v);
   if (imm) {
     const std::size_t r = imm->modes(), steps = t.size();
     for (std::size_t j = 0; j < r; ++j) {
@@ -231,7 +235,8 @@ Expected<FilterKind> filter_kind(const std::string& name) {
   if (name == "kf") return FilterKind::kKf;
   if (name == "ekf") return FilterKind::kEkf;
   if (name == "ukf") return FilterKind::kUkf;
-  return Error{"unknown filter '" + name + "' (kf, ekf, ukf)"};
+  if (name == "steady") return FilterKind::kSteady;
+  return Error{"unknown filter '" + name + "' (kf, ekf, ukf, steady)"};
 }
 
 namespace {
@@ -244,6 +249,8 @@ const char* kind_name(FilterKind k) {
       return "ekf";
     case FilterKind::kUkf:
       return "ukf";
+    case FilterKind::kSteady:
+      return "steady";
   }
   return "kf";
 }
@@ -273,6 +280,7 @@ Status dispatch(detail::Context& ctx, const VecX& x0, const MatX& P0) {
   Vec<N> x = x0;
   Covariance<N> P = P0;
   if (ctx.options.kind == FilterKind::kUkf) return detail::run_ukf<N>(ctx, x, P);
+  if (ctx.options.kind == FilterKind::kSteady) return detail::run_steady<N>(ctx, x, P);
   return detail::run_kf<N>(ctx, x, P);
 }
 
@@ -322,6 +330,37 @@ Status bind_columns(const ModelSpec& spec, const Dataset& d, Data& data) {
   }
   for (const auto& col : spec.truth)
     data.truth.push_back(!col.empty() && d.has(col) ? &d.col(col) : nullptr);
+  for (const auto& ch : spec.channels) {
+    const std::string& col = ch.missing.column;
+    data.missing.push_back(ch.missing.on() && d.has(col) ? &d.col(col) : nullptr);
+  }
+  return Ok{};
+}
+
+// The channels' missing flags at the run's parameters (`when` 0: off); a flag column that the
+// data lack leaves every sample in, with a warning.
+Status set_missing_flags(const ModelSpec& spec, const Dataset& d, Prepared& p) {
+  Context& ctx = *p.ctx;
+  ctx.missing_on.assign(spec.channels.size(), 0);
+  ctx.missing_equals.assign(spec.channels.size(), 0.0);
+  std::vector<double> vars = p.ev->vars();
+  for (std::size_t c = 0; c < spec.channels.size(); ++c) {
+    const MissingSpec& m = spec.channels[c].missing;
+    if (!m.on()) continue;
+    const std::string key = "model.measurements." + spec.channels[c].name + ".missing";
+    auto when = param_value(m.when, spec, vars, key + ".when");
+    if (!when) return when.err();
+    auto equals = param_value(m.equals, spec, vars, key + ".equals");
+    if (!equals) return equals.err();
+    if (*when == 0.0) continue;
+    if (!p.data.missing[c]) {
+      p.r->warnings.push_back("channel '" + spec.channels[c].name + "': no column '" + m.column +
+                              "' in " + d.source + ": no sample is flagged missing");
+      continue;
+    }
+    ctx.missing_on[c] = 1;
+    ctx.missing_equals[c] = *equals;
+  }
   return Ok{};
 }
 
@@ -386,6 +425,40 @@ void allocate_result(const ModelSpec& spec, const Dataset& d, Context& ctx) {
 
 }  // namespace
 
+namespace {
+
+// Row k of column `col` is a sample a channel reading it flags missing (its missing flag in force):
+// a `first` x0 skips it, as the channel does.
+bool flagged_missing(const Context& ctx, const std::string& col, std::size_t k) {
+  for (std::size_t c = 0; c < ctx.missing_on.size(); ++c) {
+    if (!ctx.missing_on[c] || (*ctx.data.missing[c])[k] != ctx.missing_equals[c]) continue;
+    for (const auto& r : ctx.spec.channels[c].roles) {
+      if (r.name == col) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+Status steady_gain(const ModelSpec& spec, const Dataset& d, const ParamValues& values,
+                   Context& ctx) {
+  const std::string what = spec.path + ": filter 'steady': ";
+  if (spec.modes || spec.channels.size() != 1 || !spec.groups.empty()) {
+    return Error{what + "one measurement channel and no modes (this model has " +
+                 std::to_string(spec.channels.size()) + " channel(s)" +
+                 (spec.modes ? " and modes" : "") + "); use kf"};
+  }
+  auto ev = ModelEval::create(spec, values);
+  if (!ev) return ev.err();
+  const double dt = d.median_dt();
+  if (auto st = (*ev)->check_dt(dt, "the median interval of " + d.source); !st) return st;
+  auto ss = model_steady_state(spec, **ev);
+  if (!ss) return Error{what + ss.error()};
+  ctx.steady_K = ss->dare.K;
+  return Ok{};
+}
+
 Expected<std::unique_ptr<Prepared>> prepare_run(const ModelSpec& spec, const Dataset& d,
                                                 const ParamValues& values,
                                                 const FilterOptions& options,
@@ -405,6 +478,7 @@ Expected<std::unique_ptr<Prepared>> prepare_run(const ModelSpec& spec, const Dat
   allocate_result(spec, d, ctx);
   init_context(ctx);
   if (auto st = set_groups(ctx, options.kind); !st) return st.err();
+  if (auto st = set_missing_flags(spec, d, *p); !st) return st.err();
 
   // x0: expressions, or the first finite sample of a column (as seed 000 starts from the first
   // angle reading).
@@ -412,9 +486,10 @@ Expected<std::unique_ptr<Prepared>> prepare_run(const ModelSpec& spec, const Dat
   for (std::size_t i = 0; i < spec.x0.size(); ++i) {
     const std::string& col = spec.x0[i].first_column;
     if (col.empty() || !d.has(col)) continue;
-    for (double v : d.col(col)) {
-      if (std::isfinite(v)) {
-        p->x0(static_cast<Eigen::Index>(i)) = v;
+    const auto& column = d.col(col);
+    for (std::size_t k = 0; k < column.size(); ++k) {
+      if (std::isfinite(column[k]) && !flagged_missing(ctx, col, k)) {
+        p->x0(static_cast<Eigen::Index>(i)) = column[k];
         break;
       }
     }
@@ -458,47 +533,19 @@ Status start_from_channel(Prepared& p, ModelEval& e) {
   return Ok{};
 }
 
-Status finish_run(Context& ctx) {
-  const ModelSpec& spec = ctx.spec;
-  for (std::size_t i = 0; i < spec.inputs.size(); ++i) {
-    std::size_t missing = 0;
-    for (double v : *ctx.data.u[i])
-      missing += std::isfinite(v) ? 0 : 1;
-    if (missing) {
-      ctx.r.warnings.push_back(std::to_string(missing) + " samples of input '" +
-                               spec.inputs[i].name + "' missing: the previous value was held");
-    }
+Status run_prepared(Prepared& p, const ParamValues& values, const Dataset& d, LoopHook* loop) {
+  const ModelSpec& spec = p.ctx->spec;
+  Context& ctx = *p.ctx;
+  ctx.loop = loop;
+  if (ctx.options.kind == FilterKind::kSteady) {
+    if (auto st = steady_gain(spec, d, values, ctx); !st) return st;
   }
-  return ctx.finish_skips();
-}
-
-}  // namespace detail
-
-Expected<std::shared_ptr<ModelResult>> run_model_filter(const ModelSpec& spec, const Dataset& d,
-                                                        const ParamValues& values,
-                                                        const FilterOptions& options,
-                                                        const RunControl& control) {
-  if (options.kind == FilterKind::kKf && !spec.linear_modes()) {
-    return Error{spec.path + ": filter 'kf' needs a linear model (F or A, and H in every " +
-                 "channel); use ekf or ukf"};
-  }
+  const VecX& x0 = p.x0;
+  const MatX& P0 = p.ev->P0;
   const int n = spec.n();
-  if (options.kind == FilterKind::kUkf) {
-    const double lambda = options.alpha * options.alpha * (n + options.kappa) - n;
-    if (!(n + lambda > 0.0)) {
-      return Error{"ukf.alpha, ukf.kappa: n + λ = α²(n + κ) must be positive (n = " +
-                   std::to_string(n) + ")"};
-    }
-  }
-  if (d.rows() < 2) return Error{d.source + ": need at least two rows"};
-  auto p = detail::prepare_run(spec, d, values, options, control);
-  if (!p) return p.err();
-  detail::Context& ctx = *(*p)->ctx;
-  const VecX& x0 = (*p)->x0;
-  const MatX& P0 = (*p)->ev->P0;
   Status st = Ok{};
   if (spec.modes) {
-    st = detail::run_imm(**p, values);
+    st = run_imm(p, values);
   } else {
     switch (n) {
       case 1:
@@ -523,8 +570,47 @@ Expected<std::shared_ptr<ModelResult>> run_model_filter(const ModelSpec& spec, c
         st = dispatch<Eigen::Dynamic>(ctx, x0, P0);
     }
   }
-  if (!st) return st.err();
-  if (auto done = detail::finish_run(ctx); !done) return done.err();
+  return st;
+}
+
+Status finish_run(Context& ctx) {
+  const ModelSpec& spec = ctx.spec;
+  for (std::size_t i = 0; i < spec.inputs.size(); ++i) {
+    std::size_t missing = 0;
+    for (double v : *ctx.data.u[i])
+      missing += std::isfinite(v) ? 0 : 1;
+    if (missing) {
+      ctx.r.warnings.push_back(std::to_string(missing) + " samples of input '" +
+                               spec.inputs[i].name + "' missing: the previous value was held");
+    }
+  }
+  return ctx.finish_skips();
+}
+
+}  // namespace detail
+
+Expected<std::shared_ptr<ModelResult>> run_model_filter(const ModelSpec& spec, const Dataset& d,
+                                                        const ParamValues& values,
+                                                        const FilterOptions& options,
+                                                        const RunControl& control) {
+  if ((options.kind == FilterKind::kKf || options.kind == FilterKind::kSteady) &&
+      !spec.linear_modes()) {
+    return Error{spec.path + ": filter '" + kind_name(options.kind) +
+                 "' needs a linear model (F or A, and H in every channel); use ekf or ukf"};
+  }
+  const int n = spec.n();
+  if (options.kind == FilterKind::kUkf) {
+    const double lambda = options.alpha * options.alpha * (n + options.kappa) - n;
+    if (!(n + lambda > 0.0)) {
+      return Error{"ukf.alpha, ukf.kappa: n + λ = α²(n + κ) must be positive (n = " +
+                   std::to_string(n) + ")"};
+    }
+  }
+  if (d.rows() < 2) return Error{d.source + ": need at least two rows"};
+  auto p = detail::prepare_run(spec, d, values, options, control);
+  if (!p) return p.err();
+  if (auto st = detail::run_prepared(**p, values, d, nullptr); !st) return st.err();
+  if (auto done = detail::finish_run(*(*p)->ctx); !done) return done.err();
   return (*p)->r;
 }
 

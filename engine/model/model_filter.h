@@ -13,7 +13,9 @@
 
 namespace kfw::model {
 
-enum class FilterKind { kKf, kEkf, kUkf };
+// kSteady (issue 30): the fixed DARE gain of a linear time-invariant model with one channel (the
+// m-step gain for a channel with `every` = m), the covariance carried in Joseph form for that gain.
+enum class FilterKind { kKf, kEkf, kUkf, kSteady };
 
 struct FilterOptions {
   FilterKind kind = FilterKind::kKf;
@@ -21,7 +23,7 @@ struct FilterOptions {
   double alpha = 1.0, beta = 2.0, kappa = 0.0;
 };
 
-// Parses "kf", "ekf", "ukf".
+// Parses "kf", "ekf", "ukf", "steady".
 Expected<FilterKind> filter_kind(const std::string& name);
 
 // The run. Bad parameters or data (missing columns, P0/Q/R not PSD at parameter values) come

@@ -36,6 +36,8 @@ struct Data {
   std::vector<const std::vector<double>*> u;               // per input
   std::vector<std::vector<const std::vector<double>*>> z;  // per channel, per component
   std::vector<const std::vector<double>*> truth;           // per state; null: no truth
+  // Per channel: the column of its missing flag (ChannelSpec::missing), null: none.
+  std::vector<const std::vector<double>*> missing;
 };
 
 // A group member's sample waiting for its instant (GroupScheme kStacked, kSequential).
@@ -43,6 +45,15 @@ struct Pending {
   std::size_t c = 0;    // the channel
   std::size_t row = 0;  // the row it arrived on (its y and S are recorded there)
   double z = 0.0;
+};
+
+// A closed loop around the filter (model/loop/closed_loop.cpp): `before` makes row k of the data
+// (the world steps there; `stop` when an event ends the run before row k), `after` sees the
+// filter's x and P at row k (column-major, n × n) and drives the world for the next interval.
+struct LoopHook {
+  virtual ~LoopHook() = default;
+  virtual Status before(std::size_t k, bool& stop) = 0;
+  virtual Status after(std::size_t k, const double* x, const double* P) = 0;
 };
 
 // What every filter shares: the evaluator, the data, the result being filled, inputs held.
@@ -73,6 +84,12 @@ struct Context {
   std::size_t start = 0;
   int start_channel = -1;
   std::vector<std::size_t> z_row{};
+  // Per channel with a missing flag in force: the value that marks a sample missing.
+  std::vector<char> missing_on{};
+  std::vector<double> missing_equals{};
+  MatX steady_K{};           // filter = steady: the fixed gain (n × m)
+  LoopHook* loop = nullptr;  // a closed loop, or null
+  std::size_t end = 0;       // rows run: data.rows, or the row an event stopped the loop at
   // A mode filter of an IMM (model/imm/): its update is kept here instead of recorded, and an
   // update it cannot apply is marked here instead of counted; the IMM decides. Null: a plain run.
   struct Capture {
@@ -163,6 +180,11 @@ struct Context {
       const double v = (*cols[j])[k];
       if (!std::isfinite(v)) return false;
       z_buf[j] = v;
+    }
+    if (!missing_on.empty() && missing_on[c] && (*data.missing[c])[k] == missing_equals[c])
+        [[unlikely]] {
+      ++r.chans[c].flagged;
+      return false;
     }
     return true;
   }
@@ -373,7 +395,16 @@ template <class Filter>
 Status run_steps(Context& ctx, Filter& f) {
   ModelEval& ev = ctx.ev;
   const auto& t = *ctx.data.t;
+  ctx.end = ctx.data.rows;
   for (std::size_t k = ctx.start; k < ctx.data.rows; ++k) {
+    if (ctx.loop) [[unlikely]] {
+      bool stop = false;
+      if (auto st = ctx.loop->before(k, stop); !st) return st;
+      if (stop) {
+        ctx.end = k;
+        break;
+      }
+    }
     if (k > ctx.start) {
       const auto where = [&] {
         return "the interval into step " + std::to_string(k) + " of " + ctx.data.source;
@@ -405,11 +436,15 @@ Status run_steps(Context& ctx, Filter& f) {
       if (auto st = f.update(c, k); !st) return st;
     }
     ctx.record_state(k, f.x, f.P);
+    if (ctx.loop) [[unlikely]] {
+      if (auto st = ctx.loop->after(k, f.x.data(), f.P.data()); !st) return st;
+      ctx.hold_inputs(k);  // an input the controller just wrote (its output at row k)
+    }
     if ((k & 0xFFF) == 0xFFF && ctx.control.cancelled()) return Error{"cancelled"};
   }
   // Samples still waiting at the end are applied (their y and S recorded; no row follows).
-  for (std::size_t g = 0; g < ctx.pending.size(); ++g) {
-    if (auto st = flush_group(ctx, f, g, ctx.data.rows - 1); !st) return st;
+  for (std::size_t g = 0; g < ctx.pending.size() && ctx.end > 0; ++g) {
+    if (auto st = flush_group(ctx, f, g, ctx.end - 1); !st) return st;
   }
   return Ok{};
 }
@@ -435,6 +470,9 @@ Status finish_run(Context& ctx);
 // the x0 entries that read the channel's components, evaluated by `e` (the run's, or an IMM's at
 // its grid's centre). A channel without a sample ends the run (exit 1).
 Status start_from_channel(Prepared& p, ModelEval& e);
+// The filter's run over prepared data, in a closed loop when `loop` is set (run_model_filter's
+// body; the loop's rows after ctx.end are left as the preparation made them).
+Status run_prepared(Prepared& p, const ParamValues& values, const Dataset& d, LoopHook* loop);
 // The IMM over the modes of spec.modes (model/imm/imm_run.cpp).
 Status run_imm(Prepared& p, const ParamValues& values);
 
@@ -442,6 +480,11 @@ template <int N>
 Status run_kf(Context& ctx, Vec<N> x, Covariance<N> P);
 template <int N>
 Status run_ukf(Context& ctx, Vec<N> x, Covariance<N> P);
+template <int N>
+Status run_steady(Context& ctx, Vec<N> x, Covariance<N> P);
+// filter = steady: the DARE gain at the data's median interval into ctx.steady_K (one channel).
+Status steady_gain(const ModelSpec& spec, const Dataset& d, const ParamValues& values,
+                   Context& ctx);
 
 // Instantiates a filter's run for every state count dispatched on (model_filter.cpp).
 #define KFW_MODEL_FILTER_SIZES(RUN)                        \

@@ -16,6 +16,15 @@ std::vector<MetricSpec> gate_metric_specs(const ModelSpec& spec) {
                      Direction::kLower});
     }
     outliers = outliers || (c.has_gate() && !c.outlier_column.empty());
+    if (c.missing.on()) {
+      out.push_back(
+          {"flagged." + c.name, "samples flagged missing (" + c.label + ")", "",
+           "samples whose update the channel's missing flag took out (" + c.missing.column + ")",
+           MetricGroup::kScenario, Direction::kNone});
+      out.push_back({"flagged_fraction." + c.name, "fraction flagged missing (" + c.label + ")", "",
+                     "flagged samples over the channel's samples", MetricGroup::kScenario,
+                     Direction::kNone});
+    }
   }
   if (!outliers) return out;
   using G = MetricGroup;
@@ -39,6 +48,11 @@ void add_gate_metrics(const ModelSpec& spec, const ModelResult& r, Metrics& m,
   for (std::size_t c = 0; c < r.chans.size(); ++c) {
     const ChannelSpec& cs = spec.channels[c];
     const ChannelSeries& ch = r.chans[c];
+    if (cs.missing.on()) {
+      const auto all = static_cast<double>(ch.flagged + ch.updates + ch.gated + ch.skipped);
+      m["flagged." + ch.name] = static_cast<double>(ch.flagged);
+      m["flagged_fraction." + ch.name] = all > 0 ? static_cast<double>(ch.flagged) / all : 0.0;
+    }
     if (!cs.has_gate()) continue;
     m["gated." + ch.name] = static_cast<double>(ch.gated);
     if (cs.outlier_column.empty()) continue;

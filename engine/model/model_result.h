@@ -20,8 +20,9 @@ struct ChannelSeries {
   std::vector<double> nis, log_det_s;               // per step; NaN where no update
   std::vector<std::vector<double>> K;               // [state · m + component][step]
   std::size_t updates = 0, gated = 0, skipped = 0;  // skipped: S not positive definite
-  std::vector<std::size_t> gated_rows;              // the rows of the gated samples
-  std::vector<double> outlier;  // the channel's outlier column (ChannelSpec), or empty
+  std::size_t flagged = 0;  // samples the channel's missing flag took out (ChannelSpec::missing)
+  std::vector<std::size_t> gated_rows;  // the rows of the gated samples
+  std::vector<double> outlier;          // the channel's outlier column (ChannelSpec), or empty
   // An IMM's: −log c per step, the mixture's likelihood of the channel's sample (NaN: none);
   // empty in a plain run, whose NLL comes from log det S and NIS.
   std::vector<double> nll;
@@ -71,6 +72,14 @@ struct ModelResult final : RunResult {
   std::vector<double> nees;  // over the states with truth; NaN where a truth value is missing
   double nees_dof = 0.0;
   std::optional<ImmSeries> imm;  // a model with modes
+  // A closed loop (issue 30): its columns beside the filter's (the reference, the controller's
+  // outputs, the noise-free responses) and the event that ended it (name, label, time).
+  std::vector<std::pair<std::string, std::vector<double>>> loop_columns;
+  struct LoopEvent {
+    std::string name, label;
+    double t = 0.0;
+  };
+  std::optional<LoopEvent> event;
 
   // Index of P(i, j), i ≤ j, in P.
   std::size_t cov_index(std::size_t i, std::size_t j) const;

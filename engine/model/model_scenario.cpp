@@ -18,6 +18,8 @@
 #include "filter/dare.h"
 #include "model/imm/imm_metrics.h"
 #include "model/imm/imm_spec.h"
+#include "model/loop/closed_loop.h"
+#include "model/loop/loop_spec.h"
 #include "model/model_derived.h"
 #include "model/model_eval.h"
 #include "model/model_filter.h"
@@ -25,6 +27,7 @@
 #include "model/model_noise.h"
 #include "model/model_spec.h"
 #include "model/model_stats.h"
+#include "model/model_steady.h"
 #include "model/plots/model_plots.h"
 #include "model/world/model_sim.h"
 
@@ -64,26 +67,6 @@ std::vector<ParamSpec> standard_params(const std::vector<std::string>& filters,
       {"sim.dt", "sample interval", "s", 1e-6, 100, 0.01, Scale::kLog, S,
        "Time step of the simulated data.", 4},
   };
-}
-
-// The m-step model of a channel updated every m-th step: F^m and Σ_{i<m} F^i Q F^iᵀ, by squaring
-// (log₂ m products: `every` may be up to limits::kMaxEvery). Steps a then b compose as
-// F_b F_a, F_b Q_a F_bᵀ + Q_b.
-void m_step(const MatX& F, const MatX& Q, int m, MatX& Fm, MatX& Qm) {
-  const Eigen::Index n = F.rows();
-  Fm = MatX::Identity(n, n);
-  Qm = MatX::Zero(n, n);
-  MatX Fp = F, Qp = Q;  // the 2^k-step model
-  for (unsigned bits = static_cast<unsigned>(m); bits; bits >>= 1) {
-    if (bits & 1u) {
-      Qm = (Fp * Qm * Fp.transpose()).eval() + Qp;
-      Fm = (Fp * Fm).eval();
-    }
-    if (bits > 1) {
-      Qp = (Fp * Qp * Fp.transpose()).eval() + Qp;
-      Fp = (Fp * Fp).eval();
-    }
-  }
 }
 
 // True when a unit needs parentheses as one side of a ratio ("m/s", "m s⁻¹"; not "m²", "(m/s)²").
@@ -225,6 +208,8 @@ class ModelScenario final : public Scenario {
       out.push_back(std::move(d));
     for (auto& d : model::imm_metric_specs(*spec_))
       out.push_back(std::move(d));
+    for (auto& d : model::loop_metric_specs(*spec_))
+      out.push_back(std::move(d));
     return out;
   }
 
@@ -243,8 +228,35 @@ class ModelScenario final : public Scenario {
     return std::make_shared<ModelScenario>(std::move(spec), table_, title_);
   }
 
+  // A closed loop does not filter a loaded log: each run simulates the world with the controller.
+  std::optional<DataUnused> data_unused(const ParamValues& v) const override {
+    if (!closed(v)) return std::nullopt;
+    const model::ControllerSpec& c = *spec_->controller;
+    std::string fix;
+    if (!c.loop_param.empty()) {
+      const ParamSpec* p = table_.find(c.loop_param);
+      for (std::size_t i = 0; p && i < c.closed_by_choice.size(); ++i) {
+        if (!c.closed_by_choice[i]) {
+          fix = c.loop_param + "=" + p->choices[i];
+          break;
+        }
+      }
+    }
+    return DataUnused{"the loop is closed: each run simulates the world with the controller (" +
+                          (c.loop_param.empty() ? std::string("model.controller") : c.loop_param) +
+                          ")",
+                      fix};
+  }
+
   Expected<Dataset> simulate(const ParamValues& v) const override {
     if (auto st = params().check(v); !st) return st.err();
+    if (closed(v)) {
+      auto o = options(with_mode_params(v));
+      if (!o) return o.err();
+      auto loop = model::run_closed_loop(*spec_, v, *o, {}, "model '" + title_ + "'");
+      if (!loop) return loop.err();
+      return std::move(loop->data);
+    }
     // A world block generates the data; without one the model simulates itself.
     return model::simulate_model(spec_->world ? *spec_->world : *spec_, with_mode_params(v),
                                  "model '" + title_ + "'");
@@ -278,7 +290,30 @@ class ModelScenario final : public Scenario {
                                                 const RunControl& control) const override {
     if (auto st = params().check(checked); !st) return st.err();
     const ParamValues v = with_mode_params(checked);
-    if (auto st = require_columns(d, columns()); !st) return st.err();
+    auto o = options(v);
+    if (!o) return o.err();
+    std::shared_ptr<model::ModelResult> r;
+    model::LoopRun loop;
+    if (closed(v)) {
+      auto run = model::run_loop_model(*spec_, v, *o, control, "model '" + title_ + "'");
+      if (!run) return run.err();
+      loop = std::move(*run);
+      r = loop.result;
+    } else {
+      if (auto st = require_columns(d, columns()); !st) return st.err();
+      auto run = model::run_model_filter(*spec_, d, v, *o, control);
+      if (!run) return run.err();
+      r = std::move(*run);
+    }
+    return finish(closed(v) ? loop.data : d, v, std::move(r));
+  }
+
+ private:
+  bool closed(const ParamValues& v) const {
+    return spec_->controller && model::loop_closed(*spec_->controller, v);
+  }
+
+  Expected<model::FilterOptions> options(const ParamValues& v) const {
     model::FilterOptions o;
     auto kind = model::filter_kind(table_.format("filter", param(v, "filter")));
     if (!kind) return kind.err();
@@ -286,9 +321,13 @@ class ModelScenario final : public Scenario {
     o.alpha = param(v, "ukf.alpha");
     o.beta = param(v, "ukf.beta");
     o.kappa = param(v, "ukf.kappa");
-    auto r = model::run_model_filter(*spec_, d, v, o, control);
-    if (!r) return r.err();
-    model::ModelResult& res = **r;
+    return o;
+  }
+
+  // The metrics of a run over `d` (the log, or the closed loop's own data).
+  Expected<std::shared_ptr<RunResult>> finish(const Dataset& d, const ParamValues& v,
+                                              std::shared_ptr<model::ModelResult> r) const {
+    model::ModelResult& res = *r;
     Metrics& m = res.metrics;
     double at = 0.0;  // model.metrics_from: the accuracy and consistency metrics start there
     const std::size_t from = model::metrics_from_row(*spec_, v, res.t, at);
@@ -310,10 +349,9 @@ class ModelScenario final : public Scenario {
     model::add_stat_metrics(*spec_, v, res);
     const double dt = d.rows() >= 2 ? d.median_dt() : param(v, spec_->sim_dt_key);
     if (auto st = model::add_plot_points(*spec_, v, dt, res); !st) return st.err();
-    return std::shared_ptr<RunResult>(std::move(*r));
+    return std::shared_ptr<RunResult>(std::move(r));
   }
 
- private:
   // The values with the grid's mode parameters (no slider) at their grid's centre.
   ParamValues with_mode_params(const ParamValues& v) const {
     if (spec_->mode_params.empty() || !spec_->modes) return v;
@@ -417,31 +455,12 @@ Expected<Metrics> ModelScenario::gain(const ParamValues& checked, const Dataset*
   const std::string where =
       data && data->rows() >= 2 ? "the median interval of " + data->source : s.sim_dt_key;
   if (auto st = (*ev)->check_dt(dt, where); !st) return st.err();
-  // All channels at one rate m: the m-step model F^m, Σ_{i<m} F^i Q F^iᵀ between updates.
-  const int every = (*ev)->channel(0).every;
-  int rows = 0;
-  for (std::size_t c = 0; c < s.channels.size(); ++c) {
-    if ((*ev)->channel(c).every != every) {
-      return Error{s.path + ": no single steady state: the channels update at different rates"};
-    }
-    rows += s.channels[c].size();
-  }
-  const Eigen::Index n = s.n();
-  MatX H(rows, n), R = MatX::Zero(rows, rows);
-  std::vector<std::string> roles;
-  Eigen::Index r0 = 0;
-  for (std::size_t c = 0; c < s.channels.size(); ++c) {
-    const auto& ch = (*ev)->channel(c);
-    H.middleRows(r0, ch.H.rows()) = ch.H;
-    R.block(r0, r0, ch.R.rows(), ch.R.cols()) = ch.R;
-    r0 += ch.H.rows();
-    for (const auto& comp : s.channels[c].comps)
-      roles.push_back(comp.name);
-  }
-  MatX Fm, Qm;
-  m_step((*ev)->F, (*ev)->Q, every, Fm, Qm);
-  auto ss = solve_dare(Fm, H, Qm, R);
-  if (!ss) return Error{s.path + ": " + ss.error()};
+  auto steady = model::model_steady_state(s, **ev);
+  if (!steady) return steady.err();
+  const SteadyState* ss = &steady->dare;
+  const std::vector<std::string>& roles = steady->roles;
+  const Eigen::Index n = s.n(), rows = static_cast<Eigen::Index>(roles.size());
+  const int every = steady->every;
   Metrics g = derived_scalars(v, dt);  // β and the like: a gain curve's other axis
   g["dt"] = dt;
   g["every"] = every;
@@ -525,8 +544,34 @@ Expected<std::unique_ptr<Scenario>> make_model_scenario(const OJson& preset,
                      [&](const auto& a, const auto& b) { return at(a) < at(b); });
   }
 
-  const auto filters = model::filter_choices(*spec);
+  auto filters = model::filter_choices(*spec);
+  // A preset may offer some of them, in its own order (seed 003's kf and steady).
+  if (filter_entry.is_object() && filter_entry.contains("choices")) {
+    const OJson& c = filter_entry["choices"];
+    std::vector<std::string> own;
+    for (std::size_t i = 0; c.is_array() && i < c.size(); ++i) {
+      const std::string name = c[i].is_string() ? c[i].get<std::string>() : std::string();
+      if (std::find(filters.begin(), filters.end(), name) == filters.end() ||
+          std::find(own.begin(), own.end(), name) != own.end()) {
+        return Error{path + ": parameters.filter.choices[" + std::to_string(i) + "]: '" + name +
+                     "' is not a filter for this model, or repeated (" +
+                     [&] {
+                       std::string all;
+                       for (const auto& f : filters)
+                         all += (all.empty() ? "" : ", ") + f;
+                       return all;
+                     }() +
+                     ")"};
+      }
+      own.push_back(name);
+    }
+    if (!c.is_array() || own.empty()) {
+      return Error{path + ": parameters.filter.choices: expected a list of filter names"};
+    }
+    filters = std::move(own);
+  }
   std::string filter = spec->filter;
+  if (std::find(filters.begin(), filters.end(), filter) == filters.end()) filter = filters.front();
   if (!filter_entry.is_null()) {
     const OJson v = filter_entry.is_object() ? filter_entry.value("value", OJson()) : filter_entry;
     if (v.is_string()) {

@@ -8,6 +8,7 @@
 #include "core/limits.h"
 #include "core/suggest.h"
 #include "model/imm/imm_spec.h"
+#include "model/loop/loop_spec.h"
 #include "model/model_derived.h"
 #include "model/model_expressions.h"
 #include "model/model_noise.h"
@@ -70,6 +71,20 @@ Status add_sim_symbols(const Reader& p, const ParamTable& params, ModelSpec& m) 
   return Ok{};
 }
 
+// The report side of a filter model (derived quantities, named metrics, plot blocks; issue 30)
+// reads each simulator parameter sim.X as X where no symbol of the model is named X: seed 003's
+// tracking RMSE counts from sim.step_time. The model itself (x0, P0, process, channels) is
+// parsed before and never reads the simulator's parameters.
+void add_free_sim_symbols(const ParamTable& params, ModelSpec& m) {
+  for (const auto& spec : params.specs()) {
+    if (spec.key.rfind("sim.", 0) != 0) continue;
+    const std::string name = spec.key.substr(4);
+    if (!is_identifier(name) || is_reserved_name(name) || m.symbols.find(name) >= 0) continue;
+    m.param_slots.push_back(m.symbols.add(name, kParamSymbol));
+    m.param_keys.push_back(spec.key);
+  }
+}
+
 // noise_param on an input or a channel (version 2), refused in a version-1 file.
 Status check_noise_version(const Reader& p, const json& j) {
   if (auto it = j.find("inputs"); it != j.end() && it->is_array()) {
@@ -96,7 +111,7 @@ Status check_noise_version(const Reader& p, const json& j) {
 Status check_version_keys(const Reader& p, const json& j, int version) {
   if (version >= 2) return Ok{};
   for (const char* k : {"expressions", "world", "derived", "sim", "plots", "groups", "modes",
-                        "metrics", "metrics_from", "first_panels"}) {
+                        "metrics", "metrics_from", "first_panels", "controller"}) {
     if (j.contains(k))
       return p.error(std::string("model.") + k, "a version-2 key: set \"version\": 2");
   }
@@ -407,8 +422,11 @@ int ModelSpec::state_index(const std::string& name) const {
 }
 
 std::vector<std::string> filter_choices(const ModelSpec& spec) {
-  if (spec.linear_modes()) return {"kf", "ekf", "ukf"};
-  return {"ekf", "ukf"};
+  if (!spec.linear_modes()) return {"ekf", "ukf"};
+  // The fixed DARE gain (issue 30): a linear time-invariant model with one channel.
+  if (spec.time_invariant() && spec.channels.size() == 1 && !spec.modes && spec.groups.empty())
+    return {"kf", "ekf", "ukf", "steady"};
+  return {"kf", "ekf", "ukf"};
 }
 
 Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const std::string& path,
@@ -420,10 +438,11 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   if (!j.is_object()) return p.error(key, "expected an object");
   if (auto st = p.only_keys(
           j, key,
-          {"version", "description", "states",       "inputs",       "expressions", "x0",
-           "P0",      "process",     "measurements", "truth",        "primary",     "filter",
-           "world",   "derived",     "noise",        "clocks",       "sim",         "plots",
-           "groups",  "modes",       "metrics",      "metrics_from", "first_panels"});
+          {"version", "description", "states",       "inputs",       "expressions",  "x0",
+           "P0",      "process",     "measurements", "truth",        "primary",      "filter",
+           "world",   "derived",     "noise",        "clocks",       "sim",          "plots",
+           "groups",  "modes",       "metrics",      "metrics_from", "first_panels", "controller",
+           "limits",  "events"});
       !st) {
     return st.err();
   }
@@ -454,7 +473,7 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   m.dt_slot = m.symbols.add("dt", kDtSymbol);
   m.t_slot = m.symbols.add("t", kTimeSymbol);
   m.world_block = world;
-  for (const char* k : {"noise", "clocks"}) {
+  for (const char* k : {"noise", "clocks", "limits", "events"}) {
     if (j.contains(k) && !world) {
       return p.error(std::string("model.") + k,
                      std::string("a key of the world block: declare it as model.world.") + k);
@@ -495,16 +514,19 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
     }
     auto c = detail::parse_channel(p, it.key(), it.value(), m, params, roles_seen);
     if (!c) return c.err();
+    const std::string ckey = "model.measurements." + it.key();
     if (world) {
-      if (auto st =
-              detail::parse_sensor(p, it.value(), "model.measurements." + it.key(), params, m, *c);
-          !st) {
-        return st.err();
-      }
+      if (auto st = detail::parse_sensor(p, it.value(), ckey, params, m, *c); !st) return st.err();
+    } else if (auto st = detail::parse_missing(p, it.value(), ckey, *c); !st) {
+      return st.err();
     }
     m.channels.push_back(std::move(*c));
   }
   if (auto st = detail::resolve_initial_channels(p, m); !st) return st.err();
+  if (world) {
+    if (auto st = detail::parse_limits(p, j, m); !st) return st.err();
+    if (auto st = detail::parse_events(p, j, m); !st) return st.err();
+  }
 
   if (auto it = j.find("groups"); it != j.end()) {
     if (world) return p.error("model.groups", "a world's sensors are not grouped: group channels");
@@ -512,6 +534,23 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   }
   if (auto st = parse_noise_params(j, m, params, world); !st) return st.err();
   if (auto st = parse_outputs(p, j, m, roles_seen); !st) return st.err();
+  if (auto it = j.find("world"); it != j.end()) {
+    if (world) return p.error("model.world", "a world holds no world of its own");
+    auto w = parse_world(j, params, path, m);
+    if (!w) return w.err();
+    m.world = std::move(*w);
+  }
+  if (j.contains("controller")) {
+    if (world)
+      return p.error("model.controller", "a world has no controller: declare it in the model");
+    if (j.contains("modes")) {
+      return p.error("model.controller", "a controller with modes (an IMM) is not supported yet");
+    }
+    auto c = parse_controller(j, params, m);
+    if (!c) return c.err();
+    m.controller = std::move(*c);
+  }
+  if (!world) add_free_sim_symbols(params, m);
   if (auto it = j.find("derived"); it != j.end()) {
     detail::add_grid_symbols(j, m);
     if (auto st = parse_derived(p, *it, m); !st) return st.err();
@@ -519,12 +558,6 @@ Expected<ModelSpec> parse_model(const json& j, const ParamTable& params, const s
   if (auto it = j.find("plots"); it != j.end()) {
     if (world) return p.error("model.plots", "a world draws no plots: declare them in the model");
     if (auto st = parse_plots(p, *it, params, m); !st) return st.err();
-  }
-  if (auto it = j.find("world"); it != j.end()) {
-    if (world) return p.error("model.world", "a world holds no world of its own");
-    auto w = parse_world(j, params, path, m);
-    if (!w) return w.err();
-    m.world = std::move(*w);
   }
   if (j.contains("modes")) {
     if (world) return p.error("model.modes", "a world has no modes: declare them in the model");

@@ -19,7 +19,8 @@
 
 namespace kfw::model {
 
-struct ModesSpec;  // model/imm/imm_spec.h
+struct ModesSpec;       // model/imm/imm_spec.h
+struct ControllerSpec;  // model/loop/loop_spec.h
 
 // The model format this build reads up to; a version-1 file loads unchanged (version 2 adds
 // sub-expressions and the continuous nonlinear process).
@@ -104,6 +105,37 @@ struct SensorSpec {
   bool outliers = false, outlier_count = true;
   Expr outlier_amount, outlier_size;
   std::string outlier_group, outlier_column;  // the column of each sample's offset (optional)
+  // Impulsive noise (issue 30, seed 003's lost contact): a burst starts at a sample outside one
+  // with probability `impulse_rate` (one uniform per sample, stream "dropout.NAME"), lasts
+  // 1 + ⌊ln u / ln(1 − 1/burst)⌋ samples (u from "burst.NAME"; mean `impulse_burst`), and each
+  // sample in it reads a uniform value on [lo, hi) per role ("impulse.NAME") instead of h + v.
+  // `impulse_flag`: a column written 0 at an impulsive sample, 1 at a clean one (optional).
+  bool impulses = false;
+  Expr impulse_rate, impulse_burst, impulse_lo, impulse_hi;
+  std::string impulse_flag;
+};
+
+// A filter channel's missing-sample flag (issue 30, seed 003's detection circuit): a sample is
+// missing — the update not applied, counted in flagged.NAME — where the column reads exactly
+// `equals`, while `when` is not 0 (both parameters only). Empty column: no flag.
+struct MissingSpec {
+  std::string column;
+  Expr equals, when;
+  bool on() const { return !column.empty(); }
+};
+
+// A world state held within [lo, hi] (issue 30: the beam's end stops), after every grid step and
+// RK4 sub-step; at a limit the state `rate` (−1: none) is set to 0 where it points further out.
+struct StateLimitSpec {
+  int state = -1, rate = -1;
+  Expr lo, hi;  // parameters only
+};
+
+// A world event (issue 30): the run ends at the first row where `when` is positive (the ball
+// leaves the beam), reported as event.NAME_at_s.
+struct EventSpec {
+  std::string name, label;
+  Expr when;
 };
 
 struct ChannelSpec {
@@ -124,6 +156,7 @@ struct ChannelSpec {
   double gate = 0.0;        // χ² gate probability; 0: no gate
   Expr gate_sigma;  // or (version 2, scalar channels) |y| > gate_sigma·√S: a distance gate
   std::string outlier_column;  // version 2: the column marking known outliers (non-zero)
+  MissingSpec missing;         // issue 30: samples the sensor flags as missing
   SensorSpec sensor;           // a world's sensor: its clock, dropouts and outliers
   // noise_param (version 2, model_noise.h): per role, the parameter its noise sets (empty:
   // none); `noise_shared`: one parameter for every role. Empty: the channel links nothing.
@@ -235,6 +268,13 @@ struct ModelSpec {
   std::vector<NoiseSourceSpec> noise;
   std::vector<ClockSpec> clocks;
   std::vector<std::pair<std::string, Expr>> truth_exprs;
+  std::vector<StateLimitSpec> limits;  // world only (issue 30): states held within bounds
+  std::vector<EventSpec> events;       // world only (issue 30): conditions that end the run
+  // The controller that closes the loop (issue 30, model/loop/loop_spec.h); null: open loop.
+  std::shared_ptr<const ControllerSpec> controller;
+  // Columns of a closed loop that derived series read (the reference, the controller's outputs,
+  // the noise-free responses): {symbol slot, column}.
+  std::vector<std::pair<int, std::string>> loop_columns;
   // The modes of an IMM over the model (version 2, issue 28; model/imm/imm_spec.h); null: one
   // filter.
   std::shared_ptr<const ModesSpec> modes;

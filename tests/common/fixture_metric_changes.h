@@ -1,7 +1,7 @@
 // The differences between a seed preset's `kfw-cli metrics` listing today and the one saved in
 // tests/fixtures/metrics/ that CHANGES.md lists (issue 27: presets/helicopter.json, broad_imu.json
-// and underwater.json became model files; issue 28: radome.json; the tables under "... are model
-// files"), and nothing else.
+// and underwater.json became model files; issue 28: radome.json; issue 30: ballbeam.json; the
+// tables under "... is a model file"), and nothing else.
 // tests/engine/format_fixtures_test.cpp and tests/cli/format_fixtures_cli_test.cpp read it.
 #pragma once
 
@@ -69,7 +69,34 @@ inline const std::vector<MetricChange>& fixture_metric_changes(const std::string
   }();
   static const std::vector<MetricChange> none;
   if (preset == "helicopter" || preset == "broad_imu") return helicopter_model;
+  // presets/ballbeam.json (issue 30): one loop per run, so the three variants' figures went; the
+  // built-in's names of the event, α, β and the sensor's counts moved (CHANGES.md's table).
+  static const std::vector<MetricChange> ballbeam_model = [] {
+    std::vector<MetricChange> c;
+    for (const char* k :
+         {"K1_final", "K2_final_times_Ts", "K_final_run", "Ts", "alpha", "alpha_dare", "beta",
+          "beta_dare", "diverged", "fell", "lambda", "left_beam_at_s", "missing_fraction",
+          "skipped_fraction", "steps", "tracking_excess_detect_off", "tracking_excess_detect_on"})
+      c.push_back({k, false});
+    for (const char* v : {"_detect_off", "_detect_on", "_noise_free"}) {
+      for (const char* k :
+           {"V_rms", "left_beam_at_s", "max_abs_pos", "max_abs_theta", "rmse_pos", "tracking_rmse"})
+        c.push_back({std::string(k) + v, false});
+    }
+    for (const char* k :
+         {"K.v.x_meas", "K.x.x_meas", "V_rms", "max_abs_pos", "max_abs_theta", "event.left_beam",
+          "event.left_beam_at_s", "flagged.position", "flagged_fraction.position",
+          "impulsive_fraction.position", "derived.alpha", "derived.beta", "derived.lambda"})
+      c.push_back({k, true});
+    for (const char* d :
+         {"ball", "beam", "excess", "motor", "noise_free", "set_point", "track_err"}) {
+      c.push_back({std::string("derived.") + d + ".rms", true});
+      c.push_back({std::string("derived.") + d + ".max", true});
+    }
+    return c;
+  }();
   if (preset == "radome") return radome_model;
+  if (preset == "ballbeam") return ballbeam_model;
   return preset == "underwater" ? underwater_model : none;
 }
 

@@ -146,7 +146,8 @@ TEST(ModelHelicopter, FilterIsAChoiceParameterAndAllThreeAgree) {
   const ParamSpec* f = model->params().find("filter");
   ASSERT_TRUE(f);
   EXPECT_EQ(f->scale, Scale::kChoice);
-  EXPECT_EQ(f->choices, (std::vector<std::string>{"kf", "ekf", "ukf"}));
+  // steady (issue 30): the fixed DARE gain, offered to a linear time-invariant one-channel model.
+  EXPECT_EQ(f->choices, (std::vector<std::string>{"kf", "ekf", "ukf", "steady"}));
   ParamValues v = model->params().defaults();
   v["sim.duration"] = 10;
   auto d = model->simulate(v);

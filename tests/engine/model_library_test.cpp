@@ -108,8 +108,9 @@ TEST(ModelLibrary, EveryPresetHasADescriptionAndIsInTheList) {
     EXPECT_GT(j.value("description", "").size(), 40u) << entry.path();
   }
   // issue 27: helicopter_world.json and underwater_world.json became presets/helicopter.json and
-  // presets/underwater.json; issue 28 added cv_imm.json and cv_ct_imm.json.
-  EXPECT_EQ(files, 11u);
+  // presets/underwater.json; issue 28 added cv_imm.json and cv_ct_imm.json; issue 30
+  // cart_lqr.json.
+  EXPECT_EQ(files, 12u);
 }
 
 // One scenario, runs on two threads at once (Sweep uses both cores): each run has its own

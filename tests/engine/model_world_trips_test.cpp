@@ -402,13 +402,18 @@ TEST(ModelWorldTrips, EveryShippedModelListsItsParametersInTheFilesOrder) {
     ASSERT_GE(declared.size(), 5u);
     EXPECT_EQ(keys(p->instance->params(), declared.size()), declared);
   }
-  // A built-in scenario's table is its own, in its own order (radome.json is a model file since
-  // issue 28; ballbeam is the last built-in preset).
+  // ballbeam.json (a model file since issue 30, the last seed preset to become one) lists the
+  // built-in's keys first, in the built-in's order.
   auto h = load_preset(KFW_SOURCE_DIR "/presets/ballbeam.json");
   ASSERT_TRUE(h.ok()) << h.error();
   auto builtin = make_scenario("ballbeam");
   ASSERT_TRUE(builtin.ok());
-  EXPECT_EQ(keys(h->instance->params(), 100), keys((*builtin)->params(), 100));
+  const auto own = keys((*builtin)->params(), 100);
+  std::vector<std::string> kept;
+  for (const auto& k : keys(h->instance->params(), 100)) {
+    if (std::find(own.begin(), own.end(), k) != own.end()) kept.push_back(k);
+  }
+  EXPECT_EQ(kept, own);
 }
 
 TEST(ModelWorldTrips, AnOrderedDocumentKeepsTheFirstPlaceAndTheLastValueOfAKey) {

@@ -132,6 +132,7 @@ class ModelView final : public ScenarioView {
     for (const auto& b : layout_->plots) {
       if (auto d = plot::makeBlockDrawer(parent, b, *scenario_)) {
         out.push_back({q(b.id), d->title(), d->plot()});
+        if (b.kind == "series") time_blocks_.push_back(d->plot());
         blocks_.push_back(std::move(d));
       }
     }
@@ -176,6 +177,7 @@ class ModelView final : public ScenarioView {
     const plot::BlockInput in{*scenario_, *r, values_, data_.get()};
     for (auto& b : blocks_)
       b->setResult(in);
+    markEvent(*r);
     if (curve_key_.empty() && !curve_keys_.empty()) {
       curve_key_ = default_gain_curve_parameter(*scenario_, values_, data_.get());
       if (curve_key_.empty()) curve_key_ = curve_keys_.front();
@@ -234,6 +236,36 @@ class ModelView final : public ScenarioView {
     QCPGraph* steady = nullptr;  // null when there is no DARE value for the entry
     double steady_value = 0.0;
   };
+
+  // A closed loop that an event ended (the ball left the beam, model.world.events): a dashed line
+  // at its time on each time panel of the states, measurements and series blocks, labelled.
+  void markEvent(const ModelResult& r) {
+    for (QCPAbstractItem* item : event_items_)
+      item->parentPlot()->removeItem(item);
+    event_items_.clear();
+    if (!r.event) return;
+    std::vector<QCustomPlot*> plots = time_blocks_;
+    for (auto& s : states_)
+      plots.push_back(s->plot());
+    for (auto& c : components_)
+      plots.push_back(c.measured);
+    const QColor red(190, 30, 30);
+    for (QCustomPlot* p : plots) {
+      auto* line = new QCPItemStraightLine(p);
+      line->point1->setCoords(r.event->t, 0.0);
+      line->point2->setCoords(r.event->t, 1.0);
+      line->setPen(QPen(red, 1.5, Qt::DashLine));
+      auto* text = new QCPItemText(p);
+      text->position->setTypeX(QCPItemPosition::ptPlotCoords);
+      text->position->setTypeY(QCPItemPosition::ptAxisRectRatio);
+      text->position->setCoords(r.event->t, 0.03);
+      text->setPositionAlignment(Qt::AlignRight | Qt::AlignTop);
+      text->setText(q(r.event->label) + " ");
+      text->setColor(red);
+      event_items_.push_back(line);
+      event_items_.push_back(text);
+    }
+  }
 
   // One step line per gain entry, K[state, role], and its DARE value dashed in the same colour.
   void rebuildGainGraphs() {
@@ -355,6 +387,8 @@ class ModelView final : public ScenarioView {
   ImmPanels imm_;  // a model with modes
   std::unique_ptr<plot::GainCurvePlot> curve_;
   std::vector<std::unique_ptr<plot::BlockDrawer>> blocks_;  // the file's plot blocks
+  std::vector<QCustomPlot*> time_blocks_;                   // those that plot against time
+  std::vector<QCPAbstractItem*> event_items_;               // the event's line and label
   std::vector<std::string> curve_keys_;
   std::string curve_key_;
   QComboBox* combo_ = nullptr;

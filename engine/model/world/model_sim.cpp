@@ -13,6 +13,7 @@
 #include "filter/angle.h"
 #include "model/model_eval.h"
 #include "model/world/model_world_noise.h"
+#include "model/world/simulation.h"
 
 namespace kfw::model {
 
@@ -66,82 +67,41 @@ std::string too_many_rows(std::size_t rows, std::size_t max_rows, const ModelSpe
 // whose k·dt differs from it in the last bit).
 constexpr double kSameInstant = 1e-9;
 
-VecX draw(RandomStream& r, Eigen::Index m) {
+}  // namespace
+
+namespace detail {
+
+VecX Simulation::draw(RandomStream& r, Eigen::Index m) {
   VecX v(m);
   for (Eigen::Index i = 0; i < m; ++i)
-    v(i) = r.normal();
+    v(i) = quiet_ ? 0.0 : r.normal();
   return v;
 }
 
-// One simulation of a model (or a world): the process on the sim.dt grid, the sensors on the
-// grid (`every`) or on their clocks' ticks, a row wherever something is sampled.
-class Simulation {
- public:
-  Simulation(const ModelSpec& spec, ModelEval& ev, double dt, std::uint64_t seed,
-             std::size_t max_rows)
-      : max_rows_(max_rows),
-        spec_(spec),
-        ev_(ev),
-        dt_(dt),
-        seed_(seed),
-        vars_(ev.vars()),
-        x0_(seed, "x0"),
-        process_(seed, "process") {
-    for (const auto& c : spec.channels) {
-      channel_streams_.emplace_back(seed, "channel." + c.name);
-      dropout_streams_.emplace_back(seed, "dropout." + c.name);
-    }
+Simulation::Simulation(const ModelSpec& spec, ModelEval& ev, double dt, std::uint64_t seed,
+                       std::size_t max_rows, bool quiet)
+    : max_rows_(max_rows),
+      spec_(spec),
+      ev_(ev),
+      dt_(dt),
+      seed_(seed),
+      quiet_(quiet),
+      vars_(ev.vars()),
+      x0_(seed, "x0"),
+      process_(seed, "process") {
+  for (const auto& c : spec.channels) {
+    channel_streams_.emplace_back(seed, "channel." + c.name);
+    dropout_streams_.emplace_back(seed, "dropout." + c.name);
+    burst_streams_.emplace_back(seed, "burst." + c.name);
+    impulse_streams_.emplace_back(seed, "impulse." + c.name);
   }
+}
 
-  Status prepare(double duration, std::size_t grid_rows);
-  Status select_clocks();
-  Expected<Dataset> run(const std::string& source);
-
- private:
-  Error fail(double t, const std::string& what) const {
-    std::ostringstream os;
-    os << "simulation, step " << j_ << " (t = " << t << " s): " << what;
-    return failure(os.str());
-  }
-  void inputs_at(double t);
-  void set_row(double t);  // the model's symbols at a row: t, inputs, noise, row_x_
-  // The mean process from x_ at t_j over dt, with the inputs and sources of step j (the model's
-  // symbols left there, for process_noise); a failure names the time t_end.
-  Expected<VecX> mean_step(double dt, double t_end);
-  void wrap_angles(VecX& x) const;
-  Status grid_step();         // x_j → x_{j+1}, with process noise
-  Status state_at(double t);  // row_x_: x_j moved on to t by the mean process
-  Status sample(std::size_t c, std::size_t row, double t, Dataset& d);
-  Status add_outliers(Dataset& d);
-
-  std::size_t max_rows_;
-  const ModelSpec& spec_;
-  ModelEval& ev_;
-  const double dt_;
-  const std::uint64_t seed_;
-  std::vector<double> vars_;  // the inputs' simulation expressions read these
-  ExprGroup input_sim_;
-  std::vector<double> u_;
-  RandomStream x0_, process_;
-  std::vector<RandomStream> channel_streams_, dropout_streams_;
-  std::optional<detail::NoiseSources> noise_;
-  MatX Lq_;
-  bool lq_valid_ = false;
-  std::vector<MatX> Lr_;
-  std::vector<bool> lr_valid_;
-  std::vector<double> dropout_;
-
-  // Rows: their times, the grid step of each (or −1), and per clock the rows of its ticks.
-  std::vector<double> row_t_;
-  std::vector<long long> row_grid_;
-  std::vector<std::vector<bool>> clock_rows_;
-  std::vector<int> sensor_clock_;  // per channel: its clock this run (a choice selects), or −1
-
-  std::size_t j_ = 0;  // the grid step of x_
-  VecX x_, row_x_;
-  std::vector<std::size_t> role_col_;
-  std::vector<std::vector<detail::Sample>> samples_;  // per channel: its samples kept
-};
+Error Simulation::fail(double t, const std::string& what) const {
+  std::ostringstream os;
+  os << "simulation, step " << j_ << " (t = " << t << " s): " << what;
+  return failure(os.str());
+}
 
 // Each sensor's clock this run: its own, or the one its choice parameter selects.
 Status Simulation::select_clocks() {
@@ -230,16 +190,19 @@ Status Simulation::prepare(double duration, std::size_t grid_rows) {
   Lr_.resize(spec_.channels.size());
   lr_valid_.assign(spec_.channels.size(), false);
   samples_.assign(spec_.channels.size(), {});
-  return Ok{};
+  return prepare_loop_keys();
 }
 
 void Simulation::inputs_at(double t) {
   noise_->at_time(t);
   vars_[static_cast<std::size_t>(spec_.t_slot)] = t;
-  noise_->write(vars_.data());
+  if (!quiet_) noise_->write(vars_.data());
   for (const auto& n : spec_.noise)
     ev_.set_symbol(n.slot, vars_[static_cast<std::size_t>(n.slot)]);
   input_sim_.eval();
+  for (std::size_t i = 0; i < is_driven_.size(); ++i) {
+    if (is_driven_[i]) u_[i] = driven_[i];
+  }
 }
 
 Expected<VecX> Simulation::mean_step(double dt, double t_end) {
@@ -277,6 +240,7 @@ Status Simulation::grid_step() {
     lq_valid_ = true;
   }
   x_ = *next + Lq_ * draw(process_, spec_.n());
+  apply_limits(x_);
   wrap_angles(x_);
   ++j_;
   if (!x_.allFinite()) return fail(t_next, "the simulated state is not finite");
@@ -296,6 +260,7 @@ Status Simulation::state_at(double t) {
   auto x = mean_step(t - tj, t);
   if (!x) return x.err();
   row_x_ = std::move(*x);
+  apply_limits(row_x_);
   wrap_angles(row_x_);
   return Ok{};
 }
@@ -318,8 +283,20 @@ Status Simulation::sample(std::size_t c, std::size_t row, double t, Dataset& d) 
     lr_valid_[c] = true;
   }
   z += Lr_[c] * draw(channel_streams_[c], cs.size());
-  // One uniform per sample from "dropout.NAME": below the probability, the sample is lost.
-  if (dropout_streams_[c].uniform() < dropout_[c]) return Ok{};
+  ++sampled_[c];
+  if (cs.sensor.impulses) {
+    const bool hit = impulse(c, row, d);
+    impulsive_[c] += hit ? 1 : 0;
+    if (impulses_[c].flag_col >= 0)
+      d.columns[static_cast<std::size_t>(impulses_[c].flag_col)][row] = hit ? 0.0 : 1.0;
+    if (hit) {
+      samples_[c].push_back({row, c});
+      return Ok{};
+    }
+  } else if (dropout_streams_[c].uniform() < dropout_[c] && !quiet_) {
+    // One uniform per sample from "dropout.NAME": below the probability, the sample is lost.
+    return Ok{};
+  }
   for (std::size_t i = 0; i < static_cast<std::size_t>(cs.size()); ++i) {
     d.columns[role_col_[c] + i][row] = wrap(z(static_cast<Eigen::Index>(i)), cs.roles[i].angle);
   }
@@ -386,11 +363,13 @@ Status Simulation::add_outliers(Dataset& d) {
   return Ok{};
 }
 
-Expected<Dataset> Simulation::run(const std::string& source) {
+Status Simulation::begin(Dataset& d, const std::string& source) {
   const std::size_t rows = row_t_.size();
-  Dataset d;
+  d = Dataset{};
   d.source = source;
   d.add("t", rows);
+  for (std::size_t r = 0; r < rows; ++r)
+    d.columns[0][r] = row_t_[r];
   for (const auto& in : spec_.inputs)
     d.add(in.name, rows);
   for (const auto& c : spec_.channels) {
@@ -398,60 +377,163 @@ Expected<Dataset> Simulation::run(const std::string& source) {
     for (const auto& r : c.roles)
       d.add(r.name, rows);
   }
-  std::vector<std::size_t> truth_col;
   for (const auto& col : spec_.truth) {
-    truth_col.push_back(d.names.size());
+    truth_col_.push_back(d.names.size());
     if (!col.empty()) d.add(col, rows);
   }
-  const std::size_t expr_col = d.names.size();
-  ExprGroup truth_exprs;
-  std::vector<double> truth_values(spec_.truth_exprs.size());
+  expr_col_ = d.names.size();
+  truth_values_.assign(spec_.truth_exprs.size(), 0.0);
   for (std::size_t i = 0; i < spec_.truth_exprs.size(); ++i) {
     d.add(spec_.truth_exprs[i].first, rows);
-    truth_exprs.add(spec_.truth_exprs[i].second.text, &truth_values[i]);
+    truth_exprs_.add(spec_.truth_exprs[i].second.text, &truth_values_[i]);
   }
-  if (auto st = truth_exprs.bind(spec_.symbols, vars_.data()); !st) return st.err();
-  for (const auto& c : spec_.channels) {
-    const std::string& col = c.sensor.outlier_column;
-    if (!col.empty() && !d.has(col)) d.add(col, rows);
+  if (auto st = truth_exprs_.bind(spec_.symbols, vars_.data()); !st) return st;
+  for (std::size_t c = 0; c < spec_.channels.size(); ++c) {
+    const SensorSpec& s = spec_.channels[c].sensor;
+    for (const std::string* col : {&s.outlier_column, &s.impulse_flag}) {
+      if (!col->empty() && !d.has(*col)) d.add(*col, rows);
+    }
+    if (!s.impulse_flag.empty()) impulses_[c].flag_col = d.index(s.impulse_flag);
   }
-
   if (auto st = ev_.set_dt(dt_); !st) return fail(0.0, st.error());
   MatX L;
   if (!psd_sqrt(ev_.P0, L)) return Error{spec_.path + ": model.P0: not positive semidefinite"};
   x_ = ev_.x0 + L * draw(x0_, spec_.n());
+  apply_limits(x_);
   noise_->step(0);
-  for (std::size_t r = 0; r < rows; ++r) {
-    const double t = row_t_[r];
-    if (auto st = state_at(t); !st) return st.err();
-    set_row(t);
-    d.columns[0][r] = t;
-    for (std::size_t i = 0; i < u_.size(); ++i)
-      d.columns[1 + i][r] = u_[i];
-    for (std::size_t c = 0; c < spec_.channels.size(); ++c) {
-      const int clock = sensor_clock_[c];
-      const bool due = clock >= 0 ? clock_rows_[static_cast<std::size_t>(clock)][r]
-                                  : row_grid_[r] >= 0 && row_grid_[r] % ev_.channel(c).every == 0;
-      if (!due) continue;
-      if (auto st = sample(c, r, t, d); !st) return st.err();
-    }
-    for (int i = 0; i < spec_.n(); ++i) {
-      if (!spec_.truth[static_cast<std::size_t>(i)].empty()) {
-        d.columns[truth_col[static_cast<std::size_t>(i)]][r] = row_x_(i);
-      }
-    }
-    truth_exprs.eval();
-    for (std::size_t i = 0; i < truth_values.size(); ++i)
-      d.columns[expr_col + i][r] = truth_values[i];
+  return Ok{};
+}
+
+Status Simulation::row(std::size_t r, Dataset& d) {
+  const double t = row_t_[r];
+  if (auto st = state_at(t); !st) return st;
+  set_row(t);
+  for (std::size_t i = 0; i < u_.size(); ++i)
+    d.columns[1 + i][r] = u_[i];
+  for (std::size_t c = 0; c < spec_.channels.size(); ++c) {
+    const int clock = sensor_clock_[c];
+    const bool due = clock >= 0 ? clock_rows_[static_cast<std::size_t>(clock)][r]
+                                : row_grid_[r] >= 0 && row_grid_[r] % ev_.channel(c).every == 0;
+    if (!due) continue;
+    if (auto st = sample(c, r, t, d); !st) return st;
   }
-  if (auto st = add_outliers(d); !st) return st.err();
+  for (int i = 0; i < spec_.n(); ++i) {
+    if (!spec_.truth[static_cast<std::size_t>(i)].empty()) {
+      d.columns[truth_col_[static_cast<std::size_t>(i)]][r] = row_x_(i);
+    }
+  }
+  truth_exprs_.eval();
+  for (std::size_t i = 0; i < truth_values_.size(); ++i)
+    d.columns[expr_col_ + i][r] = truth_values_[i];
+  return Ok{};
+}
+
+Status Simulation::finish(Dataset& d) {
+  return quiet_ ? Ok{} : add_outliers(d);
+}
+
+Expected<Dataset> Simulation::run(const std::string& source) {
+  Dataset d;
+  if (auto st = begin(d, source); !st) return st.err();
+  for (std::size_t r = 0; r < row_t_.size(); ++r) {
+    if (auto st = row(r, d); !st) return st.err();
+  }
+  if (auto st = finish(d); !st) return st.err();
   return d;
 }
 
-}  // namespace
+void Simulation::drive(std::size_t input, double value) {
+  if (driven_.size() != u_.size()) {
+    driven_.assign(u_.size(), 0.0);
+    is_driven_.assign(u_.size(), 0);
+  }
+  driven_[input] = value;
+  is_driven_[input] = 1;
+}
 
-Expected<Dataset> simulate_model(const ModelSpec& spec, const ParamValues& values,
-                                 const std::string& name) {
+int Simulation::event_now() {
+  if (events_.empty()) return -1;
+  events_.eval();
+  for (std::size_t e = 0; e < event_values_.size(); ++e) {
+    if (event_values_[e] > 0.0) return static_cast<int>(e);
+  }
+  return -1;
+}
+
+void Simulation::apply_limits(VecX& x) const {
+  if (!limits_.empty()) ModelEval::apply_limits(limits_, x);
+}
+
+// Sensor c's sample at `row` is impulsive: one uniform per sample from "dropout.NAME" (outside a
+// burst, below the rate a burst starts), one per burst from "burst.NAME" for its length, one per
+// role and impulsive sample from "impulse.NAME" for the reading.
+bool Simulation::impulse(std::size_t c, std::size_t row, Dataset& d) {
+  Impulses& im = impulses_[c];
+  const double u = dropout_streams_[c].uniform();
+  if (quiet_) return false;
+  if (im.left == 0 && u < im.rate) {
+    const double b = burst_streams_[c].uniform();
+    const double extra = im.log_stay < 0.0 ? std::floor(std::log(b) / im.log_stay) : 0.0;
+    im.left = 1 + static_cast<std::size_t>(std::min(extra, static_cast<double>(max_rows_)));
+  }
+  if (im.left == 0) return false;
+  --im.left;
+  const ChannelSpec& cs = spec_.channels[c];
+  for (std::size_t i = 0; i < cs.roles.size(); ++i) {
+    const double v = im.lo + (im.hi - im.lo) * impulse_streams_[c].uniform();
+    d.columns[role_col_[c] + i][row] = wrap(v, cs.roles[i].angle);
+  }
+  return true;
+}
+
+// The world's closed-loop keys at the run's parameters: impulses, limits, events.
+Status Simulation::prepare_loop_keys() {
+  impulses_.assign(spec_.channels.size(), {});
+  impulsive_.assign(spec_.channels.size(), 0);
+  sampled_.assign(spec_.channels.size(), 0);
+  for (std::size_t c = 0; c < spec_.channels.size(); ++c) {
+    const SensorSpec& s = spec_.channels[c].sensor;
+    if (!s.impulses) continue;
+    const std::string key = "model.world.measurements." + spec_.channels[c].name + ".impulses";
+    Impulses& im = impulses_[c];
+    for (auto [field, e, k] :
+         {std::tuple{&im.rate, &s.impulse_rate, ".rate"}, std::tuple{&im.lo, &s.impulse_lo, ".min"},
+          std::tuple{&im.hi, &s.impulse_hi, ".max"}}) {
+      auto v = param_value(*e, spec_, vars_, key + k);
+      if (!v) return v.err();
+      *field = *v;
+    }
+    auto burst = param_value(s.impulse_burst, spec_, vars_, key + ".burst");
+    if (!burst) return burst.err();
+    if (!(im.rate >= 0.0 && im.rate <= 1.0) || !(*burst >= 1.0) || !(im.lo <= im.hi)) {
+      return Error{spec_.path + ": " + key +
+                   ": expected a rate in [0, 1], a mean burst ≥ 1 sample and min ≤ max"};
+    }
+    im.log_stay = *burst > 1.0 ? std::log(1.0 - 1.0 / *burst) : 0.0;
+  }
+  for (const auto& l : spec_.limits) {
+    const std::string key =
+        "model.world.limits." + spec_.states[static_cast<std::size_t>(l.state)].name;
+    auto lo = param_value(l.lo, spec_, vars_, key + ".min");
+    if (!lo) return lo.err();
+    auto hi = param_value(l.hi, spec_, vars_, key + ".max");
+    if (!hi) return hi.err();
+    if (!(*lo <= *hi)) return Error{spec_.path + ": " + key + ": min is above max"};
+    limits_.push_back({l.state, l.rate, *lo, *hi});
+  }
+  ev_.set_limits(limits_);
+  event_values_.assign(spec_.events.size(), 0.0);
+  for (std::size_t e = 0; e < spec_.events.size(); ++e)
+    events_.add(spec_.events[e].when.text, &event_values_[e]);
+  return events_.bind(spec_.symbols, vars_.data());
+}
+
+}  // namespace detail
+
+namespace detail {
+
+Expected<PreparedSimulation> prepare_simulation(const ModelSpec& spec, const ParamValues& values,
+                                                const std::string& name, bool quiet) {
   for (const auto& c : spec.channels) {
     if (c.preprocessed()) {
       return Error{spec.path + ": model.measurements." + c.name +
@@ -475,12 +557,25 @@ Expected<Dataset> simulate_model(const ModelSpec& spec, const ParamValues& value
     return Error{spec.path + ": sim.duration / " + dt_key + ": " +
                  too_many_rows(rows, max_rows, spec)};
   }
+  PreparedSimulation out;
   auto evr = ModelEval::create(spec, values);
   if (!evr) return evr.err();
-  if (auto st = (*evr)->check_dt(dt, dt_key); !st) return st.err();
-  Simulation sim(spec, **evr, dt, static_cast<std::uint64_t>(seed), max_rows);
-  if (auto st = sim.prepare(duration, rows); !st) return st.err();
-  return sim.run("simulated " + name + ", seed " + std::to_string(static_cast<long long>(seed)));
+  out.ev = std::move(*evr);
+  if (auto st = out.ev->check_dt(dt, dt_key); !st) return st.err();
+  out.sim = std::make_unique<Simulation>(spec, *out.ev, dt, static_cast<std::uint64_t>(seed),
+                                         max_rows, quiet);
+  if (auto st = out.sim->prepare(duration, rows); !st) return st.err();
+  out.source = "simulated " + name + ", seed " + std::to_string(static_cast<long long>(seed));
+  return out;
+}
+
+}  // namespace detail
+
+Expected<Dataset> simulate_model(const ModelSpec& spec, const ParamValues& values,
+                                 const std::string& name) {
+  auto p = detail::prepare_simulation(spec, values, name, false);
+  if (!p) return p.err();
+  return p->sim->run(p->source);
 }
 
 }  // namespace kfw::model

@@ -40,6 +40,7 @@ std::set<std::string> written(const ModelSpec& w) {
     out.insert(col);
   for (const auto& c : w.channels) {
     if (!c.sensor.outlier_column.empty()) out.insert(c.sensor.outlier_column);
+    if (!c.sensor.impulse_flag.empty()) out.insert(c.sensor.impulse_flag);
   }
   return out;
 }
@@ -95,6 +96,9 @@ Expected<std::shared_ptr<const ModelSpec>> parse_world(const json& model, const 
   for (const auto& c : filter.channels) {
     for (const auto& r : c.roles) {
       if (!made.count(r.name)) return missing(r.name, "model.measurements." + c.name);
+    }
+    if (c.missing.on() && !made.count(c.missing.column)) {
+      return missing(c.missing.column, "model.measurements." + c.name + ".missing");
     }
   }
   for (std::size_t i = 0; i < filter.truth.size(); ++i) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "model/loop/loop_spec.h"
 #include "model/model_reader.h"
 
 namespace kfw::model::detail {
@@ -246,7 +247,7 @@ Status parse_sensor(const Reader& p, const json& j, const std::string& key,
   if (auto it = j.find("outliers"); it != j.end()) {
     if (auto st = parse_outliers(p, *it, key + ".outliers", c, s); !st) return st;
   }
-  return Ok{};
+  return parse_impulses(p, j, key, c);
 }
 
 }  // namespace kfw::model::detail

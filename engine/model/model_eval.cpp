@@ -368,6 +368,10 @@ Status ModelEval::bind_continuous(ExprGroup& param) {
     place(pr.f[static_cast<std::size_t>(i)], &xdot_(i), param, unused, xdot_state_, &xdot_state_);
   shape(A, pr.A);
   place_matrix(pr.A, A, param, unused, A_state_, &A_state_);
+  if (pr.affine) {
+    shape(Bu_, pr.Bu);
+    place_matrix(pr.Bu, Bu_, param, unused, unused, nullptr);
+  }
   place_noise(pr, n, G, Qc, param);
   place(pr.substep, &substep_, param, unused, unused, nullptr);
   fx.setZero(n);
@@ -437,6 +441,7 @@ Status ModelEval::set_params(const std::vector<std::pair<int, double>>& values) 
     process = process || process_reads(slot);
   }
   param_.eval();
+  c_ready_ = false;
   if (process) {
     process_source_ = nullptr;  // this mode's process moved away from the source's
     cache_.clear();

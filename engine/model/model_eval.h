@@ -222,6 +222,12 @@ class ModelEval {
   VecX xdot_;
   double substep_ = 0.0;
   std::vector<Limit> limits_;
+  // An affine ẋ (ProcessSpec::affine): ∂ẋ/∂u, and the constant c = ẋ − A x − Bu u found at the
+  // first stage evaluated (reset when parameters move).
+  MatX Bu_;
+  VecX c_;
+  bool c_ready_ = false;
+  void rk4_affine();
   int rk4_steps_ = 1;
   bool rk4_ = false;  // the continuous nonlinear form
   bool q_varies_ = false;

@@ -49,6 +49,19 @@ Status parse_xdot(const Reader& p, const json& j, ModelSpec& m) {
     if (!d) return d.err();
     pr.A.e.insert(pr.A.e.end(), d->begin(), d->end());
   }
+  // Affine in states and inputs, coefficients of parameters only, no t (issue 30: a linear plant
+  // with limits, seed 003's beam): ẋ = A x + Bu u + c.
+  pr.affine = pr.A.dep() <= Dep::kParam;
+  pr.Bu.key = key + ".xdot (input Jacobian)";
+  pr.Bu.rows = n;
+  pr.Bu.cols = static_cast<int>(m.inputs.size());
+  for (std::size_t i = 0; i < pr.f.size() && pr.affine; ++i) {
+    pr.affine = (pr.f[i].uses & kTimeSymbol) == 0;
+    auto d = derivatives(pr.f[i], idx(key + ".xdot", i), m.symbols, m.input_slots);
+    if (!d) return d.err();
+    pr.Bu.e.insert(pr.Bu.e.end(), d->begin(), d->end());
+  }
+  pr.affine = pr.affine && pr.Bu.dep() <= Dep::kParam;
   pr.substep = Expr{"0", Dep::kConst, 0.0};
   if (j.contains("substep")) {
     auto h = p.expr(j["substep"], key + ".substep", kParamsOnly, kParamsOnlyWhat);

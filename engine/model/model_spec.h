@@ -199,6 +199,10 @@ struct ProcessSpec {
   std::vector<Expr> f;  // nonlinear: f; continuous nonlinear: ẋ
   MatrixSpec A, Bc, G, Qc;  // continuous (parameters only); continuous nonlinear: A = ∂ẋ/∂x, G, Qc
   Expr substep;             // continuous nonlinear: the longest RK4 sub-step, s (0: one per dt)
+  // Continuous nonlinear whose ẋ is affine in states and inputs with parameter-only
+  // coefficients (A and Bu = ∂ẋ/∂u of parameters, no t): RK4 runs its stages as matrix products.
+  bool affine = false;
+  MatrixSpec Bu;
 };
 
 // A derived quantity (model_derived.h): a scalar of parameters and dt, or a series per step.

@@ -239,7 +239,9 @@ Status Simulation::grid_step() {
     if (!psd_sqrt(ev_.Q, Lq_)) return fail(t_next, "model.process.Q is not positive semidefinite");
     lq_valid_ = true;
   }
-  x_ = *next + Lq_ * draw(process_, spec_.n());
+  // A process that no noise enters (Q of zeros, or G Qc Gᵀ = 0) draws nothing: its stream feeds
+  // only this noise, so the numbers it would draw are never seen.
+  x_ = quiet_process_ ? std::move(*next) : VecX(*next + Lq_ * draw(process_, spec_.n()));
   apply_limits(x_);
   wrap_angles(x_);
   ++j_;
@@ -282,7 +284,7 @@ Status Simulation::sample(std::size_t c, std::size_t row, double t, Dataset& d) 
     if (!psd_sqrt(ch.R, Lr_[c])) return fail(t, cs.R.key + " is not positive semidefinite");
     lr_valid_[c] = true;
   }
-  z += Lr_[c] * draw(channel_streams_[c], cs.size());
+  if (!quiet_sensor_[c]) z += Lr_[c] * draw(channel_streams_[c], cs.size());
   ++sampled_[c];
   if (cs.sensor.impulses) {
     const bool hit = impulse(c, row, d);
@@ -488,6 +490,17 @@ bool Simulation::impulse(std::size_t c, std::size_t row, Dataset& d) {
 
 // The world's closed-loop keys at the run's parameters: impulses, limits, events.
 Status Simulation::prepare_loop_keys() {
+  const auto zeros = [](const MatrixSpec& m) {
+    return !m.empty() && std::all_of(m.e.begin(), m.e.end(), [](const Expr& e) {
+      return e.dep == Dep::kConst && e.value == 0.0;
+    });
+  };
+  const ProcessSpec& pr = spec_.process;
+  const bool continuous =
+      pr.form == ProcessForm::kContinuous || pr.form == ProcessForm::kContinuousNonlinear;
+  quiet_process_ = continuous ? zeros(pr.Qc) || zeros(pr.G) : zeros(pr.Q);
+  for (const auto& c : spec_.channels)
+    quiet_sensor_.push_back(zeros(c.R));
   impulses_.assign(spec_.channels.size(), {});
   impulsive_.assign(spec_.channels.size(), 0);
   sampled_.assign(spec_.channels.size(), 0);

@@ -91,6 +91,9 @@ class Simulation {
     long long flag_col = -1;
   };
   std::vector<Impulses> impulses_;
+  // No noise enters the process / sensor c (its covariance a matrix of zeros): no draw is made.
+  bool quiet_process_ = false;
+  std::vector<char> quiet_sensor_;
   std::vector<std::size_t> impulsive_, sampled_;
   std::vector<ModelEval::Limit> limits_;
   ExprGroup events_;

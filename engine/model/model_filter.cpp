@@ -218,6 +218,11 @@ std::string detail::Context::s_not_pd(std::size_t c, const MatX& S, bool sigma) 
 Status detail::Context::finish_skips() {
   for (std::size_t c = 0; c < r.chans.size(); ++c) {
     const ChannelSeries& ch = r.chans[c];
+    if (ch.partial) {
+      r.warnings.push_back("channel '" + ch.name + "': " + std::to_string(ch.partial) +
+                           " samples with some roles missing were not applied, the first at " +
+                           where(ch.first_partial));
+    }
     if (!ch.skipped) continue;
     const std::string first = "the first at " + where(first_skip[c]) + ": " + first_why[c];
     if (ch.updates == 0) {

@@ -178,7 +178,11 @@ struct Context {
     const auto& cols = data.z[c];
     for (std::size_t j = 0; j < cols.size(); ++j) {
       const double v = (*cols[j])[k];
-      if (!std::isfinite(v)) return false;
+      if (!std::isfinite(v)) {
+        if (cols.size() > 1) [[unlikely]]
+          note_partial(c, k);
+        return false;
+      }
       z_buf[j] = v;
     }
     if (!missing_on.empty() && missing_on[c] && (*data.missing[c])[k] == missing_equals[c])
@@ -187,6 +191,17 @@ struct Context {
       return false;
     }
     return true;
+  }
+
+  // Row k of channel c has a value in some roles and none in others: counted (a warning after the
+  // run: a sensor that lost part of a sample, seed 001's angles without their range).
+  [[gnu::noinline]] void note_partial(std::size_t c, std::size_t k) {
+    for (const auto* col : data.z[c]) {
+      if (!std::isfinite((*col)[k])) continue;
+      ChannelSeries& ch = r.chans[c];
+      if (ch.partial++ == 0) ch.first_partial = k;
+      return;
+    }
   }
 
   // Stores x and P (upper triangle) at step k and the NEES over the states with truth.

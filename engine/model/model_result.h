@@ -21,6 +21,8 @@ struct ChannelSeries {
   std::vector<std::vector<double>> K;               // [state · m + component][step]
   std::size_t updates = 0, gated = 0, skipped = 0;  // skipped: S not positive definite
   std::size_t flagged = 0;  // samples the channel's missing flag took out (ChannelSpec::missing)
+  // Rows where some of the channel's roles had a value and others none (not applied: a warning).
+  std::size_t partial = 0, first_partial = 0;
   std::vector<std::size_t> gated_rows;  // the rows of the gated samples
   std::vector<double> outlier;          // the channel's outlier column (ChannelSpec), or empty
   // An IMM's: −log c per step, the mixture's likelihood of the channel's sample (NaN: none);

@@ -304,6 +304,9 @@ class ModelScenario final : public Scenario {
       auto run = model::run_model_filter(*spec_, d, v, *o, control);
       if (!run) return run.err();
       r = std::move(*run);
+      if (spec_->controller) {
+        if (auto st = model::replay_events(*spec_, v, d, *r); !st) return st.err();
+      }
     }
     return finish(closed(v) ? loop.data : d, v, std::move(r));
   }

@@ -132,10 +132,12 @@ struct StateLimitSpec {
 };
 
 // A world event (issue 30): the run ends at the first row where `when` is positive (the ball
-// leaves the beam), reported as event.NAME_at_s.
+// leaves the beam), reported as event.NAME_at_s; with `ends` false it is only reported (a warning
+// at its first row: the beam beyond the small-angle range).
 struct EventSpec {
   std::string name, label;
   Expr when;
+  bool ends = true;
 };
 
 struct ChannelSpec {

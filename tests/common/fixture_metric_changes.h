@@ -85,8 +85,9 @@ inline const std::vector<MetricChange>& fixture_metric_changes(const std::string
     }
     for (const char* k :
          {"K.v.x_meas", "K.x.x_meas", "V_rms", "max_abs_pos", "max_abs_theta", "event.left_beam",
-          "event.left_beam_at_s", "flagged.position", "flagged_fraction.position",
-          "impulsive_fraction.position", "derived.alpha", "derived.beta", "derived.lambda"})
+          "event.left_beam_at_s", "event.small_angle", "event.small_angle_at_s", "flagged.position",
+          "flagged_fraction.position", "impulsive_fraction.position", "derived.alpha",
+          "derived.beta", "derived.lambda"})
       c.push_back({k, true});
     for (const char* d :
          {"ball", "beam", "excess", "motor", "noise_free", "set_point", "track_err"}) {

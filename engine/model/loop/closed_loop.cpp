@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "model/loop/loop_spec.h"
+#include "model/model_eval.h"
 #include "model/model_filter_detail.h"
 #include "model/world/simulation.h"
 
@@ -73,7 +74,7 @@ class Loop final : public detail::LoopHook {
     if (k == 0) return Ok{};  // made before the filter's preparation
     if ((k & 1023) == 0 && control_.cancelled()) return Error{"cancelled"};
     if (auto st = sim_.row(k, d_); !st) return st;
-    event = sim_.event_now();
+    event = sim_.event_now(sim_.row_time(k));
     stop = event >= 0;
     return Ok{};
   }
@@ -189,7 +190,7 @@ Expected<LoopRun> run_closed_loop(const ModelSpec& spec, const ParamValues& valu
   const std::size_t rows = d.rows();
   if (!c.reference_name.empty() && !d.has(c.reference_name)) d.add(c.reference_name, rows);
   if (auto st = sim.row(0, d); !st) return st.err();
-  if (const int e = sim.event_now(); e >= 0) {
+  if (const int e = sim.event_now(sim.row_time(0)); e >= 0) {
     return Error{spec.path + ": model.world.events." + spec.world->events[e].name +
                  ": holds at t = 0, before the first row (the run has no row)"};
   }
@@ -219,6 +220,10 @@ Expected<LoopRun> run_closed_loop(const ModelSpec& spec, const ParamValues& valu
     out.event_t = sim.row_time(end);
     const EventSpec& ev = spec.world->events[static_cast<std::size_t>(loop.event)];
     r.event = ModelResult::LoopEvent{ev.name, ev.label, out.event_t};
+  }
+  for (std::size_t e = 0; e < spec.world->events.size(); ++e) {
+    const double at = sim.first_at(e);
+    out.first_at.push_back(at < out.event_t || std::isnan(out.event_t) ? at : kNoSample);
   }
   for (std::size_t s = 0; s < spec.world->channels.size(); ++s) {
     out.impulsive.push_back(sim.impulsive(s));
@@ -256,12 +261,14 @@ Expected<LoopRun> run_loop_model(const ModelSpec& spec, const ParamValues& value
   const ModelSpec& w = *spec.world;
   for (std::size_t e = 0; e < w.events.size(); ++e) {
     const std::string key = "event." + w.events[e].name + "_at_s";
-    r.metrics["event." + w.events[e].name] = run->event == static_cast<int>(e) ? 1.0 : 0.0;
-    if (run->event == static_cast<int>(e)) {
-      r.metrics[key] = run->event_t;
+    const bool ended = run->event == static_cast<int>(e);
+    const double at = ended ? run->event_t : run->first_at[e];
+    r.metrics["event." + w.events[e].name] = std::isfinite(at) ? 1.0 : 0.0;
+    if (std::isfinite(at)) {
+      r.metrics[key] = at;
       std::ostringstream os;
-      os << w.events[e].label << " at t = " << run->event_t
-         << " s: the run ends there (model.world.events." << w.events[e].name << ")";
+      os << w.events[e].label << " at t = " << at << (ended ? " s: the run ends there" : " s")
+         << " (model.world.events." << w.events[e].name << ")";
       r.warnings.push_back(os.str());
     } else {
       r.undefined[key] = "the event did not occur in the run";
@@ -276,17 +283,63 @@ Expected<LoopRun> run_loop_model(const ModelSpec& spec, const ParamValues& value
   return run;
 }
 
+Status replay_events(const ModelSpec& spec, const ParamValues& values, const Dataset& d,
+                     ModelResult& r) {
+  if (!spec.world || spec.world->events.empty() || !d.has("t")) return Ok{};
+  const ModelSpec& w = *spec.world;
+  auto ev = ModelEval::create(w, values);
+  if (!ev) return ev.err();
+  std::vector<double> vars = (*ev)->vars();
+  ExprGroup when;
+  std::vector<double> value(w.events.size(), 0.0);
+  for (std::size_t e = 0; e < w.events.size(); ++e)
+    when.add(w.events[e].when.text, &value[e]);
+  if (auto st = when.bind(w.symbols, vars.data()); !st) return st;
+  // Each world state from its truth column in the log (NaN where it has none: no event fires).
+  std::vector<const std::vector<double>*> truth(w.states.size(), nullptr);
+  for (std::size_t i = 0; i < w.states.size(); ++i) {
+    if (!w.truth[i].empty() && d.has(w.truth[i])) truth[i] = &d.col(w.truth[i]);
+  }
+  std::vector<double> at(w.events.size(), kNoSample);
+  const auto& t = d.col("t");
+  for (std::size_t k = 0; k < std::min(d.rows(), r.steps()); ++k) {
+    vars[static_cast<std::size_t>(w.t_slot)] = t[k];
+    for (std::size_t i = 0; i < truth.size(); ++i)
+      vars[static_cast<std::size_t>(w.state_slots[i])] = truth[i] ? (*truth[i])[k] : kNoSample;
+    when.eval();
+    for (std::size_t e = 0; e < at.size(); ++e) {
+      if (std::isnan(at[e]) && value[e] > 0.0) at[e] = t[k];
+    }
+  }
+  for (std::size_t e = 0; e < w.events.size(); ++e) {
+    const std::string key = "event." + w.events[e].name + "_at_s";
+    r.metrics["event." + w.events[e].name] = std::isfinite(at[e]) ? 1.0 : 0.0;
+    if (!std::isfinite(at[e])) {
+      r.undefined[key] = "the event did not occur in the log's truth columns";
+      continue;
+    }
+    r.metrics[key] = at[e];
+    std::ostringstream os;
+    os << w.events[e].label << " at t = " << at[e] << " s, in the log's truth (model.world.events."
+       << w.events[e].name << ")";
+    r.warnings.push_back(os.str());
+  }
+  return Ok{};
+}
+
 std::vector<MetricSpec> loop_metric_specs(const ModelSpec& spec) {
   std::vector<MetricSpec> out;
   if (!spec.controller) return out;
   for (const auto& e : spec.world->events) {
     out.push_back({"event." + e.name, e.label, "",
                    "1 when model.world.events." + e.name +
-                       " ended the run, else 0: its mean over seeds is the fraction",
+                       " occurred in the run (and ended it, unless it does not end runs), else 0: "
+                       "its mean over seeds is the fraction",
                    MetricGroup::kScenario, Direction::kLower});
     out.push_back({"event." + e.name + "_at_s", e.label + " at", "s",
                    "the time of the first row where model.world.events." + e.name +
-                       " holds: the run ends there; undefined when it did not occur",
+                       " holds (the run ends there unless the event does not end runs); undefined "
+                       "when it did not occur",
                    MetricGroup::kScenario, Direction::kHigher});
   }
   for (const auto& c : spec.world->channels) {

@@ -24,6 +24,7 @@ struct LoopRun {
   int event = -1;                       // the event that ended the run (ModelSpec::events), or −1
   double event_t = std::numeric_limits<double>::quiet_NaN();  // the time of the row it held on
   std::vector<std::size_t> impulsive, sampled;                // per world sensor
+  std::vector<double> first_at;  // per world event: its first row's time before the end, or NaN
 };
 
 // One closed-loop run at `values`. `quiet`: the noise-free loop (every random draw zero; the
@@ -40,6 +41,13 @@ Expected<LoopRun> run_loop_model(const ModelSpec& spec, const ParamValues& value
                                  const FilterOptions& options, const RunControl& control,
                                  const std::string& name);
 std::vector<MetricSpec> loop_metric_specs(const ModelSpec& spec);
+
+// A closed-loop model filtering a log (its loop open, seed 003's replay): each world event
+// evaluated on the log's truth columns (the world's truth map names them; a state without one
+// reads NaN), reported as in a loop — event.NAME, event.NAME_at_s and a warning — without ending
+// the run.
+Status replay_events(const ModelSpec& spec, const ParamValues& values, const Dataset& d,
+                     ModelResult& r);
 
 // Keeps the first n rows of every per-row series of a run.
 void truncate_result(ModelResult& r, std::size_t n);

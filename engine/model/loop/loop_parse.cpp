@@ -73,8 +73,12 @@ Status parse_events(const Reader& p, const json& world, ModelSpec& m) {
     s.label = e.key();
     const json* when = &*e;
     if (e->is_object()) {
-      if (auto st = p.only_keys(*e, key, {"when", "label"}); !st) return st;
+      if (auto st = p.only_keys(*e, key, {"when", "label", "ends"}); !st) return st;
       if (!e->contains("when")) return p.error(key, "missing key 'when'");
+      if (auto flag = e->find("ends"); flag != e->end()) {
+        if (!flag->is_boolean()) return p.error(key + ".ends", "expected true or false");
+        s.ends = flag->get<bool>();
+      }
       auto label = p.string(*e, "label", key, false, s.name);
       if (!label) return label.err();
       s.label = *label;

@@ -453,13 +453,16 @@ void Simulation::drive(std::size_t input, double value) {
   is_driven_[input] = 1;
 }
 
-int Simulation::event_now() {
+int Simulation::event_now(double t) {
   if (events_.empty()) return -1;
   events_.eval();
+  int ends = -1;
   for (std::size_t e = 0; e < event_values_.size(); ++e) {
-    if (event_values_[e] > 0.0) return static_cast<int>(e);
+    if (!(event_values_[e] > 0.0)) continue;
+    if (std::isnan(first_at_[e])) first_at_[e] = t;
+    if (ends < 0 && spec_.events[e].ends) ends = static_cast<int>(e);
   }
-  return -1;
+  return ends;
 }
 
 void Simulation::apply_limits(VecX& x) const {
@@ -536,6 +539,7 @@ Status Simulation::prepare_loop_keys() {
   }
   ev_.set_limits(limits_);
   event_values_.assign(spec_.events.size(), 0.0);
+  first_at_.assign(spec_.events.size(), std::numeric_limits<double>::quiet_NaN());
   for (std::size_t e = 0; e < spec_.events.size(); ++e)
     events_.add(spec_.events[e].when.text, &event_values_[e]);
   return events_.bind(spec_.symbols, vars_.data());

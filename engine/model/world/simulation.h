@@ -5,6 +5,7 @@
 // Internal to the model room.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -39,8 +40,11 @@ class Simulation {
   // A world input set from outside (a controller's output), held until set again; it overrides
   // the input's `sim` expression from the next grid step on.
   void drive(std::size_t input, double value);
-  // The first event (ModelSpec::events) positive at the last row's state, or −1.
-  int event_now();
+  // The first event that ends the run (ModelSpec::events) positive at the last row's state (the
+  // row at time t), or −1; every event's first time is kept (first_at).
+  int event_now(double t);
+  // The time of the first row where event e held; NaN: never.
+  double first_at(std::size_t e) const { return first_at_[e]; }
   // Samples of sensor c so far in bursts of impulses, and in all.
   std::size_t impulsive(std::size_t c) const { return impulsive_[c]; }
   std::size_t sampled(std::size_t c) const { return sampled_[c]; }
@@ -97,7 +101,7 @@ class Simulation {
   std::vector<std::size_t> impulsive_, sampled_;
   std::vector<ModelEval::Limit> limits_;
   ExprGroup events_;
-  std::vector<double> event_values_;
+  std::vector<double> event_values_, first_at_;
 
   // Rows: their times, the grid step of each (or −1), and per clock the rows of its ticks.
   std::vector<double> row_t_;

@@ -100,6 +100,7 @@ TEST(ClosedLoopCart, ControllerKeysAreCheckedWithTheKeyNamed) {
        {{"rate", "0.1"}},
        "model.world.measurements.fix.impulses"},
       {"/model/controller/outputs/u/expression", "heavisid(p)", "unknown function 'heavisid'"},
+      {"/model/controller/outputs/u/unit", "N", "model.controller.outputs.u.unit: 'N', but"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.pointer);

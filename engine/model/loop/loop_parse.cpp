@@ -258,6 +258,16 @@ Status parse_outputs(const Reader& p, const json& c, const ModelSpec& m, Control
                                ": an output drives the world's input of its name");
     }
     out_spec.world_input = static_cast<int>(at - inputs.begin());
+    // `unit` declares what the output is in: it must be the world input's (when that has one).
+    if (o->is_object() && o->contains("unit")) {
+      auto unit = p.string(*o, "unit", okey, false);
+      if (!unit) return unit.err();
+      const std::string& in_unit = w.inputs[static_cast<std::size_t>(out_spec.world_input)].unit;
+      if (!in_unit.empty() && *unit != in_unit) {
+        return p.error(okey + ".unit", quote_token(*unit) + ", but the world's input '" + o.key() +
+                                           "' is in " + quote_token(in_unit));
+      }
+    }
     auto slot = add_name(p, out.symbols, o.key(), kTruthSymbol, okey);
     if (!slot) return slot.err();
     out_spec.slot = *slot;
@@ -306,9 +316,6 @@ Status compile_all(const Reader& p, const json& c, ControllerSpec& out) {
       if (!hi) return hi.err();
       o.lo = *lo;
       o.hi = *hi;
-      auto unit = p.string(j, "unit", okey, false);
-      if (!unit) return unit.err();
-      o.unit = *unit;
     } else {
       o.lo = Expr{"-1e308", Dep::kConst, -1e308};
       o.hi = Expr{"1e308", Dep::kConst, 1e308};

@@ -42,7 +42,7 @@ struct ControllerSpec {
   };
   std::vector<State> states;
   struct Output {
-    std::string name, unit;
+    std::string name;
     int slot = -1;
     Expr e, lo, hi;  // lo, hi: parameters only ("-1e308", "1e308" when not given)
     int world_input = -1;

@@ -1,10 +1,11 @@
 // The built-in scenarios that shipped model files replace (issues 27, 28 and 30). A preset or a
 // session that names one loads as the model file of that name in preset_dir() (document/preset.h),
-// with its values overlaid and one notice; `kfw-cli upgrade` rewrites it in the current form. A
-// retired built-in stays compiled (make_scenario() builds it for tests and bench) but is listed
-// nowhere a user sees scenarios (ScenarioRegistry::listed_names()). One line per retired scenario.
+// with its values overlaid and one notice; `kfw-cli upgrade` rewrites it in the current form. The
+// built-ins themselves are gone (issue 30); their independent implementations are test oracles in
+// tests/oracles/. One line per retired scenario.
 #pragma once
 
+#include <array>
 #include <string_view>
 
 namespace kfw {
@@ -12,10 +13,18 @@ namespace kfw {
 struct RetiredScenario {
   std::string_view scenario;  // the built-in's name, as presets and sessions wrote it
   std::string_view preset;    // the shipped model file that replaces it, in preset_dir()
+  std::array<std::string_view, 2> dropped = {};  // the built-in's keys the file lacks
+
+  bool is_dropped(std::string_view key) const {
+    for (auto d : dropped) {
+      if (!d.empty() && d == key) return true;
+    }
+    return false;
+  }
 };
 
 inline constexpr RetiredScenario kRetiredScenarios[] = {
-    {"helicopter", "helicopter.json"},
+    {"helicopter", "helicopter.json", {"window"}},
     {"underwater", "underwater.json"},
     {"radome", "radome.json"},
     {"ballbeam", "ballbeam.json"},

@@ -177,17 +177,18 @@ Expected<Preset> retired_from_json(const OJson& j, const std::string& path,
   if (!doc->is_object() || m == doc->end() || doc->value("scenario", "") != "model") {
     return Error{what + ", but " + shipped + " is not a model file"};
   }
-  // The file's entries are checked as what it says it is (the built-in's table: unknown keys,
-  // units, ranges, types), then its values go onto the model file.
-  Preset check;  // the file read against the built-in's table: its narrowed ranges
-  if (auto builtin = make_scenario(std::string(r.scenario)); builtin) {
-    if (auto old = j.find("parameters"); old != j.end()) {
-      if (!old->is_object()) return Error{path + ": parameters: must be an object"};
-      check.scenario = r.scenario;
-      for (auto it = old->begin(); it != old->end(); ++it) {
-        auto st = read_parameter(check, (*builtin)->params(), it.key(), it.value(), path);
-        if (!st) return st.err();
-      }
+  // The file's entries are checked against the model file's table (its keys, units, ranges and
+  // types are the built-in's), less the keys the built-in had and the file dropped (retired.h).
+  auto base = preset_from_json(*doc, shipped);
+  if (!base) return Error{what + ": " + base.error()};
+  Preset check;  // the file read against the model file's table: its narrowed ranges
+  if (auto old = j.find("parameters"); old != j.end()) {
+    if (!old->is_object()) return Error{path + ": parameters: must be an object"};
+    check.scenario = r.scenario;
+    for (auto it = old->begin(); it != old->end(); ++it) {
+      if (r.is_dropped(it.key())) continue;
+      auto st = read_parameter(check, base->instance->params(), it.key(), it.value(), path);
+      if (!st) return st.err();
     }
   }
   OJson merged = *doc;

@@ -38,17 +38,15 @@ screenshots: build
 # make fuzz FUZZ_SECONDS=N   every libFuzzer harness for N seconds, FUZZ_JOBS at a time (clang;
 #                            build-fuzz/)
 # make sanitize              the whole suite under AddressSanitizer + UBSan (build-asan/)
-# FUZZ_SCENARIOS=helicopter builds only the scenario the harnesses run (a faster build; presets
-# of the other scenarios are then refused as unknown). -O1 -g1: fast to build, fast to run.
+# -O1 -g1: fast to build, fast to run.
 FUZZ_SECONDS ?= 60
 FUZZ_JOBS ?= 1
-FUZZ_SCENARIOS ?=
 FUZZ_FLAGS := -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
 fuzz: setup
 	bash scripts/setup-fuzz.sh
 	cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -g1" \
 	  -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_CXX_FLAGS="$(FUZZ_FLAGS)" -DKFW_FUZZ=ON \
-	  -DKFW_SCENARIOS="$(FUZZ_SCENARIOS)" -DKFW_BUILD_GUI=OFF -DKFW_BUILD_TESTS=OFF \
+	  -DKFW_BUILD_GUI=OFF -DKFW_BUILD_TESTS=OFF \
 	  -DKFW_BUILD_BENCH=OFF $(filter -DCMAKE_CXX_COMPILER_LAUNCHER=%,$(CMAKE_FLAGS))
 	cmake --build build-fuzz -j $(JOBS) --target kfw_fuzz
 	bash tests/fuzz/run.sh build-fuzz $(FUZZ_SECONDS) $(FUZZ_JOBS)
@@ -68,7 +66,7 @@ fuzz: setup
 SAN_CXX ?= clang++
 SANITIZE_GUI ?= ON
 SANITIZE_SKIP_SLOW ?=
-SAN_SLOW := Tuning.RealLog*:RadomeRenewal.CarryingTheModeStates*
+SAN_SLOW := Tuning.RealLog*:ImmModelRadome.TheBuiltInsRenewalTestHoldsForTheFile
 SAN_BINS := kfw_engine_tests kfw_cli_tests $(if $(filter ON,$(SANITIZE_GUI)),kfw_gui_tests)
 SAN_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
   LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \

@@ -358,10 +358,13 @@ int cmd_scenario(const std::string& cmd, ScenarioCommandArgs a, std::ostream& ou
 }
 
 int cmd_list(std::ostream& out) {
-  out << "scenarios:";
-  for (const auto& n : scenarios().listed_names())
-    out << " " << n;
-  out << "\npresets (" << preset_dir() << "):";
+  if (const auto listed = scenarios().listed_names(); !listed.empty()) {
+    out << "scenarios:";
+    for (const auto& n : listed)
+      out << " " << n;
+    out << "\n";
+  }
+  out << "presets (" << preset_dir() << "):";
   std::error_code ec;
   std::vector<std::string> names;
   for (const auto& e : std::filesystem::directory_iterator(preset_dir(), ec)) {

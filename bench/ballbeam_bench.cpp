@@ -6,8 +6,8 @@
 
 #include "core/scenario.h"
 #include "model/model_scenario.h"
-#include "scenarios/ballbeam/ball_tracker.h"
-#include "scenarios/ballbeam/ballbeam_loop.h"
+#include "oracles/ballbeam/ball_tracker.h"
+#include "oracles/ballbeam/ballbeam_loop.h"
 
 namespace {
 
@@ -73,19 +73,6 @@ void BM_ClosedLoop15s(benchmark::State& state) {
 }
 BENCHMARK(BM_ClosedLoop15s)->Unit(benchmark::kMicrosecond);
 
-// What a slider move costs: Scenario::run with the three loop variants and all metrics.
-void BM_ScenarioRun(benchmark::State& state) {
-  auto s = make_scenario("ballbeam").value();
-  ParamValues v = s->params().defaults();
-  v["sim.duration"] = static_cast<double>(state.range(0));
-  const Dataset d;
-  for (auto _ : state) {
-    auto r = s->run(d, v);
-    benchmark::DoNotOptimize(r);
-  }
-}
-BENCHMARK(BM_ScenarioRun)->Arg(15)->Arg(600)->Unit(benchmark::kMillisecond);
-
 std::unique_ptr<Scenario> model_file() {
   std::ifstream in(KFW_SOURCE_DIR "/presets/ballbeam.json");
   auto s = make_model_scenario(nlohmann::json::parse(in), "ballbeam.json");
@@ -95,8 +82,7 @@ std::unique_ptr<Scenario> model_file() {
 
 // Issue 30: the model file's closed loop. Arg 0: one loop of 15 s (Scenario::simulate: world,
 // sensors, filter, controller — the work of BM_ClosedLoop15s; target ≤ 2× per step). Arg 1: a
-// slider move, Scenario::run with the noise-free twin and every metric (BM_ScenarioRun/15 runs
-// three loops).
+// slider move, Scenario::run with the noise-free twin and every metric.
 void BM_ModelLoop15s(benchmark::State& state) {
   auto s = model_file();
   const ParamValues v = s->params().defaults();

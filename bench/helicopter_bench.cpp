@@ -2,8 +2,8 @@
 #include <benchmark/benchmark.h>
 
 #include "filter/kalman_filter.h"
-#include "scenarios/helicopter/helicopter_sim.h"
-#include "scenarios/helicopter/indirect_kf.h"
+#include "oracles/helicopter/helicopter_sim.h"
+#include "oracles/helicopter/indirect_kf.h"
 
 namespace {
 

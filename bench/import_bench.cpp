@@ -8,6 +8,7 @@
 #include <random>
 
 #include "core/scenario.h"
+#include "document/preset.h"
 #include "document/workspace.h"
 
 namespace {
@@ -33,14 +34,14 @@ const std::string& million_row_file() {
 }
 
 void load(benchmark::State& state, const std::string& path, const kfw::Mapping& m) {
-  auto s = kfw::make_scenario("helicopter");
+  auto s = kfw::load_preset(KFW_SOURCE_DIR "/presets/helicopter.json");
   if (!s) {
     state.SkipWithError(s.error().c_str());
     return;
   }
   std::size_t rows = 0;
   for (auto _ : state) {
-    auto d = kfw::load_dataset_file(**s, path, m);
+    auto d = kfw::load_dataset_file(*s->instance, path, m);
     if (!d) {
       state.SkipWithError(d.error().c_str());
       return;

@@ -7,8 +7,10 @@
 
 #include "core/scenario.h"
 #include "model/model_scenario.h"
-#include "scenarios/radome/radome_imm.h"
-#include "scenarios/radome/radome_sim.h"
+#include "oracles/radome/radome_imm.h"
+#include "oracles/radome/radome_metrics.h"
+#include "oracles/radome/radome_params.h"
+#include "oracles/radome/radome_sim.h"
 
 namespace {
 
@@ -66,39 +68,42 @@ BENCHMARK(BM_RadomeImmStep)
     ->Args({15, 0})
     ->Unit(benchmark::kMicrosecond);
 
-// The whole default run as `kfw-cli run presets/radome.json` does it (1201 steps, all outputs).
-void BM_RadomeDefaultRun(benchmark::State& state) {
-  auto sc = make_scenario("radome");
-  ParamValues v = (*sc)->params().defaults();
-  v["imm.structure"] = static_cast<double>(state.range(0));
-  const auto d = (*sc)->simulate(v);
-  for (auto _ : state) {
-    auto r = (*sc)->run(*d, v);
-    benchmark::DoNotOptimize(r);
-  }
-  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(d->rows()));
-}
-BENCHMARK(BM_RadomeDefaultRun)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
-
-// The same run from seed 001's model file (presets/radome.json, issue 28) on the
-// built-in's data: the target is 1.5x BM_RadomeDefaultRun (axis 0, full 1).
-void BM_RadomeModelRun(benchmark::State& state) {
+std::unique_ptr<Scenario> radome_file() {
   std::ifstream in(KFW_SOURCE_DIR "/presets/radome.json");
   auto s = make_model_scenario(nlohmann::json::parse(in), "radome.json");
-  if (!s) {
-    state.SkipWithError(s.error().c_str());
-    return;
-  }
-  auto builtin = make_scenario("radome");
-  ParamValues v = (*s)->params().defaults();
+  if (!s) throw std::runtime_error(s.error());
+  return std::move(*s);
+}
+
+// The hand-written IMM (tests/oracles/radome, the built-in scenario's until issue 30) over the
+// default run with the built-in's metrics (1201 steps): the reference of BM_RadomeModelRun.
+void BM_RadomeOracleRun(benchmark::State& state) {
+  const auto s = radome_file();
+  ParamValues v = s->params().defaults();
   v["imm.structure"] = static_cast<double>(state.range(0));
-  const auto d = (*builtin)->simulate((*builtin)->params().defaults());
+  const Dataset d = radome::simulate(radome::sim_params(v)).value();
+  const radome::FilterParams p = radome::filter_params(v);
   for (auto _ : state) {
-    auto r = (*s)->run(*d, v);
+    auto r = radome::run_radome_with_metrics(d, p);
+    benchmark::DoNotOptimize(r);
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(d.rows()));
+}
+BENCHMARK(BM_RadomeOracleRun)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// The same run from seed 001's model file (presets/radome.json, issue 28) on the oracle's data
+// (the file's world simulates the same to 1e-12): the target is 1.5x BM_RadomeOracleRun.
+void BM_RadomeModelRun(benchmark::State& state) {
+  const auto s = radome_file();
+  ParamValues v = s->params().defaults();
+  v["imm.structure"] = static_cast<double>(state.range(0));
+  const Dataset d = radome::simulate(radome::sim_params(v)).value();
+  for (auto _ : state) {
+    auto r = s->run(d, v);
     if (!r) state.SkipWithError(r.error().c_str());
     benchmark::DoNotOptimize(r);
   }
-  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(d->rows()));
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(d.rows()));
 }
 BENCHMARK(BM_RadomeModelRun)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 

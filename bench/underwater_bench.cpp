@@ -4,9 +4,10 @@
 
 #include "core/scenario.h"
 #include "document/preset.h"
-#include "scenarios/underwater/underwater_ekf.h"
-#include "scenarios/underwater/underwater_sim.h"
-#include "scenarios/underwater/underwater_stats.h"
+#include "oracles/underwater/underwater_ekf.h"
+#include "oracles/underwater/underwater_params.h"
+#include "oracles/underwater/underwater_sim.h"
+#include "oracles/underwater/underwater_stats.h"
 
 namespace {
 
@@ -52,14 +53,20 @@ void BM_Stats3Min(benchmark::State& state) {
 }
 BENCHMARK(BM_Stats3Min)->Unit(benchmark::kMillisecond);
 
-// What a simulator slider costs in the GUI: simulate + run (filter, metrics, statistics).
+// What a simulator slider cost in the GUI with the hand-written EKF (tests/oracles/underwater,
+// the built-in scenario's until issue 30): simulate + filter + error statistics.
 void BM_SimulateAndRun3Min(benchmark::State& state) {
-  auto sc = kfw::make_scenario("underwater");
-  const auto v = (*sc)->params().defaults();
+  auto p = kfw::load_preset(KFW_SOURCE_DIR "/presets/underwater.json");
+  if (!p) {
+    state.SkipWithError(p.error().c_str());
+    return;
+  }
   for (auto _ : state) {
-    auto d = (*sc)->simulate(v);
-    auto r = (*sc)->run(*d, v);
+    auto d = kfw::underwater::simulate(kfw::underwater::sim_params(p->values));
+    auto r = kfw::underwater::run_ekf(d, kfw::underwater::filter_params(p->values));
+    auto s = kfw::underwater::error_stats(d);
     benchmark::DoNotOptimize(r);
+    benchmark::DoNotOptimize(s);
   }
 }
 BENCHMARK(BM_SimulateAndRun3Min)->Unit(benchmark::kMillisecond);

@@ -71,7 +71,7 @@ class ViewRegistry {
   std::map<std::string, Factory> factories_;
 };
 
-// Every view compiled in (widgets/scenarios/*_plots.cpp).
+// Every view compiled in (widgets/scenarios/*_plots.cpp: the model view).
 const ViewRegistry& views();
 
 }  // namespace kfw

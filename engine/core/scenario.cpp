@@ -291,9 +291,15 @@ const ScenarioRegistry& scenarios() {
 Expected<std::unique_ptr<Scenario>> make_scenario(const std::string& name) {
   auto s = scenarios().make(name);
   if (!s) {
-    std::string msg = "unknown scenario '" + name + "'; known:";
-    for (const auto& n : scenarios().listed_names())
-      msg += " " + n;
+    std::string msg = "unknown scenario '" + name + "'";
+    const auto known = scenarios().listed_names();
+    if (known.empty()) {
+      msg += " (a preset names \"scenario\": \"model\" and declares its \"model\" block)";
+    } else {
+      msg += "; known:";
+      for (const auto& n : known)
+        msg += " " + n;
+    }
     return Error{msg};
   }
   return s;

@@ -1,5 +1,6 @@
 // A scenario is the unit of extension: its parameter table, its dataset schema, its simulator and
-// its runner. Each lives in engine/scenarios/<name>/ and registers itself by name.
+// its runner. Since issue 30 every scenario is built from a model file (engine/model registers
+// "model"); the registry still takes compiled ones by name.
 #pragma once
 
 #include <atomic>
@@ -189,7 +190,7 @@ class ScenarioRegistry {
   // The compiled scenarios' names (not those built from a preset).
   std::vector<std::string> names() const;
   // The names users see (lists, help, "did you mean"): names() less the retired built-ins
-  // (core/retired.h), which make() still builds.
+  // (core/retired.h). Empty since issue 30: every system is a model file.
   std::vector<std::string> listed_names() const;
   // A new scenario object, or nullptr for an unknown name.
   std::unique_ptr<Scenario> make(const std::string& name) const;
@@ -201,8 +202,7 @@ class ScenarioRegistry {
   std::map<std::string, PresetFactory> preset_factories_;
 };
 
-// Every scenario compiled in (engine/scenarios/*) and the model engine (engine/model), each
-// registered once through the list engine/CMakeLists.txt generates.
+// The model engine (engine/model), registered through the list engine/CMakeLists.txt generates.
 const ScenarioRegistry& scenarios();
 Expected<std::unique_ptr<Scenario>> make_scenario(const std::string& name);
 

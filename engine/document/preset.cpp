@@ -294,7 +294,8 @@ Expected<Preset> preset_from_json(const OJson& j, const std::string& path) {
   // Scenarios built from the preset itself (a model file) registered as such (core/scenario.h).
   const ScenarioRegistry::PresetFactory* factory = scenarios().from_preset(p.scenario);
   if (auto m = j.find("model"); m != j.end()) {
-    if (!factory && !scenarios().make(p.scenario)) {  // a misspelled "model", most likely
+    // A misspelled "model", most likely (a retired built-in's name is known: the next message).
+    if (!factory && !find_retired(p.scenario) && !scenarios().make(p.scenario)) {
       std::vector<std::string> known = scenarios().listed_names();
       known.insert(known.begin(), "model");
       return Error{path + ": scenario: " + unknown_message("scenario", p.scenario, known)};

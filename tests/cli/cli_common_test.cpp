@@ -386,7 +386,6 @@ TEST_F(CliCommon, KilledBeforeTheRenameLeavesTheOldFile) {
 }
 
 TEST_F(CliCommon, ScenarioCommandShorthand) {
-  if (!has(cli("list").text, "underwater")) GTEST_SKIP() << "underwater not built";
   const std::string csv = path("uw.csv");
   ASSERT_EQ(cli("simulate underwater --set sim.duration=20 --out " + csv).code, 0);
   const Out o = cli("stats " + csv + " --set sim.duration=20", "2>/dev/null");

@@ -1,6 +1,6 @@
 // Seed 003 steady-state gains: the corrected closed form (eq. 16) against the DARE of the same
 // constant-velocity model and the values of seed 003 eq. 16.
-#include "scenarios/ballbeam/alpha_beta.h"
+#include "oracles/ballbeam/alpha_beta.h"
 
 #include <gtest/gtest.h>
 

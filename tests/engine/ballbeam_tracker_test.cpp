@@ -1,6 +1,6 @@
 // Seed 003 ball tracking filter: missing samples output the prediction; both filters keep a
 // symmetric PSD covariance; the steady filter carries the DARE covariance; the u^c input is exact.
-#include "scenarios/ballbeam/ball_tracker.h"
+#include "oracles/ballbeam/ball_tracker.h"
 
 #include <gtest/gtest.h>
 

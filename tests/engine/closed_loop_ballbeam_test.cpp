@@ -1,11 +1,11 @@
 // Issue 30: seed 003's ball-and-beam as a model file (presets/ballbeam.json) with a closed loop.
-// The world's sensor draws the built-in's streams (channel, dropout, burst and impulse of
-// `position`), and the built-in loop (scenarios/ballbeam) and the file's run the same
-// trajectory: the true ball, the estimate and the motor voltage agree to 1e-9 in
+// The world's sensor draws the retired built-in's streams (channel, dropout, burst and impulse of
+// `position`), and the built-in's loop (now the oracle tests/oracles/ballbeam) and the file's run
+// the same trajectory: the true ball, the estimate and the motor voltage agree to 1e-9 in
 // ../shared/STAGE.md's form, and the ball leaves the beam in the same seeds at the same row,
-// over seeds 1..10 with detection on and off: with detection off in several, with it on in none. α,
-// β of the file's derived quantities equal the closed form and the DARE gain of the tracking filter
-// to 1e-9.
+// over seeds 1..10 with detection on and off: with detection off in several, with it on in none.
+// α, β of the file's derived quantities equal the closed form and the DARE gain of the tracking
+// filter to 1e-9.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,8 +15,8 @@
 #include "common/model_files.h"
 #include "core/scenario.h"
 #include "model/model_result.h"
-#include "scenarios/ballbeam/alpha_beta.h"
-#include "scenarios/ballbeam/ballbeam_loop.h"
+#include "oracles/ballbeam/alpha_beta.h"
+#include "oracles/ballbeam/ballbeam_loop.h"
 
 namespace kfw {
 namespace {

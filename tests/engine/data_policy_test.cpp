@@ -9,6 +9,7 @@
 #include "core/dataset.h"
 #include "core/scenario.h"
 #include "data/csv.h"
+#include "document/preset.h"
 #include "document/workspace.h"
 
 namespace kfw {
@@ -20,12 +21,20 @@ std::string write(const std::string& name, const std::string& text) {
   return path;
 }
 
+// Seed 000's model file (columns t, gyro, angle; truth optional).
+std::shared_ptr<const Scenario> policy_heli() {
+  auto p = load_preset(KFW_SOURCE_DIR "/presets/helicopter.json");
+  EXPECT_TRUE(p.ok()) << p.error();
+  return p.ok() ? p->instance : nullptr;
+}
+
 // Each test writes its own file: ctest runs the tests of this binary in parallel processes.
 Expected<Dataset> load(const std::string& text, const Mapping& m = {}) {
-  auto s = make_scenario("helicopter");
+  auto s = policy_heli();
+  if (!s) return Error{"presets/helicopter.json does not load"};
   const std::string name =
       std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_policy.csv";
-  return load_dataset_file(**s, write(name, text), m);
+  return load_dataset_file(*s, write(name, text), m);
 }
 
 struct PolicyCase {
@@ -85,7 +94,8 @@ TEST(DataPolicy, MappingNamesOtherColumnsAndConvertsUnits) {
 }
 
 TEST(DataPolicy, ARunThatTurnsNonFiniteStopsWithStepAndTime) {
-  auto s = make_scenario("helicopter");
+  auto s = policy_heli();
+  ASSERT_TRUE(s);
   std::string csv = "t,gyro,angle\n";
   for (int k = 0; k < 200; ++k) {
     csv += std::to_string(0.02 * k) + "," + (k == 100 ? "1e308" : "1") + ",0\n";
@@ -94,7 +104,7 @@ TEST(DataPolicy, ARunThatTurnsNonFiniteStopsWithStepAndTime) {
   ASSERT_TRUE(d.ok()) << d.error();
   for (int k = 100; k < 200; ++k)
     d->columns[1][static_cast<std::size_t>(k)] = 1e308;  // θ += ω·Ts grows past any S
-  auto r = (*s)->run(*d, (*s)->params().defaults());
+  auto r = s->run(*d, s->params().defaults());
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.exit_code(), kExitFailed);
   EXPECT_NE(r.error().find("step "), std::string::npos) << r.error();
@@ -102,10 +112,11 @@ TEST(DataPolicy, ARunThatTurnsNonFiniteStopsWithStepAndTime) {
 }
 
 TEST(DataPolicy, UndefinedMetricsAreListedNeverNaN) {
-  auto s = make_scenario("helicopter");
+  auto s = policy_heli();
+  ASSERT_TRUE(s);
   auto d = read_csv(write("notruth.csv", "t,gyro,angle\n0,1,0\n0.02,1,0.1\n0.04,1,0.2\n"));
   ASSERT_TRUE(d.ok());
-  auto r = (*s)->run(*d, (*s)->params().defaults());
+  auto r = s->run(*d, s->params().defaults());
   ASSERT_TRUE(r.ok()) << r.error();
   for (const auto& [k, v] : (*r)->metrics)
     EXPECT_TRUE(std::isfinite(v)) << k;

@@ -11,7 +11,7 @@
 
 #include "common/model_files.h"
 #include "model/model_scenario.h"
-#include "scenarios/ballbeam/alpha_beta.h"
+#include "oracles/ballbeam/alpha_beta.h"
 
 namespace kfw {
 namespace {

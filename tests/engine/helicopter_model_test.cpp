@@ -1,7 +1,10 @@
-// Seed 000: closed-form steady state vs the DARE, and the model matrices.
-#include "scenarios/helicopter/helicopter_model.h"
+// Seed 000's oracle: closed-form steady state vs the DARE, the model matrices, the simulator and
+// the scalar filter.
+#include "oracles/helicopter/helicopter_model.h"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "common/matrix_matchers.h"
 
@@ -83,11 +86,34 @@ TEST(HelicopterModel, GainCurveIsMonotoneAndLogSpaced) {
 }  // namespace kfw::helicopter
 
 #include "filter/kalman_filter.h"
-#include "scenarios/helicopter/helicopter_sim.h"
-#include "scenarios/helicopter/indirect_kf.h"
+#include "oracles/helicopter/helicopter_sim.h"
+#include "oracles/helicopter/indirect_kf.h"
 
 namespace kfw::helicopter {
 namespace {
+
+TEST(HelicopterSim, SameSeedSameDataOtherSeedOtherData) {
+  SimParams p;
+  p.duration_s = 5;
+  const auto a = simulate(p), b = simulate(p);
+  p.seed = 2;
+  const auto c = simulate(p);
+  EXPECT_EQ(a.columns, b.columns);
+  EXPECT_NE(a.col("gyro"), c.col("gyro"));
+  EXPECT_EQ(a.rows(), 251u);
+}
+
+TEST(HelicopterSim, NoiseLevelsAreWhatWasAsked) {
+  SimParams p;
+  p.duration_s = 400;
+  const auto d = simulate(p);
+  double se = 0;
+  const auto& angle = d.col("angle");
+  const auto& truth = d.col("truth");
+  for (std::size_t i = 0; i < d.rows(); ++i)
+    se += (angle[i] - truth[i]) * (angle[i] - truth[i]);
+  EXPECT_NEAR(std::sqrt(se / d.rows()), p.sigma_angle, 0.03 * p.sigma_angle);
+}
 
 // The scalar runner is the textbook recursion: the same numbers as predict()/update() on the
 // model matrices, for both bias models and a multi-rate schedule.

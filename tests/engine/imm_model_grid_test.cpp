@@ -12,7 +12,7 @@
 #include "filter/imm_grid.h"
 #include "model/model_result.h"
 #include "model/model_scenario.h"
-#include "scenarios/radome/radome_renewal.h"
+#include "oracles/radome/radome_renewal.h"
 
 namespace kfw {
 namespace {

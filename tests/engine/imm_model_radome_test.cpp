@@ -1,5 +1,6 @@
 // Issue 28: seed 001's radome as a model file (presets/radome.json) equals the built-in
-// scenario: its world simulates the built-in's data to 1e-12, and on the same data its IMM gives
+// scenario (since issue 30 the oracle in tests/oracles/radome/, its simulator, IMM and metric
+// code): its world simulates the built-in's data to 1e-12, and on the same data its IMM gives
 // the built-in's combined position and slope estimates to 1e-9 (../shared/STAGE.md's rule), in
 // the axis and full structures, without and with renewal, under every reading and start.
 //
@@ -23,8 +24,10 @@
 #include "document/preset.h"
 #include "experiment/monte_carlo.h"
 #include "model/model_result.h"
-#include "scenarios/radome/radome_imm.h"
-#include "scenarios/radome/radome_sim.h"
+#include "oracles/radome/radome_imm.h"
+#include "oracles/radome/radome_metrics.h"
+#include "oracles/radome/radome_params.h"
+#include "oracles/radome/radome_sim.h"
 
 namespace kfw {
 namespace {
@@ -59,45 +62,6 @@ std::vector<double> constant(std::size_t n, double v) {
   return std::vector<double>(n, v);
 }
 
-radome::SimParams sim_params(const ParamValues& v) {
-  radome::SimParams s;
-  s.seed = static_cast<std::uint64_t>(v.at("sim.seed"));
-  s.amplitude = v.at("sim.amplitude");
-  s.duration_s = v.at("sim.duration");
-  s.Ts_s = v.at("sim.Ts");
-  s.range0_m = v.at("sim.range0");
-  s.az0_deg = v.at("sim.az0");
-  s.el0_deg = v.at("sim.el0");
-  s.weave_deg = v.at("sim.weave");
-  s.weave_period_s = v.at("sim.weave_period");
-  s.target_g = v.at("sim.target_g");
-  s.var_angle_rad2 = v.at("sim.R");
-  s.var_range_m2 = v.at("sim.R_range");
-  return s;
-}
-
-radome::FilterParams filter_params(const ParamValues& v) {
-  radome::FilterParams f;
-  f.Q = v.at("Q");
-  f.tau_s = v.at("tau");
-  f.var_angle = v.at("R");
-  f.var_range = v.at("R_range");
-  f.P0_pos_m2 = v.at("P0_pos");
-  f.P0_vel_m2ps2 = v.at("P0_vel");
-  f.P0_acc_m2ps4 = v.at("P0_acc");
-  f.structure =
-      v.at("imm.structure") >= 0.5 ? radome::Structure::kFull : radome::Structure::kAxisBlocks;
-  f.Kp = v.at("Kp");
-  f.renewal = static_cast<radome::Renewal>(static_cast<int>(v.at("renewal.mode")));
-  f.renewal_start_s = v.at("renewal.start");
-  f.grid_min = v.at("grid.min");
-  f.grid_max = v.at("grid.max");
-  f.n_psi = static_cast<int>(v.at("grid.n_psi"));
-  f.n_theta = static_cast<int>(v.at("grid.n_theta"));
-  f.stay = v.at("markov.stay");
-  return f;
-}
-
 TEST(ImmModelRadome, WorldSimulatesTheBuiltInsData) {
   auto s = testing::load_model_file(kRadomeFile);
   ASSERT_TRUE(s);
@@ -108,7 +72,7 @@ TEST(ImmModelRadome, WorldSimulatesTheBuiltInsData) {
       v["sim.amplitude"] = amplitude;
       auto mine = s->simulate(v);
       ASSERT_TRUE(mine.ok()) << mine.error();
-      auto theirs = radome::simulate(sim_params(v));
+      auto theirs = radome::simulate(radome::sim_params(v));
       ASSERT_TRUE(theirs.ok()) << theirs.error();
       ASSERT_EQ(mine->rows(), theirs->rows());
       for (const char* col :
@@ -132,7 +96,7 @@ Expected<radome::RadomeResult> run_builtin(const Dataset& d, const std::vector<d
   in.theta = &d.col("theta_rad");
   in.psi_a = &d.col("psi_a_rad");
   in.theta_a = &d.col("theta_a_rad");
-  return radome::run_radome_imm(in, filter_params(v));
+  return radome::run_radome_imm(in, radome::filter_params(v));
 }
 
 // Per row, the largest normalised difference so far between `a` and the built-in `b`: position
@@ -173,7 +137,7 @@ std::vector<double> drift(const Series& a, const radome::RadomeResult& b, double
 // least `min_rows` of them.
 void expect_equal_runs(const Scenario& s, ParamValues v, const std::string& what,
                        std::size_t min_rows = 0) {
-  auto d = radome::simulate(sim_params(v));
+  auto d = radome::simulate(radome::sim_params(v));
   ASSERT_TRUE(d.ok()) << d.error();
   auto run = s.run(*d, v);
   ASSERT_TRUE(run.ok()) << what << ": " << run.error();
@@ -325,34 +289,27 @@ TEST(ImmModelRadome, DerivedSeriesReadTheGridEstimates) {
 TEST(ImmModelRadome, NamedMetricsAreTheBuiltInsMetrics) {
   // The file's `metrics` block declares the built-in's scenario metrics under their names (the
   // paper's window t ≥ 10 s included), and `metrics_from` starts the standard ones (rmse,
-  // rmse.x/y/z, NIS and NEES) at 10 s as the built-in does. Truth A without renewal, where both
+  // rmse.x/y/z, NIS and NEES) at 10 s as the built-in did. The built-in's side is its metric code
+  // on the oracle's run (oracles/radome/radome_metrics.h). Truth A without renewal, where both
   // runs are reproducible: equal to 1e-9 relative.
   auto s = testing::load_model_file(kRadomeFile);
   ASSERT_TRUE(s);
-  auto made = make_scenario("radome");
-  ASSERT_TRUE(made.ok()) << made.error();
-  const auto& builtin = *made;
   for (double structure : {0.0, 1.0}) {
     ParamValues v = s->params().defaults();
     v["imm.structure"] = structure;
     v["sim.seed"] = 3;
-    auto d = radome::simulate(sim_params(v));
+    auto d = radome::simulate(radome::sim_params(v));
     ASSERT_TRUE(d.ok()) << d.error();
     auto mine = s->run(*d, v);
     ASSERT_TRUE(mine.ok()) << mine.error();
-    ParamValues bv = builtin->params().defaults();
-    for (auto& [k, x] : bv) {
-      if (v.count(k)) x = v.at(k);
-    }
-    auto ref = builtin->run(*d, bv);
+    auto ref = radome::run_radome_with_metrics(*d, radome::filter_params(v));
     ASSERT_TRUE(ref.ok()) << ref.error();
     const Metrics& a = mine->get()->metrics;
-    const Metrics& b = ref->get()->metrics;
+    const Metrics& b = ref->metrics;
     std::size_t compared = 0;
     for (const auto& [key, value] : a) {
       // Per channel the built-in's NIS and whiteness are of its whole run and other channels.
-      if (!a.count(key) || !b.count(key) || key.rfind("nis_mean.", 0) == 0 ||
-          key.rfind("whiteness", 0) == 0) {
+      if (!b.count(key) || key.rfind("nis_mean.", 0) == 0 || key.rfind("whiteness", 0) == 0) {
         continue;
       }
       EXPECT_NEAR(value, b.at(key), 1e-9 * std::max(1.0, std::fabs(b.at(key))))
@@ -367,9 +324,16 @@ TEST(ImmModelRadome, NamedMetricsAreTheBuiltInsMetrics) {
   }
 }
 
+// Seed 001, Figs. 7–9, with the reading that carries the mode states with the shift (`mix`, the
+// default) and renewal from 2 s: truth B outside the grid is tracked (slope RMSE ≤ 0.0112, the
+// refraction error under 0.5° in at least 7 of 10 seeds, every grid edge within 0.1 of the
+// estimate), and renewal does not spoil truth A inside the grid (under 0.5° in 9 of 10). The
+// built-in's renewal test (RadomeRenewal.CarryingTheModeStates…, which ran this file since issue
+// 28), under the metric names the file declares.
+// Truth B was "9 of 10" before the simulators drew from the random-number specification
+// (CHANGES.md, issue 27): seeds 1–10 went from 10 to 7 (worst 0.478° → 0.542°, the three misses
+// 0.52–0.54°) while over seeds 1–40 the share stayed (33 → 32 of 40; truth A 37 → 39 of 40).
 TEST(ImmModelRadome, TheBuiltInsRenewalTestHoldsForTheFile) {
-  // tests/engine/radome_renewal_test.cpp's Figs. 7–9 test, unchanged but for the preset: Monte
-  // Carlo over seeds 1–10 with Kp 0.45 (mix, from 2 s), under the metric names the file declares.
   auto s = testing::load_model_file(kRadomeFile);
   ASSERT_TRUE(s);
   ParamValues v = s->params().defaults();
@@ -439,7 +403,7 @@ TEST(ImmModelRadome, RenewalOutcomesAgreeOverSeeds) {
     v["sim.seed"] = seed;
     v["sim.amplitude"] = 0.08;
     v["Kp"] = 0.45;
-    auto d = radome::simulate(sim_params(v));
+    auto d = radome::simulate(radome::sim_params(v));
     ASSERT_TRUE(d.ok()) << d.error();
     auto run = s->run(*d, v);
     ASSERT_TRUE(run.ok()) << run.error();

@@ -188,23 +188,24 @@ TEST(MappingFormat, LoadingReadsWithTheMappingsFormat) {
   std::filesystem::create_directories(dir);
   const std::string file = (dir / "log.tsv").string();
   std::ofstream(file) << "0\t1.5\t2\t2.1\n0.01\t1.25\t3\t3.1\n0.02\t1\t4\t4.1\n";
-  auto s = make_scenario("helicopter");
-  ASSERT_TRUE(s.ok()) << s.error();
+  auto p = load_preset(KFW_SOURCE_DIR "/presets/helicopter.json");
+  ASSERT_TRUE(p.ok()) << p.error();
+  const Scenario& s = *p->instance;
   Mapping m;
   m["t"].column = "col1";
   m["gyro"].column = "col2";
   m["angle"].column = "col3";
   m["truth"].column = "col4";
-  auto d = load_dataset_file(**s, file, m);
+  auto d = load_dataset_file(s, file, m);
   ASSERT_TRUE(d.ok()) << d.error();
   EXPECT_EQ(d->col("angle"), (std::vector<double>{2, 3, 4}));
   m.separator = ',';
-  auto wrong = load_dataset_file(**s, file, m);
+  auto wrong = load_dataset_file(s, file, m);
   ASSERT_FALSE(wrong.ok());
   EXPECT_NE(wrong.error().find("mapped column 'col"), std::string::npos) << wrong.error();
   m.separator = '\t';
   m.header = HeaderRow::first;  // the first row as names: col1 .. col4 are gone
-  EXPECT_FALSE(load_dataset_file(**s, file, m).ok());
+  EXPECT_FALSE(load_dataset_file(s, file, m).ok());
   std::filesystem::remove_all(dir);
 }
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/scenario.h"
+#include "document/preset.h"
 #include "document/workspace.h"
 
 namespace kfw {
@@ -73,8 +74,6 @@ class EveryPreset : public ::testing::TestWithParam<std::string> {};
 TEST_P(EveryPreset, MetricsAreDeclaredFiniteAndExplained) {
   const std::string path = std::string(KFW_SOURCE_DIR) + "/presets/" + GetParam() + ".json";
   auto ws = open_workspace(path, {}, {});
-  if (!ws.ok() && ws.error().find("unknown scenario") != std::string::npos)
-    GTEST_SKIP() << ws.error();  // a build with KFW_SCENARIOS leaves it out
   ASSERT_TRUE(ws.ok()) << ws.error();
   if (ws->data_path && !std::filesystem::exists(*ws->data_path))
     GTEST_SKIP() << "shared data not present: " << *ws->data_path;  // broad_imu, see README
@@ -93,7 +92,7 @@ INSTANTIATE_TEST_SUITE_P(Presets, EveryPreset, ::testing::ValuesIn(preset_names(
 
 // A simulated dataset with its truth columns dropped, as a real log would come.
 struct NoTruth {
-  std::string scenario;
+  std::string scenario;                             // the seed preset (presets/NAME.json)
   std::vector<std::string> truth;                   // the columns dropped
   std::vector<std::pair<std::string, double>> set;  // parameters changed from the defaults
 };
@@ -102,12 +101,13 @@ class WithoutTruth : public ::testing::TestWithParam<NoTruth> {};
 
 TEST_P(WithoutTruth, RmseAndNeesAreUndefinedWithAReason) {
   const NoTruth& c = GetParam();
-  auto s = make_scenario(c.scenario);
-  if (!s.ok()) GTEST_SKIP() << s.error();
-  auto v = (*s)->params().defaults();
+  auto p = load_preset(std::string(KFW_SOURCE_DIR) + "/presets/" + c.scenario + ".json");
+  ASSERT_TRUE(p.ok()) << p.error();
+  const Scenario* s = p->instance.get();
+  auto v = p->values;
   for (const auto& [key, value] : c.set)
     v[key] = value;
-  auto d = (*s)->simulate(v);
+  auto d = s->simulate(v);
   ASSERT_TRUE(d.ok()) << d.error();
   for (const auto& name : c.truth) {
     const int i = d->index(name);
@@ -115,9 +115,9 @@ TEST_P(WithoutTruth, RmseAndNeesAreUndefinedWithAReason) {
     d->names.erase(d->names.begin() + i);
     d->columns.erase(d->columns.begin() + i);
   }
-  auto r = (*s)->run(*d, v);
+  auto r = s->run(*d, v);
   ASSERT_TRUE(r.ok()) << r.error();
-  expect_well_formed(**s, **r, c.scenario + " without truth");
+  expect_well_formed(*s, **r, c.scenario + " without truth");
   for (const char* key : {"rmse", "nees_mean"}) {
     EXPECT_EQ((*r)->metrics.count(key), 0U) << c.scenario << ": " << key;
     ASSERT_TRUE((*r)->undefined.count(key)) << c.scenario << ": " << key;
@@ -144,8 +144,10 @@ TEST(MetricVocabulary, SharedSpecsAreComplete) {
     EXPECT_FALSE(spec.label.empty()) << spec.key;
     EXPECT_FALSE(spec.description.empty()) << spec.key;
   }
-  for (const auto& name : scenarios().names()) {
-    auto s = scenarios().make(name);
+  for (const auto& name : preset_names()) {
+    auto p = load_preset(std::string(KFW_SOURCE_DIR) + "/presets/" + name + ".json");
+    ASSERT_TRUE(p.ok()) << p.error();
+    const Scenario* s = p->instance.get();
     for (const auto& spec : s->metric_specs()) {
       EXPECT_FALSE(spec.label.empty()) << name << ": " << spec.key;
       EXPECT_FALSE(spec.description.empty()) << name << ": " << spec.key;

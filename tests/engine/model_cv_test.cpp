@@ -12,7 +12,7 @@
 #include "filter/kalman_filter.h"
 #include "model/model_result.h"
 #include "model/model_scenario.h"
-#include "scenarios/ballbeam/alpha_beta.h"
+#include "oracles/ballbeam/alpha_beta.h"
 
 namespace kfw {
 namespace {

@@ -1,8 +1,9 @@
 // Issue 27: channel groups (stacked / sequential instants, a choice parameter's alternatives),
 // the distance gate and input ages (engine/model/model_groups.cpp, model_filter_detail.h) — seed
-// 004's AS / SC / SI as a model file (presets/underwater.json) against the built-in
-// underwater EKF on the same simulated data (the world's data equal the built-in's to 1e-12,
-// model_world_underwater_test.cpp), in the equality form of ../shared/STAGE.md with tol 1e-9.
+// 004's AS / SC / SI as a model file (presets/underwater.json) against the retired built-in's
+// underwater EKF, now the oracle tests/oracles/underwater (issue 30), on the same simulated data
+// (the world's data equal the oracle simulator's to 1e-12, model_world_underwater_test.cpp), in
+// the equality form of ../shared/STAGE.md with tol 1e-9.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,7 +19,10 @@
 #include "model/model_result.h"
 #include "model/model_scenario.h"
 #include "model/plots/model_plots.h"
-#include "scenarios/underwater/underwater_stats.h"
+#include "oracles/underwater/underwater_ekf.h"
+#include "oracles/underwater/underwater_params.h"
+#include "oracles/underwater/underwater_sim.h"
+#include "oracles/underwater/underwater_stats.h"
 
 namespace kfw {
 namespace model_groups_test {
@@ -57,14 +61,9 @@ double largest(const std::vector<double>& v) {
   return ::testing::AssertionSuccess();
 }
 
-struct Pair {
-  std::unique_ptr<Scenario> builtin, model;
-};
-
-Pair load() {
-  auto b = make_scenario("underwater");
-  EXPECT_TRUE(b.ok());
-  return {b.ok() ? std::move(*b) : nullptr, testing::load_model_file(kFile)};
+// The model file; the built-in it replaced is the oracle, fed the same values (its keys).
+std::unique_ptr<Scenario> load() {
+  return testing::load_model_file(kFile);
 }
 
 // The index of a choice parameter's label.
@@ -84,37 +83,37 @@ ParamValues values(const Scenario& s, int seed, const char* scheme) {
   return v;
 }
 
-// Runs both on the built-in's simulated data; the tables, and the rmse of each.
+// Runs the oracle EKF and the model file on the oracle's simulated data; the tables, and the rmse
+// of each.
 struct Runs {
   Dataset b, m;
   double rmse_b = 0.0, rmse_m = 0.0;
 };
 
-Runs run_both(const Pair& s, int seed, const char* scheme) {
+Runs run_both(const Scenario& model, int seed, const char* scheme) {
   Runs out;
-  const ParamValues vb = values(*s.builtin, seed, scheme), vm = values(*s.model, seed, scheme);
-  auto data = s.builtin->simulate(vb);
-  EXPECT_TRUE(data.ok());
-  auto rb = s.builtin->run(*data, vb);
-  auto rm = s.model->run(*data, vm);
+  const ParamValues v = values(model, seed, scheme);
+  const Dataset data = underwater::simulate(underwater::sim_params(v));
+  auto rb = underwater::run_ekf(data, underwater::filter_params(v));
+  auto rm = model.run(data, v);
   EXPECT_TRUE(rb.ok()) << rb.error();
   EXPECT_TRUE(rm.ok()) << rm.error();
   if (!rb.ok() || !rm.ok()) return out;
-  out.b = (*rb)->table();
+  out.b = rb->table();
   out.m = (*rm)->table();
-  out.rmse_b = (*rb)->metrics.at("rmse");
+  out.rmse_b = underwater::position_rmse(*rb);
   out.rmse_m = (*rm)->metrics.at("rmse");
   return out;
 }
 
 // Estimates, covariances, innovations and S per range, and which ranges the gate rejected.
 TEST(ModelGroups, UnderwaterSchemesEqualTheBuiltInEkf) {
-  const Pair s = load();
-  ASSERT_TRUE(s.builtin && s.model);
+  const auto s = load();
+  ASSERT_TRUE(s);
   for (int seed = 1; seed <= 3; ++seed) {
     for (const char* scheme : kSchemes) {
       SCOPED_TRACE(std::string(scheme) + " seed " + std::to_string(seed));
-      const Runs r = run_both(s, seed, scheme);
+      const Runs r = run_both(*s, seed, scheme);
       ASSERT_GT(r.b.rows(), 0u);
       for (const char* c : {"x", "y", "z"}) {
         const std::string sc(c);
@@ -151,15 +150,16 @@ TEST(ModelGroups, UnderwaterSchemesEqualTheBuiltInEkf) {
 }
 
 // Seed 004's claim that the stacked update with the full R wins: in as many of seeds 1..10 as
-// with the built-in (measured on the built-in first: SC best in 5 of 10 at 60 s, dropout 0.1).
+// with the built-in's EKF (measured on the built-in first: SC best in 5 of 10 at 60 s, dropout
+// 0.1).
 TEST(ModelGroups, StackedIsBestInAsManySeedsAsWithTheBuiltIn) {
-  const Pair s = load();
-  ASSERT_TRUE(s.builtin && s.model);
+  const auto s = load();
+  ASSERT_TRUE(s);
   int best_b = 0, best_m = 0;
   for (int seed = 1; seed <= 10; ++seed) {
     double b[3], m[3];
     for (int i = 0; i < 3; ++i) {
-      const Runs r = run_both(s, seed, kSchemes[i]);
+      const Runs r = run_both(*s, seed, kSchemes[i]);
       b[i] = r.rmse_b;
       m[i] = r.rmse_m;
     }
@@ -170,25 +170,25 @@ TEST(ModelGroups, StackedIsBestInAsManySeedsAsWithTheBuiltIn) {
 }
 
 // Seed 004, Table 14: the outliers the gate catches and its false alarms, per seed, as with the
-// built-in (the paper's 3 minutes, 276 outliers, each scheme).
+// built-in's EKF (the paper's 3 minutes, 276 outliers, each scheme).
 TEST(ModelGroups, OutliersDetectedAndFalseAlarmsPerSeedAsTheBuiltIns) {
-  const Pair s = load();
-  ASSERT_TRUE(s.builtin && s.model);
+  const auto s = load();
+  ASSERT_TRUE(s);
   for (int seed = 1; seed <= 10; ++seed) {
     for (const char* scheme : kSchemes) {
       SCOPED_TRACE(std::string(scheme) + " seed " + std::to_string(seed));
-      ParamValues vb = values(*s.builtin, seed, scheme), vm = values(*s.model, seed, scheme);
-      for (auto* v : {&vb, &vm}) {
-        (*v)["sim.duration"] = 180;
-        (*v)["sim.range_dropout"] = 0;
-      }
-      auto data = s.builtin->simulate(vb);
-      ASSERT_TRUE(data.ok());
-      auto rb = s.builtin->run(*data, vb);
-      auto rm = s.model->run(*data, vm);
+      ParamValues v = values(*s, seed, scheme);
+      v["sim.duration"] = 180;
+      v["sim.range_dropout"] = 0;
+      const Dataset data = underwater::simulate(underwater::sim_params(v));
+      auto rb = underwater::run_ekf(data, underwater::filter_params(v));
+      auto rm = s->run(data, v);
       ASSERT_TRUE(rb.ok() && rm.ok());
-      for (const char* k : {"outliers_injected", "outliers_detected", "outliers_false_alarm"})
-        EXPECT_EQ((*rm)->metrics.at(k), (*rb)->metrics.at(k)) << k;
+      ASSERT_TRUE(rb->outliers_known);
+      const Metrics& m = (*rm)->metrics;
+      EXPECT_EQ(m.at("outliers_injected"), static_cast<double>(rb->outliers_injected));
+      EXPECT_EQ(m.at("outliers_detected"), static_cast<double>(rb->outliers_detected));
+      EXPECT_EQ(m.at("outliers_false_alarm"), static_cast<double>(rb->outliers_false_alarm));
       EXPECT_EQ((*rm)->metrics.at("outliers_injected"), 276.0);
       EXPECT_GE((*rm)->metrics.at("outliers_detected"), 0.94 * 276);
     }
@@ -196,15 +196,16 @@ TEST(ModelGroups, OutliersDetectedAndFalseAlarmsPerSeedAsTheBuiltIns) {
 }
 
 // Seed 004, eqs. 5–8: the world's range errors have the covariance σ_r² I + σ_c² 1 1ᵀ and the
-// depth error σ_d², measured as the built-in's statistics measure them (20 min, no outliers).
+// depth error σ_d², measured as the built-in's statistics measure them (20 min, no outliers); and
+// equal to the statistics of the oracle simulator's data (the retired built-in's).
 TEST(ModelGroups, TheWorldsRangeErrorsReproduceEquations5To8) {
-  const Pair s = load();
-  ASSERT_TRUE(s.builtin && s.model);
-  ParamValues v = s.model->params().defaults();
+  const auto s = load();
+  ASSERT_TRUE(s);
+  ParamValues v = s->params().defaults();
   v["sim.seed"] = 11;
   v["sim.duration"] = 1200;
   v["sim.outliers"] = 0;
-  auto data = s.model->simulate(v);
+  auto data = s->simulate(v);
   ASSERT_TRUE(data.ok()) << data.error();
   const auto st = underwater::error_stats(*data);
   ASSERT_TRUE(st) << st.error();
@@ -219,15 +220,8 @@ TEST(ModelGroups, TheWorldsRangeErrorsReproduceEquations5To8) {
           << "(" << i << ", " << j << ")";
     }
   }
-  auto same = s.builtin->simulate([&] {
-    ParamValues b = s.builtin->params().defaults();
-    for (const auto& [k, x] : v) {
-      if (b.count(k)) b[k] = x;
-    }
-    return b;
-  }());
-  ASSERT_TRUE(same.ok());
-  const auto sb = underwater::error_stats(*same);
+  const Dataset same = underwater::simulate(underwater::sim_params(v));
+  const auto sb = underwater::error_stats(same);
   ASSERT_TRUE(sb);
   EXPECT_LE((st->covariance - sb->covariance).cwiseAbs().maxCoeff(), 1e-9);
 }

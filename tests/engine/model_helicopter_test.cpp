@@ -1,6 +1,7 @@
 // The seed-000 indirect KF declared as a model file (presets/models/helicopter_indirect.json)
-// against the built-in `helicopter` scenario: same estimates, covariances, innovations and
-// metrics on the real IMU log and on the model's own simulation.
+// against the retired built-in `helicopter` scenario, now the oracle (tests/oracles/helicopter/):
+// same estimates, covariances, innovations and metrics on the real IMU log and on the model's own
+// simulation.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,7 +15,7 @@
 #include "data/csv.h"
 #include "model/model_result.h"
 #include "model/model_scenario.h"
-#include "scenarios/helicopter/indirect_kf.h"
+#include "oracles/helicopter/helicopter_oracle.h"
 
 namespace kfw {
 namespace {
@@ -42,13 +43,13 @@ using testing::load_model_file;
   return ::testing::AssertionSuccess();
 }
 
-void expect_same_run(const Scenario& builtin, const Scenario& model, const Dataset& d,
-                     ParamValues vb, ParamValues vm, const std::string& label) {
-  auto rb = builtin.run(d, vb);
-  ASSERT_TRUE(rb.ok()) << rb.error();
-  auto rm = model.run(d, vm);
+// The oracle (the built-in's run) against the model file, both at the model's values `v` (the
+// oracle reads the keys the built-in's table shared with the file: Q, R, m, gamma, P0_*).
+void expect_same_run(const Scenario& model, const Dataset& d, const ParamValues& v,
+                     const std::string& label) {
+  const helicopter::HelicopterResult b = helicopter::run_with_metrics(d, v);
+  auto rm = model.run(d, v);
   ASSERT_TRUE(rm.ok()) << rm.error();
-  const auto& b = dynamic_cast<const helicopter::HelicopterResult&>(**rb);
   const auto& m = dynamic_cast<const model::ModelResult&>(**rm);
   SCOPED_TRACE(label);
   EXPECT_TRUE(close(m.x[0], b.theta, "theta"));
@@ -66,9 +67,9 @@ void expect_same_run(const Scenario& builtin, const Scenario& model, const Datas
   // The shared metrics agree too (same innovations, same NEES over θ).
   for (const char* key : {"rmse", "rmse.theta", "nis_mean", "nis_in_bounds", "nll", "whiteness_p",
                           "nees_mean", "nees_in_bounds"}) {
-    ASSERT_EQ((*rb)->metrics.count(key), (*rm)->metrics.count(key)) << key;
-    if (!(*rb)->metrics.count(key)) continue;
-    const double x = (*rb)->metrics.at(key), y = (*rm)->metrics.at(key);
+    ASSERT_EQ(b.metrics.count(key), (*rm)->metrics.count(key)) << key;
+    if (!b.metrics.count(key)) continue;
+    const double x = b.metrics.at(key), y = (*rm)->metrics.at(key);
     EXPECT_NEAR(y, x, std::max(1e-12, 1e-9 * std::fabs(x))) << key;
   }
 }
@@ -77,29 +78,23 @@ TEST(ModelHelicopter, SameEstimatesAsTheBuiltInOnTheRealLog) {
   if (!std::filesystem::exists(kLog)) GTEST_SKIP() << "no shared data at " << kLog;
   auto data = read_csv(kLog);
   ASSERT_TRUE(data.ok()) << data.error();
-  auto builtin = make_scenario("helicopter");
-  ASSERT_TRUE(builtin.ok());
   auto model = load_model_file(kPreset);
   ASSERT_TRUE(model);
-  // presets/broad_imu.json's tuning; both tables take the same keys.
+  // presets/broad_imu.json's tuning.
   for (double m : {1.0, 5.0}) {
     for (double gamma : {0.0, 0.003}) {
-      ParamValues vb = (*builtin)->params().defaults(), vm = model->params().defaults();
-      for (auto* v : {&vb, &vm}) {
-        (*v)["Q"] = 256;
-        (*v)["R"] = 4096;
-        (*v)["m"] = m;
-        (*v)["gamma"] = gamma;
-      }
-      expect_same_run(**builtin, *model, *data, vb, vm,
+      ParamValues v = model->params().defaults();
+      v["Q"] = 256;
+      v["R"] = 4096;
+      v["m"] = m;
+      v["gamma"] = gamma;
+      expect_same_run(*model, *data, v,
                       "m = " + std::to_string(m) + ", gamma = " + std::to_string(gamma));
     }
   }
 }
 
 TEST(ModelHelicopter, SameEstimatesOnTheModelsOwnSimulationWithGaps) {
-  auto builtin = make_scenario("helicopter");
-  ASSERT_TRUE(builtin.ok());
   auto model = load_model_file(kPreset);
   ASSERT_TRUE(model);
   ParamValues vm = model->params().defaults();
@@ -113,23 +108,21 @@ TEST(ModelHelicopter, SameEstimatesOnTheModelsOwnSimulationWithGaps) {
   for (std::size_t k = 3; k < angle.size(); k += 7)
     angle[k] = kNoSample;
   gaps.columns[static_cast<std::size_t>(gaps.index("gyro"))][50] = kNoSample;
-  ParamValues vb = (*builtin)->params().defaults();
   for (double m : {1.0, 3.0}) {
-    vb["m"] = vm["m"] = m;
-    vb["gamma"] = vm["gamma"] = 0.01;
-    expect_same_run(**builtin, *model, gaps, vb, vm, "m = " + std::to_string(m));
+    vm["m"] = m;
+    vm["gamma"] = 0.01;
+    expect_same_run(*model, gaps, vm, "m = " + std::to_string(m));
   }
 }
 
+// The model's gain without data is at its simulation step sim.dt (20 ms), the built-in's at sim.Ts.
 TEST(ModelHelicopter, SteadyStateGainEqualsTheBuiltInDare) {
-  auto builtin = make_scenario("helicopter");
-  ASSERT_TRUE(builtin.ok());
   auto model = load_model_file(kPreset);
   ASSERT_TRUE(model);
   for (double m : {1.0, 5.0, 25.0}) {
-    ParamValues vb = (*builtin)->params().defaults(), vm = model->params().defaults();
-    vb["m"] = vm["m"] = m;
-    auto gb = (*builtin)->gain(vb);
+    ParamValues vm = model->params().defaults();
+    vm["m"] = m;
+    auto gb = helicopter::gain_at(vm, static_cast<int>(m), vm.at("sim.dt"));
     auto gm = model->gain(vm);
     ASSERT_TRUE(gb.ok()) << gb.error();
     ASSERT_TRUE(gm.ok()) << gm.error();

@@ -1,9 +1,9 @@
 // Issue 27: seed 000 as one model file (presets/helicopter.json: the built-in's
 // parameter keys, sim.Ts as the simulation step, β and the closed forms as derived quantities,
-// a world that simulates the hover sway, the bias walk and the dropouts) against the built-in
-// `helicopter` scenario. Equality in the form of ../shared/STAGE.md: |a − b| ≤ 1e-9 (|b| + σ_b),
-// σ_b the built-in's posterior standard deviation of that state, or the column's largest
-// magnitude for other columns.
+// a world that simulates the hover sway, the bias walk and the dropouts) against the retired
+// built-in `helicopter` scenario, now the oracle (tests/oracles/helicopter/). Equality in the form
+// of ../shared/STAGE.md: |a − b| ≤ 1e-9 (|b| + σ_b), σ_b the oracle's posterior standard deviation
+// of that state, or the column's largest magnitude for other columns.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,9 +17,8 @@
 #include "core/scenario.h"
 #include "data/csv.h"
 #include "document/workspace.h"
-#include "filter/noise_estimate.h"
 #include "model/model_result.h"
-#include "scenarios/helicopter/indirect_kf.h"
+#include "oracles/helicopter/helicopter_oracle.h"
 
 namespace kfw {
 namespace world_helicopter_test {
@@ -60,18 +59,13 @@ std::vector<double> root(const std::vector<double>& v) {
   return out;
 }
 
-void expect_same_run(const Scenario& builtin, const Scenario& model, const Dataset& d,
-                     const ParamValues& v, const std::string& label) {
+// The oracle (the built-in's run) against the model file, both at the file's values `v`.
+void expect_same_run(const Scenario& model, const Dataset& d, const ParamValues& v,
+                     const std::string& label) {
   SCOPED_TRACE(label);
-  ParamValues vb = builtin.params().defaults();  // the built-in's table: no filter, no ukf.*
-  for (auto& [key, value] : vb) {
-    if (v.count(key)) value = v.at(key);
-  }
-  auto rb = builtin.run(d, vb);
-  ASSERT_TRUE(rb.ok()) << rb.error();
+  const helicopter::HelicopterResult b = helicopter::run_with_metrics(d, v);
   auto rm = model.run(d, v);
   ASSERT_TRUE(rm.ok()) << rm.error();
-  const auto& b = dynamic_cast<const helicopter::HelicopterResult&>(**rb);
   const auto& m = dynamic_cast<const model::ModelResult&>(**rm);
   EXPECT_TRUE(same(m.x[0], b.theta, root(b.P11), "theta"));
   EXPECT_TRUE(same(m.x[1], b.bias, root(b.P22), "bias"));
@@ -83,21 +77,20 @@ void expect_same_run(const Scenario& builtin, const Scenario& model, const Datas
   EXPECT_TRUE(same(m.chans[0].S[0], b.S, largest(b.S), "S"));
   EXPECT_EQ(m.chans[0].updates, b.updates);
   for (const char* key : {"rmse", "nis_mean", "nees_mean"}) {
-    ASSERT_EQ((*rb)->metrics.count(key), (*rm)->metrics.count(key)) << key;
-    if (!(*rb)->metrics.count(key)) continue;
-    const double x = (*rb)->metrics.at(key);
+    ASSERT_EQ(b.metrics.count(key), (*rm)->metrics.count(key)) << key;
+    if (!b.metrics.count(key)) continue;
+    const double x = b.metrics.at(key);
     EXPECT_NEAR((*rm)->metrics.at(key), x, kTol * std::fabs(x)) << key;
   }
 }
 
 // The issue's cases: m ∈ {1, 5}, γ ∈ {0, 0.003}, the other values as given.
-void expect_same_runs(const Scenario& builtin, const Scenario& model, const Dataset& d,
-                      ParamValues v) {
+void expect_same_runs(const Scenario& model, const Dataset& d, ParamValues v) {
   for (double m : {1.0, 5.0}) {
     for (double gamma : {0.0, 0.003}) {
       v["m"] = m;
       v["gamma"] = gamma;
-      expect_same_run(builtin, model, d, v,
+      expect_same_run(model, d, v,
                       "m = " + std::to_string(m) + ", gamma = " + std::to_string(gamma));
     }
   }
@@ -140,16 +133,12 @@ TEST(ModelWorldHelicopter, SameEstimatesAsTheBuiltInOnTheRealLog) {
   ASSERT_TRUE(ws->data_from_preset);
   auto data = load_dataset(*ws);
   ASSERT_TRUE(data.ok()) << data.error();
-  auto builtin = make_scenario("helicopter");
-  ASSERT_TRUE(builtin.ok());
   EXPECT_EQ(ws->values.at("Q"), 256);  // the preset's tuning
   EXPECT_EQ(ws->values.at("R"), 4096);
-  expect_same_runs(**builtin, *ws->scenario, *data, ws->values);
+  expect_same_runs(*ws->scenario, *data, ws->values);
 }
 
 TEST(ModelWorldHelicopter, SameEstimatesOnTheWorldsSimulation) {
-  auto builtin = make_scenario("helicopter");
-  ASSERT_TRUE(builtin.ok());
   auto model = testing::load_model_file(kFile);
   ASSERT_TRUE(model);
   ParamValues v = model->params().defaults();
@@ -158,14 +147,12 @@ TEST(ModelWorldHelicopter, SameEstimatesOnTheWorldsSimulation) {
   v["sim.bias_walk"] = 0.2;
   auto d = model->simulate(v);
   ASSERT_TRUE(d.ok()) << d.error();
-  expect_same_runs(**builtin, *model, *d, v);
+  expect_same_runs(*model, *d, v);
 }
 
-// β and the closed forms k1(β), p11⁻/N_θ as derived quantities equal the built-in's and the
-// DARE of the m-step model (γ = 0).
+// β and the closed forms k1(β), p11⁻/N_θ as derived quantities equal the built-in's gain() (the
+// oracle's, at the data's Ts = sim.Ts) and the DARE of the m-step model (γ = 0).
 TEST(ModelWorldHelicopter, ClosedFormsEqualTheBuiltInAndTheDare) {
-  auto builtin = make_scenario("helicopter");
-  ASSERT_TRUE(builtin.ok());
   auto model = testing::load_model_file(kFile);
   ASSERT_TRUE(model);
   ParamValues v = model->params().defaults();
@@ -178,10 +165,7 @@ TEST(ModelWorldHelicopter, ClosedFormsEqualTheBuiltInAndTheDare) {
       v["Q"] = q;
       auto r = model->run(*d, v);
       ASSERT_TRUE(r.ok()) << r.error();
-      ParamValues vb = (*builtin)->params().defaults();
-      vb["m"] = m;
-      vb["Q"] = q;
-      auto g = (*builtin)->gain(vb);
+      auto g = helicopter::gain_at(v, static_cast<int>(m), v.at("sim.Ts"));
       ASSERT_TRUE(g.ok()) << g.error();
       const Metrics& mm = (*r)->metrics;
       SCOPED_TRACE("m = " + std::to_string(m) + ", Q = " + std::to_string(q));
@@ -193,53 +177,49 @@ TEST(ModelWorldHelicopter, ClosedFormsEqualTheBuiltInAndTheDare) {
                   kTol * g->at("p11_over_R_dare"));
     }
   }
+  // Seed 000's table (eq. 11; docs/reproductions.md, SpecTable/ClosedForm.MatchesSpecTable) on
+  // the model file: Q chosen so that β = m Ts² Q / R takes the table's values.
+  struct Row {
+    double beta, k1, p11;
+  };
+  for (const Row& row : {Row{0.01, 0.0951, 0.1051}, Row{0.05, 0.2000, 0.2500},
+                         Row{0.27, 0.4019, 0.6719}, Row{1.06, 0.6280, 1.6880}}) {
+    for (double m : {1.0, 25.0}) {
+      v["m"] = m;
+      v["Q"] = row.beta * v.at("R") / (m * v.at("sim.Ts") * v.at("sim.Ts"));
+      auto r = model->run(*d, v);
+      ASSERT_TRUE(r.ok()) << r.error();
+      const Metrics& mm = (*r)->metrics;
+      SCOPED_TRACE("beta = " + std::to_string(row.beta) + ", m = " + std::to_string(m));
+      EXPECT_NEAR(mm.at("derived.beta"), row.beta, 1e-9 * row.beta);
+      EXPECT_NEAR(mm.at("derived.k1"), row.k1, 5e-5);
+      EXPECT_NEAR(mm.at("derived.p11_over_R"), row.p11, 5e-5);
+    }
+  }
 }
 
 // The world draws the built-in simulator's streams in the same order (core/random.h): the same
 // data to 1e-12 of each column's largest magnitude, seeds 1..20, with dropouts and a bias walk.
 TEST(ModelWorldHelicopter, TheWorldSimulatesWhatTheBuiltInSimulates) {
-  auto builtin = make_scenario("helicopter");
-  ASSERT_TRUE(builtin.ok());
   auto model = testing::load_model_file(kFile);
   ASSERT_TRUE(model);
   for (int seed = 1; seed <= 20; ++seed) {
-    ParamValues vb = (*builtin)->params().defaults(), vm = model->params().defaults();
-    for (auto* v : {&vb, &vm}) {
-      (*v)["sim.seed"] = seed;
-      (*v)["sim.duration"] = 60;
-      (*v)["sim.angle_dropout"] = 0.1;
-      (*v)["sim.bias_walk"] = 0.3;
-    }
-    auto db = (*builtin)->simulate(vb);
-    ASSERT_TRUE(db.ok()) << db.error();
-    auto dm = model->simulate(vm);
+    ParamValues v = model->params().defaults();
+    v["sim.seed"] = seed;
+    v["sim.duration"] = 60;
+    v["sim.angle_dropout"] = 0.1;
+    v["sim.bias_walk"] = 0.3;
+    const Dataset db = helicopter::simulate(helicopter::sim_params(v));
+    auto dm = model->simulate(v);
     ASSERT_TRUE(dm.ok()) << dm.error();
-    ASSERT_EQ(dm->rows(), db->rows());
+    ASSERT_EQ(dm->rows(), db.rows());
     for (const char* col : {"t", "gyro", "angle", "truth", "bias_truth"}) {
       ASSERT_TRUE(dm->has(col)) << col;
-      const auto& b = db->col(col);
+      const auto& b = db.col(col);
       EXPECT_TRUE(same(dm->col(col), b, {largest(b)[0] * 1e-3}, col))  // 1e-9 · 1e-3
           << "seed " << seed;
     }
   }
-}
-
-// The noise command over the file's links (gyro -> Q, angle -> R) prints what the built-in's
-// declaration prints, on the world's own simulation.
-TEST(ModelWorldHelicopter, TheNoiseCommandGivesTheBuiltInsSuggestions) {
-  auto builtin = make_scenario("helicopter");
-  ASSERT_TRUE(builtin.ok());
-  auto model = testing::load_model_file(kFile);
-  ASSERT_TRUE(model);
-  ParamValues v = model->params().defaults();
-  v["sim.duration"] = 60;
-  auto d = model->simulate(v);
-  ASSERT_TRUE(d.ok()) << d.error();
-  auto eb = estimate_noise(**builtin, *d, (*builtin)->params().defaults());
-  ASSERT_TRUE(eb.ok()) << eb.error();
-  auto em = estimate_noise(*model, *d, v);
-  ASSERT_TRUE(em.ok()) << em.error();
-  EXPECT_EQ(noise_to_json(*em), noise_to_json(*eb));
 }
 
 // "sim": {"dt": KEY} names a declared parameter, in a version-2 file.

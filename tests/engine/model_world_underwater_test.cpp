@@ -3,11 +3,14 @@
 // the built-in underwater simulator's streams (core/random.h: noise.n_u, noise.n_w, noise.n_r per
 // 0.01 s step, clock.SENSOR, channel.SENSOR, noise.n_c per t_gap window, dropout.rangeN,
 // outliers.range), so its simulated data equal the built-in's to 1e-12 of each column's largest
-// magnitude (../shared/STAGE.md, "Randomness").
+// magnitude (../shared/STAGE.md, "Randomness"). Since issue 30 the built-in's simulator is the
+// oracle tests/oracles/underwater/underwater_sim.h, and its preset the fixture
+// tests/fixtures/preset_v2/underwater.json.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -16,6 +19,8 @@
 #include "core/dataset.h"
 #include "core/scenario.h"
 #include "model/model_scenario.h"
+#include "oracles/underwater/underwater_params.h"
+#include "oracles/underwater/underwater_sim.h"
 
 namespace kfw {
 namespace world_underwater_test {
@@ -49,38 +54,49 @@ const std::string kFile = KFW_SOURCE_DIR "/presets/underwater.json";
   return ::testing::AssertionSuccess();
 }
 
+// The built-in's preset (its table, every key) is the fixture; the file keeps each entry as it was
+// and adds only sim.dt, the world's motion step (the built-in's fixed 0.01 s).
 TEST(ModelWorldUnderwater, KeepsTheSeedPresetsParameterKeys) {
-  auto builtin = make_scenario("underwater");
-  ASSERT_TRUE(builtin.ok());
+  std::ifstream old_in(KFW_SOURCE_DIR "/tests/fixtures/preset_v2/underwater.json");
+  std::ifstream new_in(kFile);
+  const auto old_preset = nlohmann::json::parse(old_in);
+  const auto new_preset = nlohmann::json::parse(new_in);
+  EXPECT_EQ(old_preset.at("scenario"), "underwater");
+  EXPECT_EQ(new_preset.at("scenario"), "model");
+  EXPECT_EQ(std::filesystem::path(old_preset.value("data", "")).filename(),
+            std::filesystem::path(new_preset.value("data", "")).filename());
+  const auto& was = old_preset.at("parameters");
+  const auto& now = new_preset.at("parameters");
+  EXPECT_EQ(was.size(), 31u);
+  for (const auto& [key, entry] : was.items()) {
+    ASSERT_TRUE(now.contains(key)) << key;
+    EXPECT_EQ(now.at(key), entry) << key;
+  }
+  for (const auto& [key, entry] : now.items())
+    EXPECT_TRUE(was.contains(key) || key == "sim.dt") << key;
   auto model = testing::load_model_file(kFile);
   ASSERT_TRUE(model);
-  for (const auto& spec : (*builtin)->params().specs()) {
-    const ParamSpec* p = model->params().find(spec.key);
-    ASSERT_TRUE(p) << spec.key;
-  }
+  for (const auto& [key, entry] : was.items())
+    EXPECT_TRUE(model->params().find(key)) << key;
+  EXPECT_EQ(model->params().defaults().at("sim.dt"), underwater::kMotionDt_s);
 }
 
-// The built-in's and the model file's simulations of seeds 1..20 (60 s), each with the values
-// `set` gives for its seed, compared by `check`.
+// The oracle simulator's (the retired built-in's) and the model file's simulations of seeds 1..20
+// (60 s), each with the values `set` gives for its seed, compared by `check`.
 template <class Set, class Check>
 void simulate_both(const Set& set, const Check& check) {
-  auto builtin = make_scenario("underwater");
-  ASSERT_TRUE(builtin.ok());
   auto model = testing::load_model_file(kFile);
   ASSERT_TRUE(model);
   for (int seed = 1; seed <= 20; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    ParamValues vb = (*builtin)->params().defaults(), vm = model->params().defaults();
-    for (auto* v : {&vb, &vm}) {
-      (*v)["sim.seed"] = seed;
-      (*v)["sim.duration"] = 60;
-      set(seed, *v);
-    }
-    auto db = (*builtin)->simulate(vb);
-    ASSERT_TRUE(db.ok()) << db.error();
-    auto dm = model->simulate(vm);
+    ParamValues v = model->params().defaults();
+    v["sim.seed"] = seed;
+    v["sim.duration"] = 60;
+    set(seed, v);
+    const Dataset db = underwater::simulate(underwater::sim_params(v));
+    auto dm = model->simulate(v);
     ASSERT_TRUE(dm.ok()) << dm.error();
-    check(vm, *db, *dm);
+    check(v, db, *dm);
   }
 }
 

@@ -1,7 +1,7 @@
 // The radome IMM against identities: with one mode it is the plain Kalman filter on the
 // slope-corrected pseudo-measurement (both structures), and the axis blocks equal the full 9-state
 // filter when the converted covariance is diagonal.
-#include "scenarios/radome/radome_imm.h"
+#include "oracles/radome/radome_imm.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 
 #include "common/matrix_matchers.h"
 #include "filter/kalman_filter.h"
-#include "scenarios/radome/radome_sim.h"
+#include "oracles/radome/radome_sim.h"
 
 namespace kfw::radome {
 namespace {

@@ -1,4 +1,4 @@
-#include "scenarios/radome/radome_model.h"
+#include "oracles/radome/radome_model.h"
 
 #include <gtest/gtest.h>
 

@@ -168,15 +168,20 @@ TEST(SessionsV3, ASavedSessionIsVersion3AndRoundTripsWithoutNotices) {
   EXPECT_EQ(reopened->view_state(), d->view_state());  // a model's view state is its own
 }
 
-TEST(SessionsV3, RetiredBuiltInsAreUnlistedAndStillBuiltForTestsAndBench) {
-  const auto listed = scenarios().listed_names();
-  const auto all = scenarios().names();
+// The built-ins are gone (issue 30): their names build nothing, and each names a shipped model
+// file that a preset naming it loads as.
+TEST(SessionsV3, RetiredNamesAreNoScenarioAndLoadTheirModelFiles) {
+  EXPECT_TRUE(scenarios().names().empty());
   for (const auto& r : kRetiredScenarios) {
     const std::string name(r.scenario);
-    EXPECT_EQ(std::count(listed.begin(), listed.end(), name), 0) << name;
-    EXPECT_EQ(std::count(all.begin(), all.end(), name), 1) << name;
-    EXPECT_TRUE(make_scenario(name).ok()) << name;
+    auto built = make_scenario(name);
+    ASSERT_FALSE(built.ok()) << name;
+    EXPECT_TRUE(contains(built.error(), "\"scenario\": \"model\"")) << built.error();
     EXPECT_TRUE(fs::is_regular_file(retired_model_path(name))) << retired_model_path(name);
+    auto old = load_preset(fixture("preset_v2", name));
+    ASSERT_TRUE(old.ok()) << name << ": " << old.error();
+    EXPECT_EQ(old->scenario, "model") << name;
+    EXPECT_EQ(old->retired_from, name);
   }
   auto unknown = make_scenario("helicoptr");
   ASSERT_FALSE(unknown.ok());

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "core/scenario.h"
+#include "document/preset.h"
 #include "filter/noise_estimate.h"
 
 namespace kfw {
@@ -88,13 +89,14 @@ TEST(Spectrum, BadInputIsAnError) {
 
 // Seed 000 eq. 3 on the simulator: the PSD reads back the engine-running noise levels.
 TEST(Spectrum, HelicopterNoiseCommandReadsBackTheSimulatorSigmas) {
-  auto s = make_scenario("helicopter");
-  auto v = (*s)->params().defaults();
+  auto p = load_preset(KFW_SOURCE_DIR "/presets/helicopter.json");
+  ASSERT_TRUE(p.ok()) << p.error();
+  auto v = p->values;
   v["sim.duration"] = 600;
-  auto d = (*s)->simulate(v);
+  auto d = p->instance->simulate(v);
   ASSERT_TRUE(d.ok());
   // The helicopter's own command became the generic one (issue 27): the same JSON.
-  auto e = estimate_noise(**s, *d, v);
+  auto e = estimate_noise(*p->instance, *d, v);
   ASSERT_TRUE(e.ok()) << e.error();
   const std::string text = noise_to_json(*e);
   EXPECT_NE(text.find("Q_suggested"), std::string::npos);

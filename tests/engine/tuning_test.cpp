@@ -5,14 +5,17 @@
 #include <cmath>
 #include <filesystem>
 
+#include "document/preset.h"
 #include "document/workspace.h"
 
 namespace kfw {
 namespace {
 
+// Seed 000's model file; its table's defaults are the file's values.
 std::shared_ptr<const Scenario> heli() {
-  auto s = make_scenario("helicopter");
-  return std::shared_ptr<const Scenario>(std::move(*s));
+  auto p = load_preset(KFW_SOURCE_DIR "/presets/helicopter.json");
+  EXPECT_TRUE(p.ok()) << p.error();
+  return p.ok() ? p->instance : nullptr;
 }
 
 TuneObjective objective(const Scenario& s, const std::string& name) {

@@ -1,5 +1,5 @@
-// Tests of the seed 004 simulator (engine/scenarios/underwater/underwater_sim.h).
-#include "scenarios/underwater/underwater_sim.h"
+// Tests of the seed 004 simulator (tests/oracles/underwater/underwater_sim.h).
+#include "oracles/underwater/underwater_sim.h"
 
 #include <gtest/gtest.h>
 

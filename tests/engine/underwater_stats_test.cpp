@@ -1,12 +1,12 @@
-// Tests of the seed 004 verification statistics (engine/scenarios/underwater/underwater_stats.h):
+// Tests of the seed 004 verification statistics (tests/oracles/underwater/underwater_stats.h):
 // the sample covariance of simulated range/depth errors reproduces the design (Sec. 4.1–4.3).
-#include "scenarios/underwater/underwater_stats.h"
+#include "oracles/underwater/underwater_stats.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "scenarios/underwater/underwater_sim.h"
+#include "oracles/underwater/underwater_sim.h"
 
 namespace kfw::underwater {
 namespace {

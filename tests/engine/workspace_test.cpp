@@ -37,9 +37,6 @@ class Committed : public ::testing::TestWithParam<CommittedData> {};
 TEST_P(Committed, DatasetIsThePresetSimulation) {
   const auto& c = GetParam();
   auto ws = open_workspace(std::string(KFW_SOURCE_DIR) + "/presets/" + c.preset, {}, c.sets);
-  if (!ws.ok() && ws.error().find("unknown scenario") != std::string::npos) {
-    GTEST_SKIP() << ws.error();  // a build with KFW_SCENARIOS leaves it out
-  }
   ASSERT_TRUE(ws.ok()) << ws.error();
   auto sim = ws->scenario->simulate(ws->values);
   ASSERT_TRUE(sim.ok()) << sim.error();

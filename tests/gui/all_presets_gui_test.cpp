@@ -22,9 +22,6 @@ TEST_P(AllPresets, RunsExportsAndReportsConsistency) {
   MainWindow w;
   auto st = w.loadPreset(preset);
   if (!st && st.error().find("shared/data") != std::string::npos) GTEST_SKIP() << st.error();
-  if (!st && st.error().find("unknown scenario") != std::string::npos) {
-    GTEST_SKIP() << st.error();  // left out of this build by KFW_SCENARIOS
-  }
   ASSERT_TRUE(st.ok()) << st.error();
   ASSERT_TRUE(w.waitForRun(60000));
   ASSERT_TRUE(w.result()) << w.lastError().toStdString();

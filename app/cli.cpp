@@ -22,22 +22,17 @@ namespace kfw {
 
 namespace {
 
-constexpr const char* kPresetHelp =
-    "a preset file, a preset name in presets/ (kfw-cli list) or a scenario name";
+constexpr const char* kPresetHelp = "a preset file or a preset name in presets/ (kfw-cli list)";
 
 constexpr const char* kExitCodes =
     "Exit codes: 0 the command did its work; 2 the command, an argument, a preset, a data file\n"
     "or an output path is invalid (checked before any work, so nothing is written); 1 the work\n"
     "failed (a write error, a run that breaks down numerically). Errors are one line.\n";
 
-// Commands offered by scenarios (Scenario::commands()): name -> who offers it (the built-ins by
-// name; a model file's commands, model/model_stats.h, as "model files that declare it").
+// Commands offered by scenarios (Scenario::commands()): name -> who offers it (a model file's
+// commands, model/model_stats.h, as "model files that declare it").
 std::map<std::string, std::vector<std::string>> scenario_commands() {
   std::map<std::string, std::vector<std::string>> cmds;
-  for (const auto& name : scenarios().listed_names()) {
-    for (const auto& c : scenarios().make(name)->commands())
-      cmds[c].push_back(name);
-  }
   for (const auto& c : model::model_commands())
     cmds[c].push_back("model files that declare it");
   return cmds;

@@ -25,9 +25,9 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-// Scenario names and preset names, for "did you mean".
+// The shipped presets' names, for "did you mean".
 std::vector<std::string> target_names() {
-  std::vector<std::string> names = scenarios().listed_names();
+  std::vector<std::string> names;
   std::error_code ec;
   for (const auto& e : std::filesystem::directory_iterator(preset_dir(), ec)) {
     if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
@@ -51,32 +51,16 @@ OutputSet outputs_for(const Workspace& ws) {
   return o;
 }
 
-// A scenario name or a preset (path or name in presets/) both open a workspace; the preset's
-// notices (a retired scenario loaded as its model file) go to `err`.
+// A preset (path, or name in presets/; a retired built-in's name is its model file's) opens a
+// workspace; the preset's notices (a retired scenario loaded as its model file) go to `err`.
 Expected<Workspace> open_any(const std::string& name, const std::optional<std::string>& data,
                              const std::vector<std::string>& sets, std::ostream& err) {
   std::error_code ec;
   const bool looks_like_file =
       name.find('/') != std::string::npos || std::filesystem::path(name).extension() == ".json";
-  // A retired built-in's name is its model file's (core/retired.h), never the built-in.
   if (!looks_like_file && !find_retired(name) &&
       !std::filesystem::is_regular_file(resolve_preset_path(name), ec)) {
-    auto p = default_preset(name);
-    if (!p) {
-      return Error{"no preset or scenario " + quote_token(name) +
-                   did_you_mean(name, target_names())};
-    }
-    Workspace ws;
-    ws.preset = *p;
-    auto s = make_scenario(name);
-    if (!s) return s.err();
-    ws.scenario = std::shared_ptr<const Scenario>(std::move(*s));
-    ws.values = ws.preset.values;
-    for (const auto& as : sets) {
-      if (auto st = ws.scenario->params().apply_assignment(as, ws.values); !st) return st.err();
-    }
-    ws.data_path = data;
-    return ws;
+    return Error{"no preset " + quote_token(name) + did_you_mean(name, target_names())};
   }
   auto ws = open_workspace(name, data, sets);
   if (ws) print_notices(ws->preset.notices, err);
@@ -295,16 +279,13 @@ int cmd_noise(const NoiseArgs& a, std::ostream& out, std::ostream& err) {
   return kExitOk;
 }
 
-// The listed built-ins and the shipped presets (preset_dir(), not models/) that offer `cmd`.
+// The shipped presets (preset_dir(), not models/) that offer `cmd`.
 static std::vector<std::string> offering_presets(const std::string& cmd) {
   const auto offers = [&](const Scenario& s) {
     const auto cmds = s.commands();
     return std::find(cmds.begin(), cmds.end(), cmd) != cmds.end();
   };
   std::vector<std::string> out;
-  for (const auto& name : scenarios().listed_names()) {
-    if (offers(*scenarios().make(name))) out.push_back(name);
-  }
   std::vector<std::string> presets;
   std::error_code ec;
   for (const auto& e : std::filesystem::directory_iterator(preset_dir(), ec)) {
@@ -358,12 +339,6 @@ int cmd_scenario(const std::string& cmd, ScenarioCommandArgs a, std::ostream& ou
 }
 
 int cmd_list(std::ostream& out) {
-  if (const auto listed = scenarios().listed_names(); !listed.empty()) {
-    out << "scenarios:";
-    for (const auto& n : listed)
-      out << " " << n;
-    out << "\n";
-  }
   out << "presets (" << preset_dir() << "):";
   std::error_code ec;
   std::vector<std::string> names;

@@ -231,14 +231,9 @@ Status merge_sweep_impl(const std::vector<nlohmann::json>& parts, const MergeArg
   auto doc = merge_sweep_documents(parts, a.parts);
   if (!doc) return doc.err();
   const Doc& first = *doc;
-  auto s = make_scenario(first.at("scenario").get<std::string>());
   MetricSpec spec;
-  if (s) {
-    spec = describe_metric(**s, first.at("metric").get<std::string>());
-  } else {
-    spec.key = first.at("metric");
-  }
-  // The direction and target the parts were judged by (a model's spec comes with the part).
+  spec.key = first.at("metric");
+  // The direction and target the parts were judged by (the spec comes with the part).
   for (auto d : {Direction::kLower, Direction::kHigher, Direction::kTarget, Direction::kNone}) {
     if (first.at("direction") == direction_name(d)) spec.direction = d;
   }

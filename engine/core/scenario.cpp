@@ -6,8 +6,8 @@
 #include <optional>
 #include <sstream>
 
-#include "core/retired.h"
 #include "core/statistics.h"
+#include "core/suggest.h"
 
 namespace kfw {
 
@@ -245,28 +245,11 @@ std::string metrics_to_json(const Metrics& m, const UndefinedMetrics& undefined,
   return j.dump(indent);
 }
 
-void ScenarioRegistry::add(std::string name, Factory factory) {
-  factories_[std::move(name)] = std::move(factory);
-}
-
 std::vector<std::string> ScenarioRegistry::names() const {
   std::vector<std::string> out;
-  for (const auto& [name, f] : factories_)
+  for (const auto& [name, f] : preset_factories_)
     out.push_back(name);
   return out;
-}
-
-std::vector<std::string> ScenarioRegistry::listed_names() const {
-  std::vector<std::string> out;
-  for (const auto& [name, f] : factories_) {
-    if (!find_retired(name)) out.push_back(name);
-  }
-  return out;
-}
-
-std::unique_ptr<Scenario> ScenarioRegistry::make(const std::string& name) const {
-  auto it = factories_.find(name);
-  return it == factories_.end() ? nullptr : it->second();
 }
 
 void ScenarioRegistry::add_from_preset(std::string name, PresetFactory factory) {
@@ -288,21 +271,9 @@ const ScenarioRegistry& scenarios() {
   return registry;
 }
 
-Expected<std::unique_ptr<Scenario>> make_scenario(const std::string& name) {
-  auto s = scenarios().make(name);
-  if (!s) {
-    std::string msg = "unknown scenario '" + name + "'";
-    const auto known = scenarios().listed_names();
-    if (known.empty()) {
-      msg += " (a preset names \"scenario\": \"model\" and declares its \"model\" block)";
-    } else {
-      msg += "; known:";
-      for (const auto& n : known)
-        msg += " " + n;
-    }
-    return Error{msg};
-  }
-  return s;
+std::string unknown_scenario(const std::string& name) {
+  return unknown_message("scenario", name, scenarios().names()) +
+         ": a preset names \"scenario\": \"model\" and declares its \"model\" block";
 }
 
 }  // namespace kfw

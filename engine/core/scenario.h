@@ -178,33 +178,27 @@ std::vector<std::string> metric_keys(const Scenario& s, const RunResult* r = nul
 // The flat metrics JSON: {"rmse": 1.6, ..., "undefined": {"nees_mean": "no truth column"}}.
 std::string metrics_to_json(const Metrics& m, const UndefinedMetrics& undefined, int indent = 2);
 
+// Scenarios are built from the preset file itself (since issue 30 every system is a model file,
+// "scenario": "model"; the compiled built-ins are gone, their names retired, core/retired.h).
 class ScenarioRegistry {
  public:
-  using Factory = std::function<std::unique_ptr<Scenario>()>;
-  // A scenario built from the preset file itself (a model file, "scenario": "model"): reads the
-  // whole preset, its keys in the file's order; errors name the file (`path`) and the key.
+  // Reads the whole preset, its keys in the file's order; errors name the file (`path`) and key.
   using PresetFactory = std::function<Expected<std::unique_ptr<Scenario>>(
       const nlohmann::ordered_json& preset, const std::string& path)>;
-  void add(std::string name, Factory factory);
   void add_from_preset(std::string name, PresetFactory factory);
-  // The compiled scenarios' names (not those built from a preset).
-  std::vector<std::string> names() const;
-  // The names users see (lists, help, "did you mean"): names() less the retired built-ins
-  // (core/retired.h). Empty since issue 30: every system is a model file.
-  std::vector<std::string> listed_names() const;
-  // A new scenario object, or nullptr for an unknown name.
-  std::unique_ptr<Scenario> make(const std::string& name) const;
   // The factory of a scenario built from its preset, or nullptr.
   const PresetFactory* from_preset(const std::string& name) const;
+  // The names a preset's "scenario" may give ("model"), for "did you mean".
+  std::vector<std::string> names() const;
 
  private:
-  std::map<std::string, Factory> factories_;
   std::map<std::string, PresetFactory> preset_factories_;
 };
 
 // The model engine (engine/model), registered through the list engine/CMakeLists.txt generates.
 const ScenarioRegistry& scenarios();
-Expected<std::unique_ptr<Scenario>> make_scenario(const std::string& name);
+// "unknown scenario 'x' (…)" for a preset's scenario that no factory builds.
+std::string unknown_scenario(const std::string& name);
 
 // True when a key belongs to the simulator (changing it needs a new simulated dataset).
 inline bool is_sim_key(const std::string& key) {

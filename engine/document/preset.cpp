@@ -295,10 +295,9 @@ Expected<Preset> preset_from_json(const OJson& j, const std::string& path) {
   const ScenarioRegistry::PresetFactory* factory = scenarios().from_preset(p.scenario);
   if (auto m = j.find("model"); m != j.end()) {
     // A misspelled "model", most likely (a retired built-in's name is known: the next message).
-    if (!factory && !find_retired(p.scenario) && !scenarios().make(p.scenario)) {
-      std::vector<std::string> known = scenarios().listed_names();
-      known.insert(known.begin(), "model");
-      return Error{path + ": scenario: " + unknown_message("scenario", p.scenario, known)};
+    if (!factory && !find_retired(p.scenario)) {
+      return Error{path +
+                   ": scenario: " + unknown_message("scenario", p.scenario, scenarios().names())};
     }
     if (!factory) {
       return Error{path +
@@ -315,9 +314,7 @@ Expected<Preset> preset_from_json(const OJson& j, const std::string& path) {
     p.instance = std::shared_ptr<const Scenario>(std::move(*s));
     if (auto params = j.find("parameters"); params != j.end()) p.parameters_block = *params;
   } else {
-    auto s = make_scenario(p.scenario);
-    if (!s) return Error{path + ": scenario: " + s.error()};
-    p.instance = std::shared_ptr<const Scenario>(std::move(*s));
+    return Error{path + ": scenario: " + unknown_scenario(p.scenario)};
   }
   const ParamTable& table = p.instance->params();
   p.values = table.defaults();
@@ -384,19 +381,6 @@ Expected<Preset> load_preset(const std::string& path) {
   return preset_from_json(*doc, path);
 }
 
-Expected<Preset> default_preset(const std::string& scenario) {
-  auto s = make_scenario(scenario);
-  if (!s) return s.err();
-  Preset p;
-  p.scenario = scenario;
-  p.title = (*s)->title();
-  p.values = (*s)->params().defaults();
-  for (const auto& spec : (*s)->params().specs())
-    p.meta[spec.key] = ParamMeta{spec.tunable, spec.scale_group};
-  p.instance = std::shared_ptr<const Scenario>(std::move(*s));
-  return p;
-}
-
 std::string preset_to_json(const Preset& preset) {
   nlohmann::ordered_json j;
   j["format"] = kPresetFormat;
@@ -421,11 +405,7 @@ std::string preset_to_json(const Preset& preset) {
     }
     j["data"] = dp.string();
   }
-  std::shared_ptr<const Scenario> scenario = preset.instance;
-  if (!scenario) {
-    auto s = make_scenario(preset.scenario);
-    if (s) scenario = std::shared_ptr<const Scenario>(std::move(*s));
-  }
+  const std::shared_ptr<const Scenario>& scenario = preset.instance;
   const bool own_table = !preset.model.is_null();
   nlohmann::ordered_json params = nlohmann::ordered_json::object();
   if (scenario) {

@@ -63,8 +63,6 @@ struct Preset {
 // Reads and validates a preset. Errors name the file and the line/column (JSON syntax) or the key.
 Expected<Preset> load_preset(const std::string& path);
 Expected<Preset> parse_preset(const std::string& text, const std::string& path);
-// The default preset of a scenario: every value from its table.
-Expected<Preset> default_preset(const std::string& scenario);
 // Serialises as version 2 with every parameter's value, range, unit, scale and flags.
 std::string preset_to_json(const Preset& preset);
 Status save_preset(const std::string& path, const Preset& preset);

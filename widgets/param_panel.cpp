@@ -10,15 +10,38 @@
 #include <QSignalBlocker>
 #include <QSlider>
 #include <QVBoxLayout>
+#include <QWheelEvent>
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace kfw {
 
-// A spin box that shows any magnitude readably (1e-06 … 1e+06) and steps in ratio on log scales.
-class ValueSpinBox : public QDoubleSpinBox {
+// A control of the scrolling panel that takes the mouse wheel only once it has the focus (clicked
+// or tabbed to): a wheel that scrolls the panel past a slider leaves it alone — the ignored event
+// goes on to the scroll area (issue 32: R moved while the lecturer scrolled).
+template <class Base>
+class FocusWheel : public Base {
  public:
-  ValueSpinBox(bool log, QWidget* parent) : QDoubleSpinBox(parent), log_(log) {
+  template <class... Args>
+  explicit FocusWheel(Args&&... args) : Base(std::forward<Args>(args)...) {
+    this->setFocusPolicy(Qt::StrongFocus);
+  }
+
+ protected:
+  void wheelEvent(QWheelEvent* e) override {
+    if (this->hasFocus()) {
+      Base::wheelEvent(e);
+    } else {
+      e->ignore();
+    }
+  }
+};
+
+// A spin box that shows any magnitude readably (1e-06 … 1e+06) and steps in ratio on log scales.
+class ValueSpinBox : public FocusWheel<QDoubleSpinBox> {
+ public:
+  ValueSpinBox(bool log, QWidget* parent) : FocusWheel<QDoubleSpinBox>(parent), log_(log) {
     setDecimals(12);
     setKeyboardTracking(false);
     setAlignment(Qt::AlignRight);
@@ -114,7 +137,7 @@ ParamPanel::ParamPanel(const ParamTable& table, const Ranges& ranges, QWidget* p
     grid->addWidget(label, r, 0, 1, 3);
     const QString unit = QString::fromStdString(s.unit);
     if (s.scale == Scale::kChoice) {
-      row.combo = new QComboBox(box);
+      row.combo = new FocusWheel<QComboBox>(box);
       row.combo->setObjectName("combo." + key);
       for (const auto& c : s.choices)
         row.combo->addItem(QString::fromStdString(c));
@@ -128,7 +151,7 @@ ParamPanel::ParamPanel(const ParamTable& table, const Ranges& ranges, QWidget* p
       connect(row.check, &QCheckBox::toggled, this,
               [this, k = s.key](bool on) { commit(rows_.at(k), on ? 1.0 : 0.0); });
     } else {
-      row.slider = new QSlider(Qt::Horizontal, box);
+      row.slider = new FocusWheel<QSlider>(Qt::Horizontal, box);
       row.slider->setObjectName("slider." + key);
       const bool direct = s.scale == Scale::kInteger && row.hi - row.lo <= kSliderSteps;
       row.slider->setRange(0, direct ? static_cast<int>(row.hi - row.lo) : kSliderSteps);

@@ -214,6 +214,7 @@ int cmd_preset(const PresetArgs& a, std::ostream& out, std::ostream& err) {
   if (auto st = outs.add(a.out, "--out"); !st) return fail(err, st.err());
   Preset p = ws->preset;
   p.values = ws->values;
+  p.path = a.out;  // the data path is written relative to where the file goes
   if (auto st = outs.stage(a.out, preset_to_json(p)); !st) return fail(err, st.err());
   if (auto st = outs.commit(); !st) return fail(err, st.err());
   out << "wrote " << a.out << "\n";

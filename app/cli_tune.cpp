@@ -349,6 +349,7 @@ int cmd_tune(const TuneArgs& a, std::ostream& out, std::ostream& err) {
     if (!set->names.empty() && set->names.front() != "simulated" && !a.seeds) {
       p.data_path = std::filesystem::absolute(set->names.front()).string();
     }
+    p.path = *a.out;  // the data path is written relative to where the file goes
     if (auto st = outs.stage(*a.out, preset_to_json(p)); !st) return fail(err, st.err());
   }
   if (auto st = outs.commit(); !st) return fail(err, st.err());

@@ -34,6 +34,7 @@ QString q(const std::string& s) {
 }  // namespace
 
 void MainWindow::documentReplaced() {
+  transport_->reset();  // the replay cursor belongs to the last document (issue 32, item 7)
   rebuildScenarioUi();
   refreshPresetList();
   clearError();

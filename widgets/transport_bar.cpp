@@ -121,6 +121,11 @@ void TransportBar::setTimes(const std::vector<double>& t) {
   if (!time_->hasFocus()) time_->setText(timeText());
 }
 
+void TransportBar::reset() {
+  pause();
+  setTimes({});
+}
+
 std::size_t TransportBar::cursor() const {
   return showAll() ? static_cast<std::size_t>(-1) : index_;
 }

@@ -24,6 +24,9 @@ class TransportBar : public QWidget {
   // The time stamps of the current run; keeps the cursor time when possible. The first run
   // puts the cursor at the end (the plots show the whole run, up to the cursor).
   void setTimes(const std::vector<double>& t);
+  // Another preset or session: stopped and without times, so its first run shows the whole run
+  // (the cursor at the end) instead of the last preset's replay time.
+  void reset();
   // The step shown; SIZE_MAX when "all" is on.
   std::size_t cursor() const;
   // The step the cursor is at, also with "all" on.

@@ -310,6 +310,20 @@ TEST_F(WindowGui, ReplayStateRoundTripsThroughTheSession) {
   EXPECT_EQ(back.transport()->cursor(), 321u);
 }
 
+// Issue 32, item 7: radome opened drawn to 5.4 s of 60 s, the helicopter's replay time.
+TEST_F(WindowGui, AnotherPresetOpensWithTheWholeRunNotTheLastCursor) {
+  open("helicopter", {"sim.duration=20"}, QSize(1366, 768));
+  TransportBar* t = w.transport();
+  t->seek(321);
+  t->play();
+  ASSERT_TRUE(t->playing());
+  ASSERT_TRUE(w.loadPreset("models/cv1d", {}, {}).ok());
+  ASSERT_TRUE(w.waitForRun());
+  QApplication::processEvents();
+  EXPECT_FALSE(t->playing());
+  EXPECT_EQ(t->index() + 1, w.result()->steps());
+}
+
 TEST_F(WindowGui, ResetKeepsSnapshotsAndIsOneUndoStep) {
   open("helicopter", {"sim.duration=10"}, QSize(1366, 768));
   const ParamValues preset = w.document()->preset().values;  // the file's values

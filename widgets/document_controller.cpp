@@ -26,7 +26,8 @@ DocumentController::~DocumentController() = default;
 
 Status DocumentController::loadPreset(const QString& preset,
                                       const std::optional<QString>& data_file,
-                                      const QStringList& assignments, const ImportArgs& import) {
+                                      const QStringList& assignments, const ImportArgs& import,
+                                      const QString& ask) {
   std::vector<std::string> sets;
   for (const auto& a : assignments)
     sets.push_back(a.toStdString());
@@ -34,6 +35,7 @@ Status DocumentController::loadPreset(const QString& preset,
   if (data_file) d = data_file->toStdString();
   auto doc = Document::open(preset.toStdString(), d, sets, import);
   if (!doc) return doc.err();
+  if (!ask.isEmpty() && !confirmDiscard(ask)) return Ok{};
   const std::vector<std::string> notices = doc->notices();
   if (auto st = adopt(std::move(*doc)); !st) return st;
   showNotices(notices);
@@ -232,11 +234,12 @@ Status DocumentController::saveSession(const QString& path) const {
   return Ok{};
 }
 
-Status DocumentController::loadSession(const QString& path) {
+Status DocumentController::loadSession(const QString& path, const QString& ask) {
   auto s = load_session(path.toStdString());
   if (!s) return s.err();
   auto doc = Document::from_session(*s, path.toStdString());
   if (!doc) return doc.err();
+  if (!ask.isEmpty() && !confirmDiscard(ask)) return Ok{};
   QString warning;
   if (s->data_path) {
     auto h = file_hash(*s->data_path);
@@ -305,7 +308,9 @@ void DocumentController::addViewStatePart(const QString& key, std::function<QJso
 }
 
 bool DocumentController::confirmDiscard(const QString& action) {
-  if (!doc_ || (!doc_->dirty() && doc_->snapshots().empty())) return true;
+  // Only what a discard would lose: snapshots pinned on a preset are unsaved (dirty); those of a
+  // session just opened or saved are in its file.
+  if (!doc_ || !doc_->dirty()) return true;
   QString what;
   if (doc_->dirty()) what = "unsaved changes";
   if (!doc_->snapshots().empty()) {

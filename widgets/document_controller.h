@@ -42,8 +42,11 @@ class DocumentController : public QObject {
 
   // Opens a preset (path or name in presets/), optionally with another dataset and --set values.
   // `import`: kfw-cli's import options over the preset's mapping (refused when it simulates).
+  // `ask` (a menu action's name): once the file has loaded, confirmDiscard(ask) decides whether
+  // it replaces the open document (a file that does not load is refused without a question).
   Status loadPreset(const QString& preset, const std::optional<QString>& data_file = {},
-                    const QStringList& assignments = {}, const ImportArgs& import = {});
+                    const QStringList& assignments = {}, const ImportArgs& import = {},
+                    const QString& ask = {});
   // Makes `doc` the open document (adopt steps, then documentReplaced and a run).
   Status adopt(Document doc);
   // Null before a preset loads.
@@ -94,7 +97,7 @@ class DocumentController : public QObject {
   // Sessions: the document and the view state, in one JSON file (atomic write). Loading adopts
   // the session's document, waits for its first run, re-runs its pins and restores the view.
   Status saveSession(const QString& path) const;
-  Status loadSession(const QString& path);
+  Status loadSession(const QString& path, const QString& ask = {});
   // Writes the preset with the current values and data.
   Status savePreset(const QString& path) const;
   // The view state (opaque to the engine): one JSON object with a key per registered part (the

@@ -179,8 +179,8 @@ void MainWindow::buildMenus() {
   file->addAction("Open &preset…", this, [this] {
     const QString f =
         QFileDialog::getOpenFileName(this, "Open preset", q(preset_dir()), "Presets (*.json)");
-    if (f.isEmpty() || !confirmDiscard("Open preset")) return;
-    report(this, "Open preset", loadPreset(f));
+    // Read first: a file that does not load is refused without asking to discard anything.
+    if (!f.isEmpty()) report(this, "Open preset", loadPreset(f, {}, {}, {}, "Open preset"));
   });
   file->addAction("&Open CSV…", QKeySequence::Open, this, [this] {
     const QString f =
@@ -196,8 +196,7 @@ void MainWindow::buildMenus() {
   file->addAction("Open s&ession…", this, [this] {
     const QString f =
         QFileDialog::getOpenFileName(this, "Open session", QString(), "Sessions (*.json)");
-    if (f.isEmpty() || !confirmDiscard("Open session")) return;
-    report(this, "Open session", loadSession(f));
+    if (!f.isEmpty()) report(this, "Open session", loadSession(f, "Open session"));
   });
   file->addAction("Save session &as…", this, [this] {
     const QString f =

@@ -66,8 +66,9 @@ class MainWindow : public QMainWindow {
   // On failure nothing changes and the message names the file/line/key.
   // `import`: how the file data in force is read (kfw-cli's import options).
   Status loadPreset(const QString& preset, const std::optional<QString>& data_file = {},
-                    const QStringList& assignments = {}, const ImportArgs& import = {}) {
-    return doc_->loadPreset(preset, data_file, assignments, import);
+                    const QStringList& assignments = {}, const ImportArgs& import = {},
+                    const QString& ask = {}) {
+    return doc_->loadPreset(preset, data_file, assignments, import, ask);
   }
   // Loads a CSV for the current scenario. On failure the loaded dataset stays and the error shows.
   Status openDataset(const QString& path) { return data_->openDataset(path); }
@@ -94,7 +95,9 @@ class MainWindow : public QMainWindow {
   int snapshotCount() const { return doc_->pinCount(); }
   // Sessions: everything set up here, in one JSON file (atomic write).
   Status saveSession(const QString& path) const { return doc_->saveSession(path); }
-  Status loadSession(const QString& path) { return doc_->loadSession(path); }
+  Status loadSession(const QString& path, const QString& ask = {}) {
+    return doc_->loadSession(path, ask);
+  }
   // The session's view state (opaque to the engine): a JSON object with the window geometry,
   // the splitters and one key per registered part. A part (the plots' zoom, the replay
   // position, ...) registers once: `save` gives its JSON value, `restore` takes it back.

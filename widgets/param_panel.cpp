@@ -197,10 +197,31 @@ ParamPanel::ParamPanel(const ParamTable& table, const Ranges& ranges, QWidget* p
         commit(rw, v);
       });
     }
+    for (int i = 0; i < grid->count(); ++i) {
+      int gr = 0, gc = 0, rs = 0, cs = 0;
+      grid->getItemPosition(i, &gr, &gc, &rs, &cs);
+      if ((gr == r || gr == r + 1) && grid->itemAt(i)->widget())
+        row.widgets.append(grid->itemAt(i)->widget());
+    }
     rows_.emplace(s.key, row);
   }
   outer->addStretch(1);
   setValues(values_);
+}
+
+void ParamPanel::updateShown() {
+  for (auto& [key, row] : rows_) {
+    if (row.spec.shown_with.empty()) continue;
+    bool shown = true;
+    if (auto c = rows_.find(row.spec.shown_with); c != rows_.end() && values_.count(c->first)) {
+      const auto& choices = c->second.spec.choices;
+      const auto i = static_cast<std::size_t>(values_.at(c->first));
+      const auto& want = row.spec.shown_for;
+      shown = i < choices.size() && std::find(want.begin(), want.end(), choices[i]) != want.end();
+    }
+    for (QWidget* w : row.widgets)
+      w->setVisible(shown);
+  }
 }
 
 void ParamPanel::centre(Row& row, double v) {
@@ -243,6 +264,7 @@ void ParamPanel::commit(Row& row, double v) {
   auto it = values_.find(row.spec.key);
   if (it != values_.end() && it->second == v) return;
   values_[row.spec.key] = v;
+  updateShown();
   emit valueChanged(QString::fromStdString(row.spec.key), v);
 }
 
@@ -313,6 +335,7 @@ void ParamPanel::setValues(const ParamValues& values) {
     }
     show(it->second, v);
   }
+  updateShown();
 }
 
 void ParamPanel::setValue(const std::string& key, double value) {

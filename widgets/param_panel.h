@@ -2,6 +2,7 @@
 // parameter (log sliders for variances), a combo box for choices, a check box for toggles.
 #pragma once
 
+#include <QList>
 #include <QMap>
 #include <QString>
 #include <QWidget>
@@ -61,7 +62,10 @@ class ParamPanel : public QWidget {
     QComboBox* combo = nullptr;
     QCheckBox* check = nullptr;
     QGroupBox* group = nullptr;
+    QList<QWidget*> widgets;  // every widget of the row (label, unit, controls): shown together
   };
+  // Shows each row whose ParamSpec::shown_with choice holds one of its labels, hides the others.
+  void updateShown();
   void commit(Row& row, double v);
   void show(Row& row, double v);
   // Centres a log slider's window on v (within [lo, hi]); other sliders span [lo, hi].

@@ -34,6 +34,11 @@ struct ParamSpec {
   // Defaults of the preset's per-parameter flags (a preset may override them).
   bool tunable = false;     // offered to the tuner
   std::string scale_group;  // noise variances that scale together
+  // Shown only while the choice parameter `shown_with` holds one of the labels `shown_for` (the
+  // UKF's α, β, κ under filter = ukf); empty: always. The window hides the row otherwise; every
+  // other surface (CLI, tune, sweep, sessions) takes the key whatever the choice.
+  std::string shown_with;
+  std::vector<std::string> shown_for;
 };
 
 // Values by key. Ordered, so that output is stable.

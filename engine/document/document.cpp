@@ -61,6 +61,7 @@ Expected<Document> Document::open(const std::string& preset, const std::optional
   Document d = from_preset(ws->preset);
   d.state_.values = ws->values;
   if (ws->data_path) d.state_.data = DataRef{*ws->data_path, ws->mapping};
+  d.saved_ = d.state_;
   return d;
 }
 
@@ -70,13 +71,13 @@ Document Document::from_preset(Preset preset) {
   d.preset_ = std::move(preset);
   d.state_.values = d.preset_.values;
   if (d.preset_.data_path) d.state_.data = DataRef{*d.preset_.data_path, d.preset_.mapping};
+  d.saved_ = d.state_;
   return d;
 }
 
 void Document::push(std::string label, std::string merge_key) {
   undo_.push_back({std::move(label), state_, std::move(merge_key)});
   redo_.clear();
-  dirty_ = true;
 }
 
 Status Document::set_value(const std::string& key, double value, UndoMerge merge) {
@@ -87,7 +88,6 @@ Status Document::set_value(const std::string& key, double value, UndoMerge merge
                     undo_.back().merge_key == key && redo_.empty();
   if (!join) push("set " + key, merge == UndoMerge::kMergeSameKey ? key : std::string());
   state_.values[key] = value;
-  dirty_ = true;
   return Ok{};
 }
 
@@ -161,7 +161,6 @@ bool Document::undo() {
   undo_.pop_back();
   redo_.push_back({s.label, state_, {}});
   state_ = std::move(s.before);
-  dirty_ = true;
   return true;
 }
 
@@ -171,7 +170,6 @@ bool Document::redo() {
   redo_.pop_back();
   undo_.push_back({s.label, state_, {}});
   state_ = std::move(s.before);
-  dirty_ = true;
   return true;
 }
 
@@ -240,6 +238,7 @@ Expected<Document> Document::from_session(const Session& s, const std::string& w
     }
   }
   d.notices_.insert(d.notices_.end(), notices.begin(), notices.end());
+  d.saved_ = d.state_;  // a session just opened loses nothing
   return d;
 }
 

@@ -42,7 +42,9 @@ class Document {
   const std::vector<DataRef>& tuning_set() const { return state_.tuning_set; }
   const std::vector<Snapshot>& snapshots() const { return state_.snapshots; }
   const std::string& view_state() const { return view_state_; }
-  bool dirty() const { return dirty_; }
+  // Unsaved: the values, data, tuning set or snapshots differ from what was opened or last saved
+  // (a change undone, or a Reset back to the opened preset's values, is clean again).
+  bool dirty() const { return !(state_ == saved_); }
   // What opening changed that the user should know (a retired scenario loaded as its model file,
   // keys dropped, a session's unknown keys, a deleted view's state): one line each, shown by the
   // GUI and printed on stderr by the CLI. Empty for current files.
@@ -71,8 +73,8 @@ class Document {
   bool redo();
   std::size_t undo_depth() const { return undo_.size(); }
 
-  // Saved: clears the dirty flag (the history stays).
-  void mark_saved() { dirty_ = false; }
+  // Saved: the current state is what a discard would lose nothing of (the history stays).
+  void mark_saved() { saved_ = state_; }
 
   // Sessions: the preset path, values, data (path, hash, mapping), tuning set, snapshots and
   // view state. Loading re-opens the preset file and validates every value against it. A session
@@ -101,7 +103,7 @@ class Document {
   std::vector<Step> undo_, redo_;
   std::string view_state_;
   std::vector<std::string> notices_;
-  bool dirty_ = false;
+  State saved_;  // the state as opened or last saved (dirty() compares with it)
 };
 
 }  // namespace kfw

@@ -54,14 +54,22 @@ std::vector<ParamSpec> standard_params(const std::vector<std::string>& filters,
               "kf: linear, Joseph form; ekf: exact symbolic Jacobians; ukf: scaled sigma points."};
   f.choices = filters;
   const std::string F = "Filter", S = "Simulator";
-  return {
-      f,
+  std::vector<ParamSpec> ukf = {
       {"ukf.alpha", "UKF α, sigma-point spread", "", 1e-3, 1.0, 1.0, Scale::kLog, F,
        "Scaled unscented transform: λ = α²(n + κ) − n."},
       {"ukf.beta", "UKF β, prior knowledge (2: Gaussian)", "", 0.0, 4.0, 2.0, Scale::kLinear, F,
        "Adds (1 − α² + β) to the central covariance weight.", 2},
       {"ukf.kappa", "UKF κ, secondary scaling", "", -5.0, 10.0, 0.0, Scale::kLinear, F,
-       "n + κ scales the sigma points (n + λ must stay positive).", 2},
+       "n + κ scales the sigma points (n + λ must stay positive).", 2}};
+  for (auto& u : ukf) {
+    u.shown_with = "filter";
+    u.shown_for = {"ukf"};
+  }
+  return {
+      f,
+      ukf[0],
+      ukf[1],
+      ukf[2],
       {"sim.seed", "seed", "", 0, 1e6, 1, Scale::kInteger, S, "Random seed of the simulator."},
       {"sim.duration", "duration", "s", 0.01, 1e6, 60, Scale::kLinear, S, "Length of the run.", 1},
       {"sim.dt", "sample interval", "s", 1e-6, 100, 0.01, Scale::kLog, S,

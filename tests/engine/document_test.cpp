@@ -32,6 +32,7 @@ TEST(Document, UndoRedoRestoresValuesExactly) {
   ASSERT_TRUE(d.undo());
   ASSERT_TRUE(d.undo());
   EXPECT_EQ(d.values(), start);  // bit for bit
+  EXPECT_FALSE(d.dirty());       // back where it was opened: nothing to lose
   EXPECT_FALSE(d.undo());
   ASSERT_TRUE(d.redo());
   ASSERT_TRUE(d.redo());

@@ -3,6 +3,7 @@
 // that refuse a document, and the question before unsaved work is thrown away.
 #include <gtest/gtest.h>
 
+#include <QFile>
 #include <QJsonObject>
 #include <QSignalSpy>
 #include <QTemporaryDir>
@@ -179,6 +180,60 @@ TEST(DocumentController, AsksBeforeDiscardingOnlyUnsavedWorkOrPins) {
   EXPECT_FALSE(l.doc.confirmDiscard("Switch preset"));
   ASSERT_EQ(asked.size(), 1);
   EXPECT_EQ(asked.front(), "Switch preset: discard unsaved changes and 1 pinned snapshot?");
+}
+
+// Issue 32, item 10: no question where nothing would be lost — after Reset, after opening the
+// session that holds the pins — and none before a file that does not load.
+TEST(DocumentController, AsksOnlyWhenSomethingWouldBeLost) {
+  RunController runs;
+  DocumentController doc(&runs);
+  ASSERT_TRUE(doc.loadPreset("models/cv1d").ok());
+  ASSERT_TRUE(runs.waitSettled());
+  QStringList asked;
+  doc.setConfirmHandler([&](const QString& q) {
+    asked << q;
+    return false;
+  });
+  doc.setValue("sigma_r", 5.0);
+  ASSERT_TRUE(runs.waitSettled());
+  EXPECT_TRUE(doc.document()->dirty());
+  doc.resetToPreset();
+  ASSERT_TRUE(runs.waitSettled());
+  EXPECT_FALSE(doc.document()->dirty());
+  EXPECT_TRUE(doc.confirmDiscard("Quit"));
+  EXPECT_TRUE(asked.isEmpty());
+  doc.pin("a");  // a pin on a preset is saved nowhere
+  EXPECT_FALSE(doc.confirmDiscard("Quit"));
+  ASSERT_EQ(asked.size(), 1);
+  QTemporaryDir dir;
+  const QString path = dir.filePath("s.json");
+  ASSERT_TRUE(doc.saveSession(path).ok());
+  EXPECT_TRUE(doc.confirmDiscard("Quit"));
+  doc.setConfirmHandler([](const QString&) { return true; });
+  ASSERT_TRUE(doc.loadSession(path, "Open session").ok());
+  ASSERT_TRUE(runs.waitSettled());
+  doc.setConfirmHandler([&](const QString& q) {
+    asked << q;
+    return false;
+  });
+  EXPECT_EQ(doc.document()->snapshots().size(), 1u);
+  EXPECT_TRUE(doc.confirmDiscard("Open preset"));  // the pin is in the session file
+  EXPECT_EQ(asked.size(), 1);
+  // Unsaved work, then a file that does not load: refused before any question, nothing changes.
+  doc.setValue("sigma_r", 7.0);
+  ASSERT_TRUE(runs.waitSettled());
+  const QString bad = dir.filePath("bad.json");
+  QFile f(bad);
+  ASSERT_TRUE(f.open(QIODevice::WriteOnly));
+  f.write("{ not json");
+  f.close();
+  EXPECT_FALSE(doc.loadPreset(bad, {}, {}, {}, "Open preset").ok());
+  EXPECT_EQ(asked.size(), 1);
+  EXPECT_EQ(doc.values().at("sigma_r"), 7.0);
+  // A file that loads asks, and a "no" keeps the open document.
+  EXPECT_TRUE(doc.loadPreset("models/ca1d", {}, {}, {}, "Open preset").ok());
+  EXPECT_EQ(asked.size(), 2);
+  EXPECT_EQ(doc.values().at("sigma_r"), 7.0);
 }
 
 }  // namespace

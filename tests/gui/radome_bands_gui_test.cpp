@@ -12,6 +12,7 @@
 #include "common/plot_probe.h"
 #include "main_window.h"
 #include "plot_kit.h"
+#include "plot_readout.h"
 
 namespace kfw {
 namespace {

@@ -25,16 +25,6 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-// The shipped presets' names, for "did you mean".
-std::vector<std::string> target_names() {
-  std::vector<std::string> names;
-  std::error_code ec;
-  for (const auto& e : std::filesystem::directory_iterator(preset_dir(), ec)) {
-    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
-  }
-  return names;
-}
-
 void print_warnings(const RunResult& r, std::ostream& err) {
   for (const auto& w : r.warnings)
     err << "kfw-cli: warning: " << one_line(w) << "\n";
@@ -60,7 +50,7 @@ Expected<Workspace> open_any(const std::string& name, const std::optional<std::s
       name.find('/') != std::string::npos || std::filesystem::path(name).extension() == ".json";
   if (!looks_like_file && !find_retired(name) &&
       !std::filesystem::is_regular_file(resolve_preset_path(name), ec)) {
-    return Error{"no preset " + quote_token(name) + did_you_mean(name, target_names())};
+    return Error{"no preset " + quote_token(name) + preset_name_hint(name)};
   }
   auto ws = open_workspace(name, data, sets);
   if (ws) print_notices(ws->preset.notices, err);

@@ -460,6 +460,23 @@ std::string resolve_preset_path(const std::string& name_or_path) {
   return name_or_path;
 }
 
+std::string preset_name_hint(const std::string& name) {
+  if (name.find('/') != std::string::npos || fs::path(name).extension() == ".json") return "";
+  std::error_code ec;
+  const fs::path models = fs::path(preset_dir()) / "models";
+  if (fs::is_regular_file(models / (name + ".json"), ec)) {
+    return " (did you mean " + quote_token("models/" + name) + "?)";
+  }
+  std::vector<std::string> names;
+  for (const auto& dir : {fs::path(preset_dir()), models}) {
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+      if (e.path().extension() != ".json") continue;
+      names.push_back((dir == models ? "models/" : "") + e.path().stem().string());
+    }
+  }
+  return did_you_mean(name, names);
+}
+
 std::string retired_model_path(std::string_view scenario) {
   const RetiredScenario* r = find_retired(scenario);
   if (!r) return {};

@@ -71,6 +71,9 @@ Status save_preset(const std::string& path, const Preset& preset);
 std::string preset_dir();
 // Resolves "helicopter" or "helicopter.json" to presets/helicopter.json when not a readable path.
 std::string resolve_preset_path(const std::string& name_or_path);
+// For a preset name that names no shipped preset: " (did you mean 'models/cv1d'?)" when the name
+// is a model file of preset_dir()/models/, else the nearest shipped name's hint; "" for a path.
+std::string preset_name_hint(const std::string& name);
 // The shipped model file that replaces a retired built-in (core/retired.h), in preset_dir().
 std::string retired_model_path(std::string_view scenario);
 

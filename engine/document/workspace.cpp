@@ -9,7 +9,13 @@ namespace kfw {
 Expected<Workspace> open_workspace(const std::string& preset,
                                    const std::optional<std::string>& data,
                                    const std::vector<std::string>& assignments) {
-  auto p = load_preset(resolve_preset_path(preset));
+  const std::string path = resolve_preset_path(preset);
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) {
+    if (const std::string hint = preset_name_hint(preset); !hint.empty())
+      return Error{preset + ": no preset of that name in " + preset_dir() + hint};
+  }
+  auto p = load_preset(path);
   if (!p) return p.err();
   Workspace ws;
   ws.preset = std::move(*p);

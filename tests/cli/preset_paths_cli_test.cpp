@@ -60,6 +60,17 @@ TEST_F(PresetPathsCli, TuneOutRebasesTheDataPath) {
   EXPECT_EQ(run.code, 0) << run.text;
 }
 
+// Issue 32, item 15: `kfw … cv1d` names no shipped preset; the model file of that name is
+// suggested (the window's loader says the same: open_workspace).
+TEST(PresetNamesCli, AModelFilesNameSuggestsItsPath) {
+  const auto o = cli("run cv1d");
+  EXPECT_EQ(o.code, 2) << o.text;
+  EXPECT_NE(o.text.find("did you mean 'models/cv1d'?"), std::string::npos) << o.text;
+  const auto near = cli("run helicoptr");
+  EXPECT_EQ(near.code, 2) << near.text;
+  EXPECT_NE(near.text.find("did you mean 'helicopter'?"), std::string::npos) << near.text;
+}
+
 }  // namespace
 }  // namespace preset_paths_cli_test
 }  // namespace kfw

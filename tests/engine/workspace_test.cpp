@@ -75,5 +75,13 @@ INSTANTIATE_TEST_SUITE_P(
                       CommittedData{"underwater.csv", "underwater.json", {"sim.duration=60"}}),
     FileStem());
 
+// Issue 32, item 15: the window's loader suggests a model file's path for its bare name.
+TEST(Workspace, AModelFilesBareNameSuggestsItsPath) {
+  auto ws = open_workspace("cv1d", {}, {});
+  ASSERT_FALSE(ws.ok());
+  EXPECT_NE(ws.error().find("did you mean 'models/cv1d'?"), std::string::npos) << ws.error();
+  EXPECT_EQ(ws.exit_code(), kExitInvalid);
+}
+
 }  // namespace
 }  // namespace kfw

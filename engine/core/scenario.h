@@ -1,6 +1,6 @@
 // A scenario is the unit of extension: its parameter table, its dataset schema, its simulator and
 // its runner. Since issue 30 every scenario is built from a model file (engine/model registers
-// "model"); the registry still takes compiled ones by name.
+// "model" with the registry below).
 #pragma once
 
 #include <atomic>

@@ -11,6 +11,7 @@
 #include "core/suggest.h"
 #include "data/csv.h"
 #include "data/json_io.h"
+#include "document/file_paths.h"
 
 #ifndef KFW_SOURCE_DIR
 #define KFW_SOURCE_DIR "."
@@ -286,11 +287,7 @@ Expected<Preset> preset_from_json(const OJson& j, const std::string& path) {
   if (auto st = str("description", p.description, false); !st) return st.err();
   std::string data;
   if (auto st = str("data", data, false); !st) return st.err();
-  if (!data.empty()) {
-    fs::path dp(data);
-    if (dp.is_relative() && !path.empty()) dp = fs::path(path).parent_path() / dp;
-    p.data_path = dp.lexically_normal().string();
-  }
+  if (!data.empty()) p.data_path = fs::path(path_from_file(data, path)).lexically_normal().string();
   // Scenarios built from the preset itself (a model file) registered as such (core/scenario.h).
   const ScenarioRegistry::PresetFactory* factory = scenarios().from_preset(p.scenario);
   if (auto m = j.find("model"); m != j.end()) {
@@ -388,23 +385,7 @@ std::string preset_to_json(const Preset& preset) {
   j["scenario"] = preset.scenario;
   j["title"] = preset.title;
   j["description"] = preset.description;
-  if (preset.data_path) {
-    fs::path dp(*preset.data_path);
-    if (!preset.path.empty() && dp.is_absolute()) {
-      const fs::path dir = fs::absolute(fs::path(preset.path)).parent_path();
-      fs::path rel = dp.lexically_relative(dir);
-      if (!rel.empty()) dp = rel;
-    } else if (!preset.path.empty()) {
-      // A preset named without a folder ("p.json") is in the current one (absolute("") throws).
-      fs::path dir = fs::path(preset.path).parent_path();
-      std::error_code ec;
-      if (dir.empty()) dir = fs::current_path(ec);
-      const fs::path abs_dir = fs::absolute(dir, ec);
-      fs::path rel = ec ? fs::path() : fs::absolute(dp, ec).lexically_relative(abs_dir);
-      if (!ec && !rel.empty()) dp = rel;
-    }
-    j["data"] = dp.string();
-  }
+  if (preset.data_path) j["data"] = path_for_file(*preset.data_path, preset.path);
   const std::shared_ptr<const Scenario>& scenario = preset.instance;
   const bool own_table = !preset.model.is_null();
   nlohmann::ordered_json params = nlohmann::ordered_json::object();

@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -14,6 +15,7 @@
 #include "data/csv.h"
 #include "data/input_file.h"
 #include "data/json_io.h"
+#include "document/file_paths.h"
 
 namespace kfw {
 
@@ -206,11 +208,26 @@ Expected<Session> parse_session(const std::string& text, const std::string& path
 Expected<Session> load_session(const std::string& path) {
   auto doc = read_json_document(path, "session");
   if (!doc) return doc.err();
-  return session_from_json(*doc, path);
+  auto s = session_from_json(*doc, path);
+  if (!s) return s;
+  // Paths are the session file's (a session written before that: the current folder's).
+  s->preset_path = path_from_file(s->preset_path, path, true);
+  if (s->data_path) s->data_path = path_from_file(*s->data_path, path, true);
+  for (auto& d : s->tuning_set)
+    d.path = path_from_file(d.path, path, true);
+  return s;
 }
 
 Status save_session(const std::string& path, const Session& s) {
-  return write_text_file_atomic(path, session_to_json(s));
+  // Paths relative to where the session is written, so a copied or moved folder still opens.
+  Session out = s;
+  std::error_code ec;  // a preset named by its name (no file) stays a name
+  if (std::filesystem::exists(s.preset_path, ec))
+    out.preset_path = path_for_file(s.preset_path, path);
+  if (s.data_path) out.data_path = path_for_file(*s.data_path, path);
+  for (auto& d : out.tuning_set)
+    d.path = path_for_file(d.path, path);
+  return write_text_file_atomic(path, session_to_json(out));
 }
 
 namespace {

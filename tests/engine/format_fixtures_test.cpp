@@ -197,7 +197,11 @@ TEST(FormatFixtures, SessionsOfVersion1And2LoadTheirValuesSnapshotsAndData) {
       EXPECT_EQ(fixture_json(path).at("version"), version) << path;
       auto session = load_session(path.string());
       ASSERT_TRUE(session.ok()) << session.error();
-      EXPECT_EQ(session->preset_path, "../../../presets/" + s.name + ".json");
+      // Paths are the session file's (issue 32, item 15): read from its folder.
+      const auto beside = [&](const std::string& rel) {
+        return (path.parent_path() / rel).lexically_normal().string();
+      };
+      EXPECT_EQ(session->preset_path, beside("../../../presets/" + s.name + ".json"));
       EXPECT_EQ(session->scenario, s.scenario);
       EXPECT_EQ(session->values.at(s.changed_key), s.changed_value);
       for (const auto& [key, value] : s.values) {
@@ -210,13 +214,13 @@ TEST(FormatFixtures, SessionsOfVersion1And2LoadTheirValuesSnapshotsAndData) {
       EXPECT_EQ(session->snapshots[0].values.at(s.changed_key), s.preset_value(s.changed_key));
       EXPECT_TRUE(session->tuning_set.empty());
       if (s.name == "helicopter") {
-        EXPECT_EQ(session->data_path, "../../../data/helicopter.csv");
+        EXPECT_EQ(session->data_path, beside("../../../data/helicopter.csv"));
         EXPECT_EQ(session->data_hash, "3eb3381adfa4efe3");
         ASSERT_EQ(session->mapping.size(), 3u);  // version 1: "columns"
         for (const char* role : {"gyro", "angle", "truth"})
           EXPECT_EQ(session->mapping.at(role).column, role);
       } else if (s.name == "broad_imu") {
-        EXPECT_EQ(session->data_path, "../../../../shared/" + kBroadLog);
+        EXPECT_EQ(session->data_path, beside("../../../../shared/" + kBroadLog));
         EXPECT_EQ(session->data_hash, "3cb65696bf6e627d");
         EXPECT_TRUE(session->mapping.blank());
       } else {

@@ -1,8 +1,12 @@
 #include "document/session.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
 
 namespace kfw {
 namespace {
@@ -77,6 +81,55 @@ TEST(Session, HashAndColumnMap) {
   auto bad = apply_column_map(d, {{"gyro", "nope"}});
   ASSERT_FALSE(bad.ok());
   EXPECT_NE(bad.error().find("mapped column 'nope' (for 'gyro')"), std::string::npos);
+}
+
+// A session's paths are relative to the session file (issue 32, item 15): a folder of preset,
+// log and session copied elsewhere opens from there; a session written before (paths from the
+// current folder) still opens.
+TEST(Session, PathsAreTheSessionFilesSoACopiedFolderOpens) {
+  namespace fs = std::filesystem;
+  const fs::path root =
+      fs::temp_directory_path() / ("kfw_session_paths_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  fs::create_directories(root / "a" / "presets");
+  fs::create_directories(root / "a" / "logs");
+  fs::create_directories(root / "a" / "sessions");
+  std::ofstream(root / "a" / "presets" / "p.json") << "{}";
+  std::ofstream(root / "a" / "logs" / "d.csv") << "t\n0\n";
+  Session s;
+  s.preset_path = (root / "a" / "presets" / "p.json").string();
+  s.data_path = (root / "a" / "logs" / "d.csv").string();
+  s.tuning_set = {{(root / "a" / "logs" / "d.csv").string(), {}}};
+  const fs::path file = root / "a" / "sessions" / "s.json";
+  ASSERT_TRUE(save_session(file.string(), s).ok());
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  const auto j = nlohmann::json::parse(text.str());
+  EXPECT_EQ(j["preset"], "../presets/p.json");
+  EXPECT_EQ(j["data"]["path"], "../logs/d.csv");
+  EXPECT_EQ(j["tuning_set"][0]["path"], "../logs/d.csv");
+  // The whole folder copied elsewhere: the copy's files.
+  fs::copy(root / "a", root / "b", fs::copy_options::recursive);
+  auto back = load_session((root / "b" / "sessions" / "s.json").string());
+  ASSERT_TRUE(back.ok()) << back.error();
+  EXPECT_EQ(back->preset_path, (root / "b" / "presets" / "p.json").string());
+  EXPECT_EQ(*back->data_path, (root / "b" / "logs" / "d.csv").string());
+  EXPECT_EQ(back->tuning_set[0].path, (root / "b" / "logs" / "d.csv").string());
+  // An old session whose paths are the current folder's.
+  const fs::path cwd = fs::current_path();
+  fs::current_path(root / "a");
+  Session old = s;
+  old.preset_path = "presets/p.json";
+  old.data_path = "logs/d.csv";
+  old.tuning_set.clear();
+  std::ofstream(root / "a" / "sessions" / "old.json") << session_to_json(old);
+  auto o = load_session("sessions/old.json");
+  fs::current_path(cwd);
+  ASSERT_TRUE(o.ok()) << o.error();
+  EXPECT_EQ(o->preset_path, "presets/p.json");
+  EXPECT_EQ(*o->data_path, "logs/d.csv");
+  fs::remove_all(root);
 }
 
 }  // namespace

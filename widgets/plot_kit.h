@@ -127,6 +127,10 @@ struct SeriesSource {
   std::size_t n = 0;
 };
 SeriesSource seriesSource(const QCPGraph* g);
+// The exact limits behind a band that setBand / setSigmaBand / setBandLimits filled (drawn as its
+// per-column envelope when dense), at the last step at or before t; false when `upper` is no
+// such band's upper edge or t is before its first step.
+bool bandLimitsAt(const QCPGraph* upper, double t, double& lo, double& hi);
 
 // Rescales both axes to the visible data with a small margin (an axis the user zoomed keeps its
 // range); keeps x fixed to [x0, x1] when

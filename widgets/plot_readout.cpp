@@ -68,8 +68,14 @@ QList<QPair<QString, double>> curveValuesAt(const QCustomPlot* p, double t) {
     const QCPGraph* g = p->graph(i);
     if (!g->visible() || g->name().isEmpty() || g->data()->isEmpty()) continue;
     if (const QCPGraph* lower = bandLower(p, g)) {
-      out.append({g->name() + " (low)", valueAt(lower, t)});
-      out.append({g->name() + " (high)", valueAt(g, t)});
+      // The run's limits at the sample, not the drawn envelope of a column (issue 32, item 2).
+      double lo = kNaN, hi = kNaN;
+      if (!bandLimitsAt(g, t, lo, hi)) {
+        lo = valueAt(lower, t);
+        hi = valueAt(g, t);
+      }
+      out.append({g->name() + " (low)", lo});
+      out.append({g->name() + " (high)", hi});
       continue;
     }
     out.append({g->name(), valueAt(g, t)});

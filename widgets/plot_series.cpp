@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 
@@ -93,6 +94,41 @@ void setSource(QCPGraph* g, const std::vector<double>* x, const std::vector<doub
   g->setProperty(kSrcN, QVariant::fromValue(static_cast<qulonglong>(n)));
 }
 }  // namespace
+
+namespace {
+// The arrays behind a band, kept on its upper graph (a child object dies with it).
+class BandSource : public QObject {
+ public:
+  using Limits = std::function<void(std::size_t, double&, double&)>;
+  BandSource(QCPGraph* upper, const std::vector<double>* x, std::size_t n, Limits limits)
+      : QObject(upper), x_(x), n_(n), limits_(std::move(limits)) {
+    setObjectName("kfwBandSource");
+  }
+  bool at(double t, double& lo, double& hi) const {
+    const auto end = x_->begin() + static_cast<std::ptrdiff_t>(std::min(n_, x_->size()));
+    const auto it = std::upper_bound(x_->begin(), end, t);
+    if (it == x_->begin()) return false;
+    limits_(static_cast<std::size_t>(it - x_->begin()) - 1, lo, hi);
+    return true;
+  }
+
+ private:
+  const std::vector<double>* x_;
+  std::size_t n_;
+  Limits limits_;
+};
+
+void setBandSource(const Band& b, const std::vector<double>& x, std::size_t n,
+                   BandSource::Limits limits) {
+  delete b.upper->findChild<BandSource*>("kfwBandSource", Qt::FindDirectChildrenOnly);
+  new BandSource(b.upper, &x, n, std::move(limits));
+}
+}  // namespace
+
+bool bandLimitsAt(const QCPGraph* upper, double t, double& lo, double& hi) {
+  const auto* s = upper->findChild<BandSource*>("kfwBandSource", Qt::FindDirectChildrenOnly);
+  return s && s->at(t, lo, hi);
+}
 
 SeriesSource seriesSource(const QCPGraph* g) {
   SeriesSource s;
@@ -300,19 +336,28 @@ void fillBand(
 void setBand(const Band& b, const std::vector<double>& x, const std::vector<double>& center,
              const std::vector<double>& halfwidth, std::size_t n) {
   n = std::min({n, x.size(), center.size(), halfwidth.size()});
-  fillBand(b, x, n,
-           [c = center.data(), h = halfwidth.data()](std::size_t i, double& lo, double& hi) {
-             lo = c[i] - h[i];
-             hi = c[i] + h[i];
-           });
+  auto limits = [c = center.data(), h = halfwidth.data()](std::size_t i, double& lo, double& hi) {
+    lo = c[i] - h[i];
+    hi = c[i] + h[i];
+  };
+  setBandSource(b, x, n, limits);
+  fillBand(b, x, n, limits);
 }
 
 void setSigmaBand(const Band& b, const std::vector<double>& x, const std::vector<double>* center,
                   const std::vector<double>& variance, double k, std::size_t n) {
   n = std::min({n, x.size(), variance.size(), center ? center->size() : n});
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double* c = center ? center->data() : nullptr;
+  auto exact = [c, var = variance.data(), k, nan](std::size_t i, double& lo, double& hi) {
+    const double half = var[i] >= 0.0 ? k * std::sqrt(var[i]) : nan;
+    const double mid = c ? c[i] : 0.0;
+    lo = mid - half;
+    hi = mid + half;
+  };
+  setBandSource(b, x, n, exact);
   if (!center) {
     // 0 ± k·√v: the envelope of a column is ± k·√(its largest v), one square root a column.
-    const double nan = std::numeric_limits<double>::quiet_NaN();
     fillBand(
         b, x, n,
         [var = variance.data(), nan](std::size_t i, double& lo, double& hi) {
@@ -328,25 +373,19 @@ void setSigmaBand(const Band& b, const std::vector<double>& x, const std::vector
         });
     return;
   }
-  const double* c = center->data();
-  fillBand(b, x, n, [c, var = variance.data(), k](std::size_t i, double& lo, double& hi) {
-    const double v = var[i];
-    const double half = v >= 0.0 ? k * std::sqrt(v) : std::numeric_limits<double>::quiet_NaN();
-    lo = c[i] - half;
-    hi = c[i] + half;
-  });
+  fillBand(b, x, n, exact);
 }
 
 void setBandLimits(const Band& b, const std::vector<double>& x, const std::vector<double>& lo,
                    const std::vector<double>& hi, std::size_t n, bool gaps) {
   n = std::min({n, x.size(), lo.size(), hi.size()});
+  auto limits = [pl = lo.data(), ph = hi.data()](std::size_t i, double& l, double& h) {
+    l = pl[i];
+    h = ph[i];
+  };
+  setBandSource(b, x, n, limits);
   fillBand(
-      b, x, n,
-      [pl = lo.data(), ph = hi.data()](std::size_t i, double& l, double& h) {
-        l = pl[i];
-        h = ph[i];
-      },
-      [](std::vector<XY>&, std::vector<XY>&) {}, gaps);
+      b, x, n, limits, [](std::vector<XY>&, std::vector<XY>&) {}, gaps);
 }
 
 }  // namespace kfw::plot

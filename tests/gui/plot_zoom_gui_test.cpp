@@ -181,6 +181,47 @@ TEST_P(Readout, ReportsTheRunsValues) {
   EXPECT_TRUE(text.startsWith("t = ")) << text.toStdString();
 }
 
+// The band's edges in the readout are the run's x ± 2σ at the hovered sample, at every zoom (they
+// were the drawn envelope of a pixel column: 5.31 / 7.54 around 6.94 where the run's band was
+// [6.38, 7.51], issue 32 item 2).
+TEST_P(Readout, BandEdgesAreTheRunsAtEveryZoom) {
+  MainWindow w;
+  std::string skip;
+  if (!load(w, QString(KFW_SOURCE_DIR) + "/presets/" + GetParam() + ".json", skip))
+    GTEST_SKIP() << skip;
+  auto r = std::dynamic_pointer_cast<const model::ModelResult>(w.result());
+  ASSERT_TRUE(r);
+  const std::size_t n = r->t.size();
+  const double t0 = r->t.front(), t1 = r->t.back(), span = t1 - t0;
+  const std::vector<std::pair<double, double>> zooms = {
+      {t0, t1}, {t0 - span, t1 + span}, {t0 + 0.3 * span, t0 + 0.6 * span}};
+  int checked = 0;
+  for (const auto& [lo, hi] : zooms) {
+    w.zoom()->zoomTime(lo, hi);
+    ASSERT_TRUE(w.waitForRun());
+    QApplication::processEvents();
+    for (std::size_t i = 0; i < r->state_keys.size(); ++i) {
+      QCustomPlot* p = testing::plotNamed(w, QString::fromStdString("state." + r->state_keys[i]));
+      if (!p) continue;
+      const std::vector<double>& x = r->x[i];
+      const std::vector<double>& v = r->P[r->diag[i]];
+      for (std::size_t k : {n / 7, n / 3 + 1, n / 2 - 3, n - 1}) {
+        double low = std::nan(""), high = std::nan("");
+        for (const auto& [name, val] : plot::curveValuesAt(p, r->t[k])) {
+          if (name.endsWith(" (low)")) low = val;
+          if (name.endsWith(" (high)")) high = val;
+        }
+        SCOPED_TRACE(r->state_keys[i] + " step " + std::to_string(k) + " zoom " +
+                     std::to_string(lo) + ".." + std::to_string(hi));
+        EXPECT_DOUBLE_EQ(low, x[k] - 2.0 * std::sqrt(v[k]));
+        EXPECT_DOUBLE_EQ(high, x[k] + 2.0 * std::sqrt(v[k]));
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GE(checked, 12);
+}
+
 INSTANTIATE_TEST_SUITE_P(Presets, Readout, ::testing::Values("helicopter", "broad_imu"));
 
 // Every preset: every named curve and band has a legend entry, and no legend covers more than

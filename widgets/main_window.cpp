@@ -17,20 +17,25 @@
 #include <QPushButton>
 #include <QScreen>
 #include <QScrollArea>
+#include <QScrollBar>
 #include <QSettings>
 #include <QSplitter>
 #include <QStatusBar>
 #include <QTabWidget>
 #include <QTimer>
 #include <QVBoxLayout>
+#include <algorithm>
 
 #include "consistency_panel.h"
 #include "data_tab.h"
 #include "help_menu.h"
 #include "metrics_panel.h"
+#include "monte_carlo_dialog.h"
 #include "param_panel.h"
 #include "plot_zoom.h"
+#include "sweep_dialog.h"
 #include "transport_bar.h"
+#include "tune_dialog.h"
 
 namespace kfw {
 
@@ -50,11 +55,38 @@ QPushButton* button(const QString& text, const char* name, const QString& tip = 
   return b;
 }
 
+// The left column: as wide as its widest row needs (units, spin boxes, Reset whole at any font
+// size), scrolling only down. An explicit minimum width cut the rows at 1366 × 768 and larger
+// text, with a scroll bar sideways.
+class ColumnScroll : public QScrollArea {
+ public:
+  QSize minimumSizeHint() const override {
+    QSize s = QScrollArea::minimumSizeHint();
+    if (widget()) {
+      const int need = widget()->minimumSizeHint().width() +
+                       verticalScrollBar()->sizeHint().width() + 2 * frameWidth();
+      s.setWidth(std::max(kMinWidth, need));
+    }
+    return s;
+  }
+  static constexpr int kMinWidth = 300;
+};
+
+std::optional<bool>& remembersOverride() {
+  static std::optional<bool> on;
+  return on;
+}
+
 // Offscreen runs (tests, exports, screenshots) neither read nor write the remembered size.
 bool remembersSize() {
+  if (remembersOverride()) return *remembersOverride();
   return QGuiApplication::platformName() != "offscreen";
 }
 }  // namespace
+
+void MainWindow::setRemembersSize(std::optional<bool> on) {
+  remembersOverride() = on;
+}
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   setWindowTitle("kfw — Kalman filter tuning workbench");
@@ -133,10 +165,11 @@ QWidget* MainWindow::buildLeft() {
   left_->addStretch(0);
   metrics_ = new MetricsPanel;
 
-  auto* left_scroll = new QScrollArea;
+  auto* left_scroll = new ColumnScroll;
+  left_scroll->setObjectName("leftScroll");
   left_scroll->setWidget(left_host);
   left_scroll->setWidgetResizable(true);
-  left_scroll->setMinimumWidth(340);
+  left_scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
   auto* left_split = new QSplitter(Qt::Vertical);
   left_split->setObjectName("leftSplit");
   left_split->addWidget(left_scroll);
@@ -224,8 +257,7 @@ void MainWindow::buildToolsMenus() {
   QMenu* tools = menuBar()->addMenu("&Tools");
   tools->addAction("Auto-&tune…", this, [this] { openTuneDialog(); });
   tools->addAction("&Sweep a metric…", this, [this] { openSweepDialog(); });
-  tools->addAction("&Monte Carlo over seeds…", this,
-                   [this] { runs_->openMonteCarlo(values(), this); });
+  tools->addAction("&Monte Carlo over seeds…", this, [this] { openMonteCarloDialog(); });
   tools->addAction("&Pin snapshot…", this, [this] { doc_->askPin("Name:", false); });
   tools->addAction("&Clear snapshots", doc_, &DocumentController::clearPins);
   // The replay keys (Space, ←, →, Home, End) work with any focus but text entry
@@ -296,6 +328,8 @@ void MainWindow::wireControllers() {
     updateDataLabel();
   });
   connect(this, &MainWindow::resultApplied, present_, &PresentationController::restyle);
+  connect(present_, &PresentationController::presentationChanged, this,
+          &MainWindow::presentationChanged);
   connect(this, &MainWindow::resultApplied, replay_, &ReplayController::followCursor);
   registerViewState();
 }
@@ -382,7 +416,11 @@ void MainWindow::refreshPresetList() {
 void MainWindow::fitToScreen() {
   if (remembersSize()) {
     const QByteArray g = QSettings("kfw", "kfw").value("window/geometry").toByteArray();
-    if (!g.isEmpty() && restoreGeometry(g)) return;
+    if (!g.isEmpty() && restoreGeometry(g)) {
+      keepOnScreen();
+      fitted_size_ = size();
+      return;
+    }
   }
   // 90 % of the available screen, at most 1600×1000.
   const QScreen* s = screen() ? screen() : QGuiApplication::primaryScreen();
@@ -390,6 +428,27 @@ void MainWindow::fitToScreen() {
   const QSize size(std::min(1600, avail.width() * 9 / 10), std::min(1000, avail.height() * 9 / 10));
   resize(size);
   move(avail.center() - QPoint(size.width() / 2, size.height() / 2));
+  keepOnScreen();
+  fitted_size_ = this->size();
+}
+
+void MainWindow::keepOnScreen() {
+  // A size remembered from a larger screen (or a layout that grew) must not run off this one:
+  // the frame, decorations included, inside the available geometry.
+  const QScreen* s = screen() ? screen() : QGuiApplication::primaryScreen();
+  if (!s || isFullScreen() || isMaximized()) return;
+  const QRect avail = s->availableGeometry();
+  const QRect frame = frameGeometry();
+  const QSize decor = frame.size() - size();
+  const QSize most(std::max(minimumWidth(), avail.width() - decor.width()),
+                   std::max(minimumHeight(), avail.height() - decor.height()));
+  if (width() > most.width() || height() > most.height()) resize(size().boundedTo(most));
+  QRect f = frameGeometry();
+  f.moveLeft(
+      std::clamp(f.left(), avail.left(), std::max(avail.left(), avail.right() - f.width() + 1)));
+  f.moveTop(
+      std::clamp(f.top(), avail.top(), std::max(avail.top(), avail.bottom() - f.height() + 1)));
+  move(f.topLeft());
 }
 
 void MainWindow::saveWindowSize() const {
@@ -405,6 +464,16 @@ void MainWindow::closeEvent(QCloseEvent* event) {
   }
 }
 
+void MainWindow::showEvent(QShowEvent* event) {
+  QMainWindow::showEvent(event);
+  // Only now are the decorations known (the frame margins): the first show brings the frame in,
+  // unless a caller sized the window since (a test, --screenshot --size).
+  if (!event->spontaneous() && !shown_once_ && size() == fitted_size_) {
+    shown_once_ = true;
+    QTimer::singleShot(0, this, [this] { keepOnScreen(); });
+  }
+}
+
 void MainWindow::resizeEvent(QResizeEvent* event) {
   QMainWindow::resizeEvent(event);
   QTimer::singleShot(0, this, [this] { fitMetricsPanel(); });
@@ -414,12 +483,23 @@ TuneDialog* MainWindow::openTuneDialog() {
   if (!document() || !waitForRun()) return nullptr;
   const QString name =
       document()->data() ? QFileInfo(q(document()->data()->path)).fileName() : QString("simulated");
-  return runs_->openTune(preset(), values(), name, document()->tuning_set(), this);
+  TuneDialog* d = runs_->openTune(preset(), values(), name, document()->tuning_set(), this);
+  present_->adopt(d);
+  return d;
+}
+
+MonteCarloDialog* MainWindow::openMonteCarloDialog() {
+  if (!document()) return nullptr;
+  MonteCarloDialog* d = runs_->openMonteCarlo(values(), this);
+  present_->adopt(d);
+  return d;
 }
 
 SweepDialog* MainWindow::openSweepDialog() {
   if (!document() || !waitForRun()) return nullptr;
-  return runs_->openSweep(values(), this);
+  SweepDialog* d = runs_->openSweep(values(), this);
+  present_->adopt(d);
+  return d;
 }
 
 QString MainWindow::usageText() {

@@ -53,6 +53,9 @@ class MainWindow : public QMainWindow {
  public:
   explicit MainWindow(QWidget* parent = nullptr);
   ~MainWindow() override;
+  // Whether the window reads and writes its remembered size (QSettings "window/geometry"); by
+  // default not on the offscreen platform (tests, exports). Tests set it; nullopt: the default.
+  static void setRemembersSize(std::optional<bool> on);
 
   // The controllers the window wires; a feature goes into the one that owns what it changes.
   DocumentController* documentController() const { return doc_; }
@@ -129,6 +132,7 @@ class MainWindow : public QMainWindow {
   // results go through the document's undo stack.
   TuneDialog* openTuneDialog();
   SweepDialog* openSweepDialog();
+  MonteCarloDialog* openMonteCarloDialog();
   // Sets values as one named undo step (a tuning, its revert, a sweep point) and runs once.
   void applyValuesAs(const ParamValues& values, const QString& label) {
     doc_->setValues(values, label);
@@ -211,6 +215,8 @@ class MainWindow : public QMainWindow {
   void closeEvent(QCloseEvent* event) override;
   // Re-fits the metrics table to the new height (fitMetricsPanel) once the layout has settled.
   void resizeEvent(QResizeEvent* event) override;
+  // The first show brings the frame (decorations now known) inside the screen.
+  void showEvent(QShowEvent* event) override;
 
  private:
   QWidget* buildLeft();    // preset picker, data, tools; the parameters go in per preset
@@ -221,6 +227,10 @@ class MainWindow : public QMainWindow {
   void registerViewState();  // the session's view state: window, splitters, zoom, look, replay
   void fitToScreen();        // initial size from the screen (or the last size)
   void saveWindowSize() const;
+  // Presenting, the left column is the parameters': the description hides, the metrics table
+  // keeps the primary metric's row; leaving gives back the column as it was.
+  void presentationChanged(bool on);
+  void keepOnScreen();  // the frame inside the screen's available geometry
   void refreshPresetList();
   void presetChosen(int index);
   // Per document (main_window_scenario.cpp): its controls and plots, its runs drawn.
@@ -271,6 +281,9 @@ class MainWindow : public QMainWindow {
   QString last_error_;
   QAction* undo_action_ = nullptr;
   QAction* redo_action_ = nullptr;
+  bool shown_once_ = false;
+  QSize fitted_size_;  // the size fitToScreen() chose
+  QList<int> left_sizes_before_present_;
 };
 
 }  // namespace kfw

@@ -13,6 +13,7 @@
 #include <QRegularExpression>
 #include <QScrollArea>
 #include <QSplitter>
+#include <QTimer>
 #include <QVBoxLayout>
 #include <algorithm>
 
@@ -74,6 +75,9 @@ void MainWindow::rebuildPlots() {
   auto* grid = new QGridLayout(plot_host_);
   grid->setContentsMargins(2, 2, 2, 2);
   grid->setSpacing(4);
+  // Equal columns whatever the titles' lengths (a wrapped title changes a plot's size hint).
+  grid->setColumnStretch(0, 1);
+  grid->setColumnStretch(1, 1);
   plots_ = view_->createPlots(plot_host_);
   for (int i = 0; i < plots_.size(); ++i) {
     plots_[i].plot->setObjectName("plot." + plots_[i].name);
@@ -187,7 +191,7 @@ void MainWindow::fillMetrics() {
 
 void MainWindow::fitMetricsPanel() {
   auto* split = findChild<QSplitter*>("leftSplit");
-  if (!split || metrics_split_by_user_ || split->count() != 2) return;
+  if (!split || metrics_split_by_user_ || split->count() != 2 || present_->presentation()) return;
   if (!split->property("kfwWatched").toBool()) {  // splitterMoved: the user's drags only
     split->setProperty("kfwWatched", true);
     connect(split, &QSplitter::splitterMoved, this, [this] { metrics_split_by_user_ = true; });
@@ -201,6 +205,27 @@ void MainWindow::fitMetricsPanel() {
   // The parameters keep at least 40 % (they scroll); the table gets the rest it needs.
   const int metrics = std::min(need, total - total * 2 / 5);
   split->setSizes({total - metrics, metrics});
+}
+
+void MainWindow::presentationChanged(bool on) {
+  auto* split = findChild<QSplitter*>("leftSplit");
+  if (!split || split->count() != 2) return;
+  if (on && left_sizes_before_present_.isEmpty()) left_sizes_before_present_ = split->sizes();
+  description_->setVisible(!on);
+  if (!on) {
+    if (!left_sizes_before_present_.isEmpty()) split->setSizes(left_sizes_before_present_);
+    left_sizes_before_present_.clear();
+    return;
+  }
+  // Once the new fonts have laid out: the table keeps its primary row, at most a quarter.
+  QTimer::singleShot(0, this, [this, split] {
+    if (!present_->presentation()) return;
+    const int chrome = std::max(0, split->widget(1)->height() - metrics_->height());
+    const QList<int> sizes = split->sizes();
+    const int total = sizes[0] + sizes[1];
+    const int metrics = std::min(metrics_->heightThrough(0) + chrome, total / 4);
+    split->setSizes({total - metrics, metrics});
+  });
 }
 
 void MainWindow::setPrimaryMetric(const std::string& key) {

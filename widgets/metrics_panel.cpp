@@ -2,6 +2,7 @@
 
 #include <QBrush>
 #include <QColor>
+#include <QEvent>
 #include <QFont>
 #include <QHash>
 #include <QHeaderView>
@@ -239,11 +240,8 @@ void MetricsPanel::setRuns(const Scenario& scenario, std::shared_ptr<const RunRe
   for (const auto& r : rows) {
     if (r.spec.key != first) continue;
     fill(row, r.spec);
-    QFont bold = font();
-    bold.setBold(true);
     for (int c = 0; c < columnCount(); ++c) {
       QTableWidgetItem* it = item(row, c);
-      it->setFont(bold);
       it->setBackground(QColor(255, 244, 196));
       it->setData(kPrimaryRole, true);
     }
@@ -261,10 +259,6 @@ void MetricsPanel::setRuns(const Scenario& scenario, std::shared_ptr<const RunRe
       // A group header: the group's name across the table.
       auto* head = new QTableWidgetItem(QString(group_name(spec.group)).toUpper());
       head->setData(kGroupRole, QString(group_name(spec.group)));
-      QFont f = font();
-      f.setBold(true);
-      f.setPointSizeF(f.pointSizeF() * 0.85);
-      head->setFont(f);
       head->setForeground(QColor(90, 90, 90));
       head->setBackground(QColor(236, 236, 236));
       head->setToolTip(QString("%1 metrics").arg(group_name(spec.group)));
@@ -276,10 +270,34 @@ void MetricsPanel::setRuns(const Scenario& scenario, std::shared_ptr<const RunRe
     ++row;
   }
   setRowCount(row);
+  styleItems();
   primary_group_.clear();
   for (const auto& r : rows) {
     if (r.spec.key == first) primary_group_ = group_name(r.spec.group);
   }
+}
+
+void MetricsPanel::styleItems() {
+  QFont bold = font();
+  bold.setBold(true);
+  QFont head = bold;
+  head.setPointSizeF(bold.pointSizeF() * 0.85);
+  for (int r = 0; r < rowCount(); ++r) {
+    for (int c = 0; c < columnCount(); ++c) {
+      QTableWidgetItem* it = item(r, c);
+      if (!it) continue;
+      if (it->data(kPrimaryRole).toBool()) {
+        it->setFont(bold);
+      } else if (it->data(kGroupRole).isValid()) {
+        it->setFont(head);
+      }
+    }
+  }
+}
+
+void MetricsPanel::changeEvent(QEvent* event) {
+  QTableWidget::changeEvent(event);
+  if (event->type() == QEvent::FontChange) styleItems();
 }
 
 int MetricsPanel::primaryGroupEnd() const {

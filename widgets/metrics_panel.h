@@ -45,7 +45,13 @@ class MetricsPanel : public QTableWidget {
   // Four significant digits, no trailing zeros ("0.01235", "1.235e+06").
   static QString format(double v);
 
+ protected:
+  // The primary row's and the group headers' fonts follow the table's (presentation's scale in
+  // and out; they are set per item, so they do not follow by themselves).
+  void changeEvent(QEvent* event) override;
+
  private:
+  void styleItems();
   QString primary_;
   QStringList layout_;     // headers, primary key and row keys of the table as built
   QString primary_group_;  // group_name() of the primary's group

@@ -172,7 +172,11 @@ ParamPanel::ParamPanel(const ParamTable& table, const Ranges& ranges, QWidget* p
       auto* unit_label = new QLabel(unit, box);
       unit_label->setObjectName("unit." + key);
       unit_label->setAlignment(Qt::AlignRight | Qt::AlignVCenter);
-      unit_label->setStyleSheet("color: #666;");
+      // A palette, not a style sheet: a styled label keeps the font it had when polished, so
+      // leaving presentation left the units large (issue 32, item 5).
+      QPalette pal = unit_label->palette();
+      pal.setColor(QPalette::WindowText, QColor(0x66, 0x66, 0x66));
+      unit_label->setPalette(pal);
       grid->addWidget(unit_label, r, 2);
       grid->addWidget(row.slider, r + 1, 0, 1, 2);
       grid->addWidget(row.spin, r + 1, 2);

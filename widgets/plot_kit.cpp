@@ -57,7 +57,9 @@ void fitLegend(QCustomPlot* p, int width) {
 QCustomPlot* makePlot(QWidget* parent, const QString& title, const QString& xLabel,
                       const QString& yLabel) {
   auto* p = new QCustomPlot(parent);
-  p->setMinimumHeight(240);
+  // An explicit minimum: QCustomPlot's own hint is its longest title or legend in one line, which
+  // made the window wider than a 1280 px screen (titles wrap to the plot's width instead).
+  p->setMinimumSize(200, 240);
   p->setNoAntialiasingOnDrag(true);
   // On screen, data are drawn without antialiasing (a slider drag redraws every plot; AA on tens
   // of thousands of points costs ~10x); exports switch it back on (setExportLook).
@@ -75,7 +77,9 @@ QCustomPlot* makePlot(QWidget* parent, const QString& title, const QString& xLab
   p->plotLayout()->addElement(0, 0, te);
   p->xAxis->setLabel(xLabel);
   p->yAxis->setLabel(yLabel);
-  for (QCPAxis* a : {p->xAxis, p->yAxis, p->yAxis2}) {
+  // Every axis, shown or not: an unset font is QFont(), the application's, which presentation
+  // scales (an axis made while presenting kept its large font after leaving).
+  for (QCPAxis* a : {p->xAxis, p->yAxis, p->xAxis2, p->yAxis2}) {
     a->setLabelFont(base);
     a->setTickLabelFont(base);
   }

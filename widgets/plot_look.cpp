@@ -176,6 +176,15 @@ void restyle(QCustomPlot* p) {
       KFW_COLOR(t, "kfwText", textColor, setTextColor);
     } else if (auto* lg = qobject_cast<QCPLegend*>(e)) {
       styleLegend(lg, l);
+    } else if (auto* cs = qobject_cast<QCPColorScale*>(e)) {
+      // A colour scale's axis starts from QFont(), the application's (× the presentation's
+      // scale when made while presenting): the plot's font first.
+      QCPAxis* a = cs->axis();
+      if (!a->property("kfwLabelFont").isValid()) {
+        a->setLabelFont(p->font());
+        a->setTickLabelFont(p->font());
+      }
+      styleAxis(a, l);
     }
   }
   for (QCPAxisRect* r : p->axisRects()) {
@@ -289,6 +298,15 @@ QString wrapText(const QString& text, const QFont& font, int width) {
   }
   if (!line.isEmpty()) lines << line;
   return lines.join('\n');
+}
+
+void setTitle(QCustomPlot* plot, const QString& title) {
+  auto* t = plot->findChild<QCPTextElement*>("title");
+  if (!t) return;
+  const bool wrapped = t->property(kWrapped).toString() == t->text();
+  const QString now =
+      wrapped && t->property(kTitleText).isValid() ? t->property(kTitleText).toString() : t->text();
+  if (now != title) t->setText(title);
 }
 
 bool wrapTitlesToWidth(QCustomPlot* plot) {

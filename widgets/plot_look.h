@@ -45,6 +45,9 @@ QString wrapText(const QString& text, const QFont& font, int width);
 // Wraps every title of the plot to its current width (after a resize or a font change), from the
 // title's unwrapped text. Returns true when a title changed.
 bool wrapTitlesToWidth(QCustomPlot* plot);
+// Sets a makePlot title (unwrapped text; wrapped again before the next replot); nothing when the
+// title is already that.
+void setTitle(QCustomPlot* plot, const QString& title);
 // Set on a plot while an export draws it: its titles are wrapped to the export's width, and
 // wrapTitlesToWidth leaves them so.
 inline constexpr const char* kExportingProperty = "kfwExporting";

@@ -43,6 +43,11 @@ QStringList Presentation::chosen(const QList<PlotPanel>& plots) const {
     if (chosen_.contains(p.name)) out << p.name;
   }
   if (out.isEmpty()) {
+    for (const PlotPanel& p : plots) {
+      if (p.presented) out << p.name;
+    }
+  }
+  if (out.isEmpty()) {
     for (int i = 0; i < std::min<int>(2, static_cast<int>(plots.size())); ++i)
       out << plots[i].name;
   }

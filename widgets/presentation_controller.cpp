@@ -46,7 +46,8 @@ QList<PlotPanel> PresentationController::plots() const {
 }
 
 QList<QCustomPlot*> PresentationController::others() const {
-  return others_ ? others_() : QList<QCustomPlot*>();
+  QList<QCustomPlot*> out = others_ ? others_() : QList<QCustomPlot*>();
+  return out + adopted_;
 }
 
 void PresentationController::buildMenu(QMenuBar* bar) {
@@ -106,6 +107,18 @@ void PresentationController::restyle() {
   present_->refresh(shown, rest, theme_);
 }
 
+void PresentationController::adopt(QWidget* dialog) {
+  if (!dialog) return;
+  for (QCustomPlot* p : dialog->findChildren<QCustomPlot*>()) {
+    if (adopted_.contains(p)) continue;  // a dialog opened again
+    adopted_ << p;
+    // Cheap when nothing changed (the look's stamp); a new curve gets the look before it shows.
+    connect(p, &QCustomPlot::beforeReplot, this, [this, p] { present_->refresh({}, {p}, theme_); });
+    connect(p, &QObject::destroyed, this, [this, p] { adopted_.removeAll(p); });
+  }
+  present_->refresh({}, adopted_, theme_);
+}
+
 void PresentationController::setTheme(Theme theme) {
   theme_ = theme;
   applyWindowTheme(window_, theme);
@@ -128,6 +141,7 @@ void PresentationController::setPresentation(bool on) {
     const QSignalBlocker b(present_action_);
     present_action_->setChecked(on);
   }
+  emit presentationChanged(on);
 }
 
 bool PresentationController::presentation() const {

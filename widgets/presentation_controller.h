@@ -51,9 +51,16 @@ class PresentationController : public QObject {
   void setScreenshotMode(bool on);
   // New plots or curves take the theme and presentation look (after each run).
   void restyle();
+  // A dialog's plots (Tune, Sweep, Monte Carlo) take the theme and presentation look now and
+  // whenever they are redrawn with new curves; `dialog` may be null.
+  void adopt(QWidget* dialog);
   // On/off, the text scale and the chosen plots, for the session.
   QJsonValue saveState() const;
   void restoreState(const QJsonValue& v);
+
+ signals:
+  // Presentation entered, left or re-laid out (a new scale or choice of plots).
+  void presentationChanged(bool on);
 
  private:
   QList<PlotPanel> plots() const;
@@ -65,6 +72,7 @@ class PresentationController : public QObject {
   QAction* present_action_ = nullptr;
   std::function<QList<PlotPanel>()> plots_;
   std::function<QList<QCustomPlot*>()> others_;
+  QList<QCustomPlot*> adopted_;  // the open dialogs' plots
   QString scenario_;
   Theme theme_ = Theme::kLight;
   bool screenshot_mode_ = false;

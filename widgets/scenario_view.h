@@ -22,6 +22,8 @@ struct PlotPanel {
   QString name;   // file stem for export: "angle", "innovation", ...
   QString title;  // shown above the plot
   QCustomPlot* plot = nullptr;
+  // Shown by presentation mode until the lecturer chooses (none flagged: the first two).
+  bool presented = false;
 };
 
 class ScenarioView : public QObject {

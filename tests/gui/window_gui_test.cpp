@@ -19,6 +19,7 @@
 #include <cmath>
 
 #include "common/plot_probe.h"
+#include "common/widget_geometry.h"
 #include "core/metrics.h"
 #include "main_window.h"
 #include "metrics_panel.h"
@@ -28,20 +29,9 @@
 namespace kfw {
 namespace {
 
+using testing::inWindow;
 using testing::plotNamed;
-
-// The rectangle of `w` in `top`'s coordinates.
-QRect inWindow(const QWidget* w, const QWidget* top) {
-  return QRect(w->mapTo(top, QPoint(0, 0)), w->size());
-}
-
-// What of `w` is shown: its rectangle clipped by every ancestor up to `top`.
-QRect shownPart(const QWidget* w, const QWidget* top) {
-  QRect r = inWindow(w, top);
-  for (const QWidget* p = w->parentWidget(); p && p != top; p = p->parentWidget())
-    r &= inWindow(p, top);
-  return r & top->rect();
-}
+using testing::shownPart;
 
 void maybeScreenshot(QWidget& w, const char* name) {
   const QByteArray dir = qgetenv("KFW_TEST_SCREENSHOTS");

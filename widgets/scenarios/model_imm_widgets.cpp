@@ -81,6 +81,7 @@ void ImmPanels::create(QWidget* parent, const ModelLayout& layout, QList<PlotPan
       normal_ticker_[i].reset(new QCPAxisTicker);
     }
     info_ = new QCPItemText(heat_);
+    info_->setFont(heat_->font());  // not QFont(): the application's, × scale when presenting
     info_->position->setType(QCPItemPosition::ptAxisRectRatio);
     info_->position->setCoords(0.02, 0.03);
     info_->setPositionAlignment(Qt::AlignLeft | Qt::AlignTop);

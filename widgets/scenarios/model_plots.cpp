@@ -24,6 +24,7 @@
 #include "model/model_scenario.h"
 #include "plot_blocks.h"
 #include "plot_kit.h"
+#include "plot_look.h"
 #include "plot_text.h"
 #include "plots/block_drawer.h"
 #include "scenario_view.h"
@@ -143,7 +144,22 @@ class ModelView final : public ScenarioView {
     };
     std::stable_sort(out.begin(), out.end(),
                      [&](const PlotPanel& a, const PlotPanel& b) { return rank(a) < rank(b); });
+    markPresented(out);
     return out;
+  }
+
+  // Presentation's default: the panels the file puts first; else the first innovation and the
+  // first NIS, which show a tuning (a state's ramp of 1 750 m hides its band).
+  void markPresented(QList<PlotPanel>& out) const {
+    if (!layout_->first_panels.empty()) return;  // the first two: the file's choice
+    for (const char* prefix : {"innovation.", "nis."}) {
+      for (PlotPanel& p : out) {
+        if (p.name.startsWith(prefix)) {
+          p.presented = true;
+          break;
+        }
+      }
+    }
   }
 
   void setResult(std::shared_ptr<const RunResult> result, const ParamValues& values) override {
@@ -152,8 +168,12 @@ class ModelView final : public ScenarioView {
     result_ = r;
     values_ = values;
     for (std::size_t i = 0; i < states_.size(); ++i) {
-      states_[i]->setData(&r->t, &r->x[i], &r->P[r->diag[i]],
-                          r->truth[i].empty() ? nullptr : &r->truth[i]);
+      const bool truth = !r->truth[i].empty();
+      states_[i]->setData(&r->t, &r->x[i], &r->P[r->diag[i]], truth ? &r->truth[i] : nullptr);
+      // No truth (a log without it, a state the world does not simulate): no "truth" in the title.
+      kfw::setTitle(states_[i]->plot(),
+                    QString(truth ? "%1: truth and estimate ± 2σ" : "%1: estimate ± 2σ")
+                        .arg(q(layout_->states[i].label)));
     }
     // Components in channel order: z rows and channel components line up.
     std::size_t row = 0;
@@ -256,6 +276,7 @@ class ModelView final : public ScenarioView {
       line->point2->setCoords(r.event->t, 1.0);
       line->setPen(QPen(red, 1.5, Qt::DashLine));
       auto* text = new QCPItemText(p);
+      text->setFont(p->font());
       text->position->setTypeX(QCPItemPosition::ptPlotCoords);
       text->position->setTypeY(QCPItemPosition::ptAxisRectRatio);
       text->position->setCoords(r.event->t, 0.03);

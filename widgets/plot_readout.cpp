@@ -130,12 +130,19 @@ void PlotReadout::place(Marks& m, const QString& text, double x_px) {
   m.label->setText(text);
   m.label->setVisible(!text.isEmpty());
   if (text.isEmpty()) return;
-  // Right of the cursor, or left of it near the right edge.
+  // Right of the cursor, or left of it near the right edge; never past the axis rect's edges
+  // (it was cut at the plot's edges).
   const QRect r = m.plot->axisRect()->rect();
-  const double w = QFontMetricsF(m.label->font()).horizontalAdvance(text.section('\n', 0, 0)) + 40;
-  const bool left = x_px + 8 + w > r.right();
-  m.label->setPositionAlignment((left ? Qt::AlignRight : Qt::AlignLeft) | Qt::AlignTop);
-  m.label->position->setCoords(left ? x_px - 8 : x_px + 8, r.top() + 4);
+  const QMargins pad = m.label->padding();
+  const QSizeF box = QFontMetricsF(m.label->font())
+                         .boundingRect(QRectF(0, 0, 1e6, 1e6), Qt::AlignLeft, text)
+                         .size() +
+                     QSizeF(pad.left() + pad.right() + 2, pad.top() + pad.bottom() + 2);
+  const bool left = x_px + 8 + box.width() > r.right();
+  double x = left ? x_px - 8 - box.width() : x_px + 8;
+  x = std::clamp(x, double(r.left()), std::max(double(r.left()), r.right() - box.width()));
+  m.label->setPositionAlignment(Qt::AlignLeft | Qt::AlignTop);
+  m.label->position->setCoords(x, r.top() + 4);
 }
 
 void PlotReadout::showTime(double t, QCustomPlot* hovered) {
@@ -204,11 +211,12 @@ QString PlotReadout::timeText(const QCustomPlot* p, double t) const {
 
 void PlotReadout::showReplay() {
   // Every time plot: the line and its values at the replay time (nobody hovers one to choose).
-  drawTime(replay_t_, nullptr, true);
+  drawTime(replay_t_, nullptr, replay_labels_);
 }
 
-void PlotReadout::setReplayTime(double t) {
+void PlotReadout::setReplayTime(double t, bool labels) {
   replay_t_ = t;
+  replay_labels_ = labels;
   if (hovering_) return;  // the mouse's readout stays; the replay's comes back when it leaves
   if (std::isfinite(t)) {
     showReplay();

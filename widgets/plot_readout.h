@@ -40,9 +40,10 @@ class PlotReadout final : public QObject {
   void mouseMoved(QCustomPlot* p, const QPointF& pos);
   // The mouse left the plots: back to the replay cursor when one is set, else nothing shown.
   void hide();
-  // The replay cursor at t (s): while the mouse is over no plot, the cursor line and the values
-  // of every time plot are those at t. NaN: no replay cursor (the whole run is shown).
-  void setReplayTime(double t);
+  // The replay cursor at t (s): while the mouse is over no plot, the cursor line (and with
+  // `labels`, the values) of every time plot are those at t. NaN: no replay cursor (the whole
+  // run is shown).
+  void setReplayTime(double t, bool labels = true);
   double replayTime() const { return replay_t_; }
   // True while the mouse is over a plot's data (the readout follows it, not the replay).
   bool hovering() const { return hovering_; }
@@ -68,6 +69,7 @@ class PlotReadout final : public QObject {
   std::vector<Marks> marks_;
   double replay_t_;
   bool hovering_ = false;
+  bool replay_labels_ = true;
 };
 
 }  // namespace kfw::plot

@@ -61,6 +61,7 @@ ReplayController::ReplayController(TransportBar* transport, ConsistencyPanel* co
   connect(transport_, &TransportBar::cursorChanged, this, &ReplayController::drawCursor);
   connect(transport_, &TransportBar::timeWindowChanged, this, &ReplayController::applyTimeWindow);
   connect(transport_, &TransportBar::cursorChanged, this, &ReplayController::followCursor);
+  connect(transport_, &TransportBar::playingChanged, this, &ReplayController::followCursor);
 }
 
 void ReplayController::setView(ScenarioView* view, const QList<PlotPanel>& plots,
@@ -93,7 +94,9 @@ void ReplayController::followCursor() {
   const std::size_t i = transport_->cursor();
   const bool shown =
       result_ && i < result_->t.size() && (transport_->playing() || i + 1 < result_->t.size());
-  zoom_->readout()->setReplayTime(shown ? result_->t[i] : std::numeric_limits<double>::quiet_NaN());
+  // Playing: the cursor line only (a box on every plot covered the data); paused: the values.
+  zoom_->readout()->setReplayTime(shown ? result_->t[i] : std::numeric_limits<double>::quiet_NaN(),
+                                  !transport_->playing());
 }
 
 void ReplayController::applyTimeWindow(double t0, double t1) {

@@ -196,13 +196,17 @@ void TransportBar::play() {
     all_->setChecked(false);
   }
   play_->setIcon(style()->standardIcon(QStyle::SP_MediaPause));
+  const bool was = timer_.isActive();
   timer_.start();
+  if (!was) emit playingChanged(true);
   emitCursor();
 }
 
 void TransportBar::pause() {
+  const bool was = timer_.isActive();
   timer_.stop();
   play_->setIcon(style()->standardIcon(QStyle::SP_MediaPlay));
+  if (was) emit playingChanged(false);
 }
 
 void TransportBar::tick() {

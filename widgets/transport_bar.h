@@ -55,6 +55,7 @@ class TransportBar : public QWidget {
 
  signals:
   void cursorChanged(std::size_t index);
+  void playingChanged(bool playing);
   // While playing (and on "show all"): the time range every time plot should show.
   void timeWindowChanged(double t0, double t1);
 

@@ -1,5 +1,6 @@
-// The readout follows the replay cursor: after a seek and while playing, every time plot shows the
-// cursor line at the replay time and the curves' values there, equal to the run's arrays; a mouse
+// The readout follows the replay cursor: after a seek, every time plot shows the cursor line at
+// the replay time and the curves' values there, equal to the run's arrays (while playing, the
+// line only, the values once paused); a mouse
 // over a plot takes over, and leaving gives the replay back; at the end of the run (nothing
 // replayed) no readout is shown.
 #include <qcustomplot.h>
@@ -138,11 +139,16 @@ TEST_F(ReadoutReplay, FollowsWhilePlaying) {
     last = k;
     ++checked;
     EXPECT_DOUBLE_EQ(readout->lineAt(angle), r->t[k]) << "step " << k;
-    expectNear5(shown(readout->text(angle), "estimate of theta"), r->x[0][k],
-                "playing, step " + std::to_string(k));
+    // Playing: the line only, no box over the data on every plot (issue 32, item 7).
+    for (const auto& p : w.plots())
+      EXPECT_TRUE(readout->text(p.plot).isEmpty()) << p.name.toStdString();
   }
   w.transport()->pause();
   EXPECT_GE(checked, 2) << "the replay did not move";
+  // Paused: the values at the paused step, inside the plot.
+  const std::size_t k = w.transport()->index();
+  expectNear5(shown(readout->text(angle), "estimate of theta"), r->x[0][k],
+              "paused, step " + std::to_string(k));
 }
 
 }  // namespace

@@ -485,13 +485,25 @@ TuneDialog* MainWindow::openTuneDialog() {
       document()->data() ? QFileInfo(q(document()->data()->path)).fileName() : QString("simulated");
   TuneDialog* d = runs_->openTune(preset(), values(), name, document()->tuning_set(), this);
   present_->adopt(d);
+  placeOverPlots(d);
   return d;
+}
+
+void MainWindow::placeOverPlots(QWidget* dialog) {
+  // Over the plots, not the parameters and metrics a user reads beside the dialog's result.
+  if (!dialog || !plot_area_->isVisible()) return;
+  const QRect area(plot_area_->mapToGlobal(QPoint(0, 0)), plot_area_->size());
+  const QSize s = dialog->size().boundedTo(area.size()).expandedTo(dialog->minimumSizeHint());
+  dialog->resize(s);
+  dialog->move(area.left() + std::max(0, (area.width() - s.width()) / 2),
+               area.top() + std::max(0, (area.height() - s.height()) / 2));
 }
 
 MonteCarloDialog* MainWindow::openMonteCarloDialog() {
   if (!document()) return nullptr;
   MonteCarloDialog* d = runs_->openMonteCarlo(values(), this);
   present_->adopt(d);
+  placeOverPlots(d);
   return d;
 }
 
@@ -499,6 +511,7 @@ SweepDialog* MainWindow::openSweepDialog() {
   if (!document() || !waitForRun()) return nullptr;
   SweepDialog* d = runs_->openSweep(values(), this);
   present_->adopt(d);
+  placeOverPlots(d);
   return d;
 }
 

@@ -230,7 +230,8 @@ class MainWindow : public QMainWindow {
   // Presenting, the left column is the parameters': the description hides, the metrics table
   // keeps the primary metric's row; leaving gives back the column as it was.
   void presentationChanged(bool on);
-  void keepOnScreen();  // the frame inside the screen's available geometry
+  void keepOnScreen();                   // the frame inside the screen's available geometry
+  void placeOverPlots(QWidget* dialog);  // a tool dialog beside the left column, not over it
   void refreshPresetList();
   void presetChosen(int index);
   // Per document (main_window_scenario.cpp): its controls and plots, its runs drawn.

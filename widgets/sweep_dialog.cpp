@@ -97,6 +97,7 @@ SweepDialog::SweepDialog(std::shared_ptr<const Scenario> scenario,
   lay->addWidget(progress_);
   status_ = new QLabel(this);
   status_->setObjectName("sweep.status");
+  status_->setWordWrap(true);
   lay->addWidget(status_);
   plot_ = plot::makePlot(this, "Sweep", "", "");
   lay->addWidget(plot_, 1);
@@ -146,8 +147,16 @@ SweepDialog::SweepDialog(std::shared_ptr<const Scenario> scenario,
     if (!r) {
       status_->setText("⚠ " + QString::fromStdString(r.error()));
     } else if (stop_->load()) {
-      status_->setText(
-          QString("cancelled after %1 of %2 points").arg(done_->load()).arg(r->points.size()));
+      // The finished points are kept and shown (issue 32, item 9); the others are gaps.
+      std::size_t ran = 0;
+      for (const auto& m : r->metrics)
+        ran += m.empty() ? 0 : 1;
+      last_ = *r;
+      if (ran > 0) showResult(*r, running_metric_);
+      status_->setText(QString("cancelled after %1 of %2 points%3")
+                           .arg(ran)
+                           .arg(r->points.size())
+                           .arg(ran > 0 ? ": those shown. " + status_->text() : QString()));
     } else {
       progress_->setValue(progress_->maximum());
       last_ = *r;
@@ -249,12 +258,24 @@ void SweepDialog::start() {
   progress_->setRange(0, static_cast<int>(total));
   progress_->setValue(0);
   auto timer = new QTimer(this);
-  connect(timer, &QTimer::timeout, this, [this, timer, done = done_] {
+  auto clock = std::make_shared<QElapsedTimer>();
+  clock->start();
+  connect(timer, &QTimer::timeout, this, [this, timer, clock, total, done = done_] {
     if (!running()) {
       timer->deleteLater();
       return;
     }
-    progress_->setValue(static_cast<int>(done->load()));
+    const std::size_t n = done->load();
+    progress_->setValue(static_cast<int>(n));
+    // The time left from the rate so far (every point costs about one run).
+    if (n > 0 && clock->elapsed() > 300) {
+      const double left = clock->elapsed() / 1000.0 * static_cast<double>(total - n) / n;
+      status_->setText(QString("running… %1 of %2 points, about %3 left")
+                           .arg(n)
+                           .arg(total)
+                           .arg(left < 90 ? QString("%1 s").arg(std::ceil(left))
+                                          : QString("%1 min").arg(std::ceil(left / 60))));
+    }
   });
   timer->start(50);
   watcher_.setFuture(
@@ -284,7 +305,9 @@ void SweepDialog::showResult(const SweepResult& r, const QString& metric) {
   }
   plot_->xAxis->setLabel(QString::fromStdString(r.axes[0].key));
   spec_ = describe_metric(*scenario_, m);
-  std::size_t best = 0;
+  std::size_t best = 0;  // the first finite point, then any better (a cancelled sweep has gaps)
+  while (best + 1 < r.points.size() && !std::isfinite(value(best)))
+    ++best;
   for (std::size_t i = 0; i < r.points.size(); ++i) {
     if (better(spec_, value(i), value(best))) best = i;
   }
@@ -351,7 +374,9 @@ void SweepDialog::showResult(const SweepResult& r, const QString& metric) {
     plot_->legend->setVisible(false);
     plot_->rescaleAxes();
   }
-  status_->setText(QString("%1 points; best %2 (%3) = %4 at %5; click a point to apply it")
+  const QString warnings = sweepWarnings(r, value, best);
+  status_->setStyleSheet(warnings.isEmpty() ? QString() : QString("color: #8a1c13;"));
+  status_->setText(QString("%1 points; best %2 (%3) = %4 at %5; click a point to apply it%6")
                        .arg(r.points.size())
                        .arg(metric, sense)
                        .arg(value(best), 0, 'g', 5)
@@ -363,8 +388,44 @@ void SweepDialog::showResult(const SweepResult& r, const QString& metric) {
                                         .arg(r.points[best][a], 0, 'g', 4);
                          }
                          return parts.join(", ");
-                       }()));
+                       }())
+                       .arg(warnings));
   plot_->replot();
+}
+
+QString SweepDialog::sweepWarnings(const SweepResult& r,
+                                   const std::function<double(std::size_t)>& value,
+                                   std::size_t best) const {
+  QString out;
+  const double vb = value(best);
+  if (!std::isfinite(vb)) return out;
+  // On the grid's edge: the best may lie beyond it.
+  QStringList edge;
+  for (std::size_t a = 0; a < r.axes.size(); ++a) {
+    const auto v = r.axes[a].values();
+    if (v.size() > 2 && (r.points[best][a] == v.front() || r.points[best][a] == v.back()))
+      edge << QString::fromStdString(r.axes[a].key);
+  }
+  if (!edge.isEmpty())
+    out += "\n⚠ The best point is on the grid's edge for " + edge.join(", ") + ": widen the range.";
+  // A flat valley: many points as good as the best (Q and R scaled together change little).
+  std::size_t finite = 0, near = 0;
+  for (std::size_t i = 0; i < r.points.size(); ++i) {
+    const double v = value(i);
+    if (!std::isfinite(v)) continue;
+    ++finite;
+    if (std::abs(v - vb) <= kFlatFraction * std::max(std::abs(vb), 1e-300)) ++near;
+  }
+  if (finite >= 6 && near >= std::max<std::size_t>(3, finite / 10)) {
+    out += QString(
+               "\n⚠ Flat: %1 of %2 points are within %3 % of the best, so this metric hardly "
+               "tells them apart (a ratio such as Q/R may be all it sets). Fix one parameter, "
+               "or sweep a consistency metric (NIS).")
+               .arg(near)
+               .arg(finite)
+               .arg(kFlatFraction * 100);
+  }
+  return out;
 }
 
 }  // namespace kfw

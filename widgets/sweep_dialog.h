@@ -7,6 +7,7 @@
 #include <QDialog>
 #include <QFutureWatcher>
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -59,6 +60,11 @@ class SweepDialog : public QDialog {
     QSpinBox* n = nullptr;
   };
   void showResult(const SweepResult& r, const QString& metric);
+  // What a best point leaves open: on the grid's edge, or in a flat valley (many points within
+  // kFlatFraction of it); "" when neither.
+  QString sweepWarnings(const SweepResult& r, const std::function<double(std::size_t)>& value,
+                        std::size_t best) const;
+  static constexpr double kFlatFraction = 0.01;
 
   std::shared_ptr<const Scenario> scenario_;
   std::shared_ptr<const Dataset> data_;

@@ -6,11 +6,13 @@
 
 #include <QCoreApplication>
 #include <QDeadlineTimer>
+#include <QElapsedTimer>
 #include <QFile>
 #include <QTemporaryDir>
 
 #include "common/gui_util.h"
 #include "main_window.h"
+#include "metrics_panel.h"
 #include "sweep_dialog.h"
 #include "tune_dialog.h"
 
@@ -180,6 +182,49 @@ TEST(SweepDialog, BestFollowsTheDirectionAndAClickApplies) {
   const QStringList lines = QString(f.readAll()).split('\n', Qt::SkipEmptyParts);
   ASSERT_EQ(lines.size(), 10);
   EXPECT_EQ(lines[0], "R,whiteness_p");
+}
+
+// Cancel keeps the finished points (they are shown, the best among them marked), the dialog
+// sits over the plots and not over the metrics table, and a flat valley is warned of.
+TEST(SweepDialog, CancelKeepsTheFinishedPointsBesideTheMetrics) {
+  MainWindow w;
+  w.resize(1366, 768);
+  w.show();
+  ASSERT_TRUE(w.loadPreset("helicopter", {}, {"sim.duration=60"}).ok());
+  ASSERT_TRUE(w.waitForRun());
+  SweepDialog* d = w.openSweepDialog();
+  ASSERT_NE(d, nullptr);
+  QApplication::processEvents();
+  const QWidget* metrics = w.metricsPanel();
+  const QRect table(metrics->mapToGlobal(QPoint(0, 0)), metrics->size());
+  EXPECT_FALSE(d->frameGeometry().intersects(table)) << "the dialog covers the metrics";
+  d->setAxis(0, "Q", 1, 1000, 60);
+  d->setAxis(1, "R", 0.1, 100, 60);
+  d->setMetric("rmse");
+  d->start();
+  QElapsedTimer clock;
+  clock.start();
+  while (d->progressValue() < 4 && clock.elapsed() < 60000)
+    QApplication::processEvents(QEventLoop::AllEvents, 20);
+  d->cancel();
+  ASSERT_TRUE(waitDone(d));
+  EXPECT_TRUE(d->message().contains("cancelled after")) << d->message().toStdString();
+  const SweepResult* r = d->result();
+  ASSERT_NE(r, nullptr);
+  std::size_t ran = 0;
+  for (const auto& m : r->metrics)
+    ran += m.empty() ? 0 : 1;
+  EXPECT_GE(ran, 4u);
+  EXPECT_LT(ran, r->points.size());
+  ASSERT_LT(d->bestIndex(), r->points.size());
+  EXPECT_FALSE(r->metrics[d->bestIndex()].empty()) << "the best is a finished point";
+  EXPECT_TRUE(d->message().contains("best rmse")) << d->message().toStdString();
+  // A parameter over a range where it changes nothing that matters: flat, and said so.
+  d->setAxis(0, "gamma", 0.0, 1e-9, 8);
+  d->setAxis(1, "", 0, 0, 1);
+  d->start();
+  ASSERT_TRUE(waitDone(d));
+  EXPECT_TRUE(d->message().contains("Flat:")) << d->message().toStdString();
 }
 
 // Switching preset or quitting with unsaved changes or snapshots asks first.

@@ -80,7 +80,7 @@ std::string unit_of_words(const std::string& a, const std::string& b) {
 
 int name_score(const std::string& column, const std::string& role) {
   const auto w = words(column);
-  if (lower(column) == lower(role)) return 10;
+  if (lower(column) == lower(role)) return 10 * 16;
   int best = 0;
   for (const auto& x : w) {
     if (x == lower(role)) best = std::max(best, 5);
@@ -92,7 +92,10 @@ int name_score(const std::string& column, const std::string& role) {
         best = std::max(best, s.weight);
     }
   }
-  return best;
+  // Between columns that match as well, the one with fewer other words ("c_truth" before
+  // "c_bias_truth" for truth).
+  const int extra = std::min(15, static_cast<int>(w.size()) - 1);
+  return best > 0 ? best * 16 - std::max(0, extra) : 0;
 }
 
 bool looks_iso(const Table& t, std::size_t col) {

@@ -96,6 +96,10 @@ TEST(Guess, WordsAndUnits) {
   EXPECT_EQ(m.at("truth").column, "ref_angle");
   EXPECT_EQ(m.at("gyro").column, "gyro_x");
   EXPECT_EQ(m.at("angle").column, "roll");
+  // Two columns that name the role as well: the one with fewer other words.
+  EXPECT_EQ(
+      guess_mapping(table("t,c_bias_truth,c_truth\n0,1,2\n1,1,2\n"), kHeli).at("truth").column,
+      "c_truth");
   // No time word: the first column, because it increases.
   EXPECT_EQ(guess_mapping(table("k,gyro\n1,0\n2,0\n"), kHeli).at("t").column, "k");
   EXPECT_EQ(guess_mapping(table("k,gyro\n2,0\n1,0\n"), kHeli).count("t"), 0u);

@@ -208,37 +208,7 @@ QWidget* MainWindow::buildCenter() {
 }
 
 void MainWindow::buildMenus() {
-  QMenu* file = menuBar()->addMenu("&File");
-  file->addAction("Open &preset…", this, [this] {
-    const QString f =
-        QFileDialog::getOpenFileName(this, "Open preset", q(preset_dir()), "Presets (*.json)");
-    // Read first: a file that does not load is refused without asking to discard anything.
-    if (!f.isEmpty()) report(this, "Open preset", loadPreset(f, {}, {}, {}, "Open preset"));
-  });
-  file->addAction("&Open CSV…", QKeySequence::Open, this, [this] {
-    const QString f =
-        QFileDialog::getOpenFileName(this, "Open dataset", QString(), "CSV (*.csv);;All files (*)");
-    if (!f.isEmpty()) report(this, "Open CSV", openDataset(f));
-  });
-  file->addAction("Use &simulated data", data_, &DataController::useSimulatedData);
-  file->addAction("&Save preset as…", QKeySequence::SaveAs, this, [this] {
-    const QString f =
-        QFileDialog::getSaveFileName(this, "Save preset", QString(), "Presets (*.json)");
-    if (!f.isEmpty()) report(this, "Save preset", savePreset(f));
-  });
-  file->addAction("Open s&ession…", this, [this] {
-    const QString f =
-        QFileDialog::getOpenFileName(this, "Open session", QString(), "Sessions (*.json)");
-    if (!f.isEmpty()) report(this, "Open session", loadSession(f, "Open session"));
-  });
-  file->addAction("Save session &as…", this, [this] {
-    const QString f =
-        QFileDialog::getSaveFileName(this, "Save session", "session.json", "Sessions (*.json)");
-    if (!f.isEmpty()) report(this, "Save session", saveSession(f));
-  });
-  file->addAction("&Export plots…", export_, &ExportController::exportWithDialog);
-  file->addSeparator();
-  file->addAction("&Quit", QKeySequence::Quit, this, &QWidget::close);
+  buildFileMenu();  // main_window_files.cpp
   QMenu* edit = menuBar()->addMenu("&Edit");
   undo_action_ = edit->addAction("&Undo", QKeySequence::Undo, this, [this] { undo(); });
   undo_action_->setObjectName("undoAction");
@@ -246,7 +216,17 @@ void MainWindow::buildMenus() {
                                  [this] { redo(); });
   redo_action_->setObjectName("redoAction");
   edit->addSeparator();
-  edit->addAction("Reset to &preset values", doc_, &DocumentController::resetToPreset);
+  edit->addAction("Reset to &preset values", QKeySequence(Qt::CTRL | Qt::Key_R), doc_,
+                  &DocumentController::resetToPreset);
+  QAction* copy =
+      edit->addAction("&Copy command line", QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_C), this,
+                      &MainWindow::copyCommandLine);
+  copy->setObjectName("copyCommandLine");
+  copy->setToolTip(
+      "kfw-cli run … and kfw --export … with this preset, the changed values, the "
+      "data and its mapping; leaves out pinned snapshots, zoom, the replay cursor "
+      "and presentation");
+  edit->setToolTipsVisible(true);
   updateUndoActions();
   buildToolsMenus();
   present_->buildMenu(menuBar());
@@ -255,10 +235,14 @@ void MainWindow::buildMenus() {
 
 void MainWindow::buildToolsMenus() {
   QMenu* tools = menuBar()->addMenu("&Tools");
-  tools->addAction("Auto-&tune…", this, [this] { openTuneDialog(); });
-  tools->addAction("&Sweep a metric…", this, [this] { openSweepDialog(); });
-  tools->addAction("&Monte Carlo over seeds…", this, [this] { openMonteCarloDialog(); });
-  tools->addAction("&Pin snapshot…", this, [this] { doc_->askPin("Name:", false); });
+  tools->addAction("Auto-&tune…", QKeySequence(Qt::CTRL | Qt::Key_T), this,
+                   [this] { openTuneDialog(); });
+  tools->addAction("&Sweep a metric…", QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_T), this,
+                   [this] { openSweepDialog(); });
+  tools->addAction("&Monte Carlo over seeds…", QKeySequence(Qt::CTRL | Qt::Key_M), this,
+                   [this] { openMonteCarloDialog(); });
+  tools->addAction("&Pin snapshot…", QKeySequence(Qt::CTRL | Qt::Key_P), this,
+                   [this] { doc_->askPin("Name:", false); });
   tools->addAction("&Clear snapshots", doc_, &DocumentController::clearPins);
   // The replay keys (Space, ←, →, Home, End) work with any focus but text entry
   // (replay_controller.cpp); the menu names them.

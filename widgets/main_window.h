@@ -26,6 +26,7 @@
 #include "scenario_view.h"
 
 class QAction;
+class QMenu;
 class QCustomPlot;
 class QComboBox;
 class QLabel;
@@ -98,6 +99,21 @@ class MainWindow : public QMainWindow {
   int snapshotCount() const { return doc_->pinCount(); }
   // Sessions: everything set up here, in one JSON file (atomic write).
   Status saveSession(const QString& path) const { return doc_->saveSession(path); }
+  // Opens a CSV (data), preset or session by what the file is (.json: a session when its format
+  // says so) or as `as`; on success it heads the recent files (main_window_files.cpp).
+  enum class OpenAs { kData, kPreset, kSession };
+  Status openAnyFile(const QString& path, std::optional<OpenAs> as = {});
+  static OpenAs openAsFor(const QString& path);
+  // The recent files, newest first (QSettings "recent/files", at most kRecentFiles).
+  static QStringList recentFiles();
+  static constexpr int kRecentFiles = 10;
+  // Ctrl+S: the session last opened or saved, else asks where; saveSessionAs remembers the path.
+  Status saveSessionHere();
+  Status saveSessionAs(const QString& path);
+  // kfw-cli run … and kfw --export … reproducing the preset, values, data and mapping
+  // (document/command_line.h); copyCommandLine puts them on the clipboard.
+  QString commandLine() const;
+  void copyCommandLine();
   Status loadSession(const QString& path, const QString& ask = {}) {
     return doc_->loadSession(path, ask);
   }
@@ -217,11 +233,17 @@ class MainWindow : public QMainWindow {
   void resizeEvent(QResizeEvent* event) override;
   // The first show brings the frame (decorations now known) inside the screen.
   void showEvent(QShowEvent* event) override;
+  // A CSV, preset or session dropped on the window opens (openAnyFile).
+  void dragEnterEvent(QDragEnterEvent* event) override;
+  void dropEvent(QDropEvent* event) override;
 
  private:
   QWidget* buildLeft();    // preset picker, data, tools; the parameters go in per preset
   QWidget* buildCenter();  // error banner, plots / consistency / data tabs, transport
   void buildMenus();
+  void buildFileMenu();
+  void rememberRecent(const QString& path);
+  void fillRecentMenu();
   void buildToolsMenus();
   void wireControllers();
   void registerViewState();  // the session's view state: window, splitters, zoom, look, replay
@@ -283,7 +305,9 @@ class MainWindow : public QMainWindow {
   QAction* undo_action_ = nullptr;
   QAction* redo_action_ = nullptr;
   bool shown_once_ = false;
-  QSize fitted_size_;  // the size fitToScreen() chose
+  QMenu* recent_menu_ = nullptr;
+  QString session_path_;  // Ctrl+S saves here
+  QSize fitted_size_;     // the size fitToScreen() chose
   QList<int> left_sizes_before_present_;
 };
 

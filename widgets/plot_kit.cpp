@@ -99,8 +99,61 @@ QCustomPlot* makePlot(QWidget* parent, const QString& title, const QString& xLab
   p->plotLayout()->addElement(1, 0, p->legend);
   p->plotLayout()->setRowStretchFactor(1, 0.001);
   p->plotLayout()->setRowSpacing(0);
-  QObject::connect(p, &QCustomPlot::beforeReplot, p, [p] { fitLegend(p, p->width()); });
+  QObject::connect(p, &QCustomPlot::beforeReplot, p, [p] {
+    fitLegend(p, p->width());
+    keepUserHidden(p);
+  });
+  // A click on a legend entry hides its curve (a band: both edges), another shows it again.
+  QObject::connect(p, &QCustomPlot::legendClick, p,
+                   [p](QCPLegend*, QCPAbstractLegendItem* item, QMouseEvent*) {
+                     auto* entry = qobject_cast<QCPPlottableLegendItem*>(item);
+                     if (!entry) return;
+                     QCPAbstractPlottable* c = entry->plottable();
+                     setUserHidden(c, !userHidden(c));
+                     p->replot();
+                   });
   return p;
+}
+
+namespace {
+const char* const kUserHidden = "kfwUserHidden";
+const char* const kLegendInk = "kfwLegendInk";
+}  // namespace
+
+bool userHidden(const QCPAbstractPlottable* c) {
+  return c->property(kUserHidden).toBool();
+}
+
+void setUserHidden(QCPAbstractPlottable* c, bool hidden) {
+  QCustomPlot* p = c->parentPlot();
+  c->setProperty(kUserHidden, hidden);
+  if (!hidden) c->setVisible(true);
+  if (auto* g = qobject_cast<QCPGraph*>(c)) {
+    for (int i = 0; i < p->graphCount(); ++i) {
+      QCPGraph* lower = p->graph(i);
+      if (lower->channelFillGraph() != g) continue;
+      lower->setProperty(kUserHidden, hidden);
+      if (!hidden) lower->setVisible(true);
+    }
+  }
+  // The entry greyed while its curve is hidden.
+  if (QCPPlottableLegendItem* entry = p->legend ? p->legend->itemWithPlottable(c) : nullptr) {
+    if (hidden) {
+      entry->setProperty(kLegendInk, entry->textColor());
+      entry->setTextColor(QColor(160, 160, 160));
+    } else if (entry->property(kLegendInk).isValid()) {
+      entry->setTextColor(entry->property(kLegendInk).value<QColor>());
+    }
+  }
+  keepUserHidden(p);
+}
+
+void keepUserHidden(QCustomPlot* p) {
+  // After the view's own setVisible (a new run shows its truth again): the user's choice stays.
+  for (int i = 0; i < p->plottableCount(); ++i) {
+    QCPAbstractPlottable* c = p->plottable(i);
+    if (c->property(kUserHidden).toBool() && c->visible()) c->setVisible(false);
+  }
 }
 
 namespace {

@@ -42,6 +42,11 @@ QColor ghost(int i);
 QCustomPlot* makePlot(QWidget* parent, const QString& title, const QString& xLabel,
                       const QString& yLabel);
 enum class Style { kLine, kDots, kStep, kDashed };
+// A curve the user hid by clicking its legend entry (a band: both edges): it stays hidden through
+// the view's redraws until clicked again; its entry is greyed.
+bool userHidden(const QCPAbstractPlottable* c);
+void setUserHidden(QCPAbstractPlottable* c, bool hidden);
+void keepUserHidden(QCustomPlot* p);
 // Pens wider than 1 px go through Qt's stroker, several times slower on dense data: keep data
 // pens at 1 px unless a curve has few points (width > 1 is for those).
 QCPGraph* addGraph(QCustomPlot* p, const QString& name, const QColor& c, Style s = Style::kLine,

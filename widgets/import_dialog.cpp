@@ -21,6 +21,8 @@
 #include <optional>
 
 #include "data/import.h"
+#include "plot_kit.h"
+#include "plot_look.h"
 
 namespace kfw {
 
@@ -29,7 +31,39 @@ QString q(const std::string& s) {
   return QString::fromStdString(s);
 }
 constexpr int kPreviewRows = 20;
-constexpr std::size_t kPlotRows = 5000;
+// The preview draws the whole file, each curve reduced to its per-bucket min and max.
+constexpr std::size_t kPlotBuckets = 1500;
+
+// x, y of the whole series, at most 2 × kPlotBuckets points: the shape of a long log kept.
+void envelope(const std::vector<double>& x, const std::vector<double>& y, QVector<double>& ox,
+              QVector<double>& oy) {
+  const std::size_t n = std::min(x.size(), y.size());
+  ox.clear();
+  oy.clear();
+  if (n <= 2 * kPlotBuckets) {
+    for (std::size_t i = 0; i < n; ++i) {
+      ox << x[i];
+      oy << y[i];
+    }
+    return;
+  }
+  for (std::size_t b = 0; b < kPlotBuckets; ++b) {
+    const std::size_t s = b * n / kPlotBuckets, e = (b + 1) * n / kPlotBuckets;
+    std::size_t lo = s, hi = s;
+    for (std::size_t i = s; i < e; ++i) {
+      if (y[i] < y[lo]) lo = i;
+      if (y[i] > y[hi]) hi = i;
+    }
+    for (std::size_t i : {std::min(lo, hi), std::max(lo, hi)}) {
+      ox << x[i];
+      oy << y[i];
+    }
+  }
+}
+
+bool isTruth(const std::string& role) {
+  return role.find("truth") != std::string::npos;
+}
 const QColor kColors[] = {QColor(31, 119, 180), QColor(214, 39, 40), QColor(44, 160, 44),
                           QColor(148, 103, 189), QColor(255, 127, 14)};
 
@@ -146,12 +180,11 @@ ImportDialog::ImportDialog(std::shared_ptr<const Table> table, const std::vector
     rows_.push_back(row);
   }
   lay->addLayout(grid);
-  plot_ = new QCustomPlot(this);
+  // The house plot: its legend in a row of its own, never over the data.
+  plot_ = plot::makePlot(this, "Preview", "t (s)", "value (the role's unit)");
   plot_->setObjectName("importPlot");
-  plot_->setMinimumHeight(160);
-  plot_->xAxis->setLabel("t [s]");
-  plot_->legend->setVisible(true);
-  lay->addWidget(plot_);
+  plot_->setMinimumHeight(200);
+  lay->addWidget(plot_, 1);
   problem_ = new QLabel(this);
   problem_->setObjectName("importProblem");
   problem_->setStyleSheet("color: #a01e14");
@@ -396,19 +429,28 @@ void ImportDialog::refresh() {
   problem_->setText(why);
   ok_->setEnabled(why.isEmpty());
   if (d) {
-    int k = 0;
     const auto& t = d->col("t");
-    const std::size_t n = std::min(t.size(), kPlotRows);
+    // Truth last, dashed, on top: it was hidden under the measurement it follows.
+    std::vector<const ColumnSpec*> order;
     for (const auto& r : roles_) {
-      if (r.name == "t" || !m.count(r.name) || d->index(r.name) < 0) continue;
-      const auto& v = d->col(r.name);
-      auto* g = plot_->addGraph();
-      g->setData(QVector<double>(t.begin(), t.begin() + static_cast<std::ptrdiff_t>(n)),
-                 QVector<double>(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n)), true);
-      g->setName(q(r.name) + (r.unit.empty() ? "" : " [" + q(r.unit) + "]"));
-      g->setPen(QPen(kColors[k++ % 5]));
+      if (r.name != "t" && m.count(r.name) && d->index(r.name) >= 0 && !isTruth(r.name))
+        order.push_back(&r);
     }
-    plot_->xAxis->setLabel("t [s]");
+    for (const auto& r : roles_) {
+      if (m.count(r.name) && d->index(r.name) >= 0 && isTruth(r.name)) order.push_back(&r);
+    }
+    int k = 0;
+    for (const ColumnSpec* r : order) {
+      QVector<double> x, y;
+      envelope(t, d->col(r->name), x, y);
+      addPreviewGraph(x, y, q(r->name) + (r->unit.empty() ? "" : " (" + q(r->unit) + ")"),
+                      isTruth(r->name) ? plot::color::kTruth : kColors[k++ % 5], isTruth(r->name));
+    }
+    plot_->xAxis->setLabel("t (s)");
+    const double span = t.empty() ? 0.0 : t.back() - t.front();
+    setTitle(plot_, QString("Preview: the whole file, %1 s in %2 rows")
+                        .arg(span, 0, 'f', span < 10 ? 2 : 1)
+                        .arg(t.size()));
   } else {
     plotRows(m);
   }
@@ -428,18 +470,27 @@ void ImportDialog::plotRows(const Mapping& m) {
     double f = 1.0;
     if (auto u = unit_factor(it->second.unit, r.role.unit); u) f = *u;
     const double sign = it->second.flip ? -1.0 : 1.0;
-    const std::size_t n = std::min(v.size(), kPlotRows);
-    QVector<double> x(static_cast<int>(n)), y(static_cast<int>(n));
-    for (std::size_t i = 0; i < n; ++i) {
-      x[static_cast<int>(i)] = static_cast<double>(i);
-      y[static_cast<int>(i)] = sign * (it->second.scale * (f * v[i]) + it->second.offset);
+    std::vector<double> rows(v.size()), y(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      rows[i] = static_cast<double>(i + 1);
+      y[i] = sign * (it->second.scale * (f * v[i]) + it->second.offset);
     }
-    auto* g = plot_->addGraph();
-    g->setData(x, y, true);
-    g->setName(q(r.role.name) + (r.role.unit.empty() ? "" : " [" + q(r.role.unit) + "]"));
-    g->setPen(QPen(kColors[k++ % 5]));
+    QVector<double> ox, oy;
+    envelope(rows, y, ox, oy);
+    addPreviewGraph(ox, oy,
+                    q(r.role.name) + (r.role.unit.empty() ? "" : " (" + q(r.role.unit) + ")"),
+                    kColors[k++ % 5], false);
   }
   plot_->xAxis->setLabel("row");
+  setTitle(
+      plot_,
+      QString("Preview: the whole file by row (%1 rows; no time read yet)").arg(table_->rows()));
+}
+
+void ImportDialog::addPreviewGraph(const QVector<double>& x, const QVector<double>& y,
+                                   const QString& name, const QColor& c, bool dashed) {
+  auto* g = plot::addGraph(plot_, name, c, dashed ? plot::Style::kDashed : plot::Style::kLine);
+  g->setData(x, y, true);
 }
 
 }  // namespace kfw

@@ -5,8 +5,10 @@
 // what was guessed; refuses OK while a required role has no column or a column has two roles.
 #pragma once
 
+#include <QColor>
 #include <QDialog>
 #include <QString>
+#include <QVector>
 #include <memory>
 #include <vector>
 
@@ -76,6 +78,8 @@ class ImportDialog : public QDialog {
   void reread();  // the separator or header choice changed
   void showTable(const Mapping& keep);
   void plotRows(const Mapping& m);
+  void addPreviewGraph(const QVector<double>& x, const QVector<double>& y, const QString& name,
+                       const QColor& c, bool dashed);
 
   std::shared_ptr<const Table> table_;
   std::vector<ColumnSpec> roles_;

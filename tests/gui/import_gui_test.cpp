@@ -13,6 +13,7 @@
 #include <QSettings>
 #include <QTableWidget>
 #include <QTemporaryDir>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -103,7 +104,7 @@ TEST_F(ImportGui, TheDialogShowsTheImportsOwnErrorAndReadsLocalTimes) {
     zone->setText("Europe/Berlin");
     EXPECT_EQ(d.problem(), QString());
     EXPECT_EQ(d.mapping().at("t").unit, "iso@Europe/Berlin");
-    EXPECT_EQ(d.plot()->xAxis->label(), "t [s]");
+    EXPECT_EQ(d.plot()->xAxis->label(), "t (s)");
     EXPECT_EQ(d.plot()->graph(0)->data()->size(), 3);
     EXPECT_DOUBLE_EQ((d.plot()->graph(0)->data()->constEnd() - 1)->key, 2.0);  // 1 s each
     // KFW_TEST_SHOT_DIR=DIR keeps a picture of the dialog for a human to look at.
@@ -118,6 +119,49 @@ TEST_F(ImportGui, TheDialogShowsTheImportsOwnErrorAndReadsLocalTimes) {
   EXPECT_EQ(w.dataset()->source, local.toStdString());
   EXPECT_EQ(w.dataset()->time_origin, "2024-03-31T00:59:58.000000000Z");
   EXPECT_EQ(w.document()->data()->mapping.at("t").unit, "iso@Europe/Berlin");
+}
+
+// The preview shows the whole of a long log and says so; the truth is drawn last, dashed, over the
+// measurement it follows; the legend has a row of its own (issue 32, item 13).
+TEST_F(ImportGui, ThePreviewShowsTheWholeLogAndTheTruthOnTop) {
+  QTemporaryDir tmp;
+  const QString path = tmp.filePath("long.csv");
+  {
+    std::ofstream f(path.toStdString());
+    f << "zeit_ms;winkel;drehrate;referenz_truth\n";
+    for (int k = 0; k < 9715; ++k) {  // 194.3 s at 50 Hz
+      const double t = 0.02 * k, a = 5.0 * std::sin(0.1 * t);
+      f << 1000.0 * t << ';' << a + 0.3 * std::sin(37.0 * t) << ';' << 0.5 * std::cos(0.1 * t)
+        << ';' << a << '\n';
+    }
+  }
+  w.setImportHook([](ImportDialog& d) {
+    d.findChild<QComboBox*>("column.t")->setCurrentText("zeit_ms");
+    auto* unit = d.findChild<QComboBox*>("unit.t");
+    unit->setCurrentIndex(unit->findData("ms"));
+    d.findChild<QComboBox*>("column.angle")->setCurrentText("winkel");
+    d.findChild<QComboBox*>("column.gyro")->setCurrentText("drehrate");
+    d.findChild<QComboBox*>("column.truth")->setCurrentText("referenz_truth");
+    EXPECT_EQ(d.problem(), QString()) << d.problem().toStdString();
+    QCustomPlot* p = d.plot();
+    EXPECT_GE(p->graphCount(), 3);
+    double last = 0;
+    for (int i = 0; i < p->graphCount(); ++i)
+      last = std::max(last, (p->graph(i)->data()->constEnd() - 1)->key);
+    EXPECT_NEAR(last, 194.28, 1e-6) << "the preview stops before the log's end";
+    const auto* title = p->findChild<QCPTextElement*>("title");
+    EXPECT_TRUE(title && title->text().contains("whole file")) << title->text().toStdString();
+    QCPGraph* top = p->graph(p->graphCount() - 1);
+    EXPECT_TRUE(top->name().startsWith("truth")) << top->name().toStdString();
+    EXPECT_EQ(top->pen().style(), Qt::DashLine);
+    EXPECT_NE(p->legend->layout(), p->axisRect()->insetLayout()) << "the legend covers the data";
+    if (const char* shots = std::getenv("KFW_TEST_SHOT_DIR")) {
+      d.resize(900, 720);
+      d.grab().save(QString(shots) + "/import_dialog_long.png");
+    }
+    return true;
+  });
+  ASSERT_TRUE(w.openDataset(path).ok()) << w.lastError().toStdString();
 }
 
 TEST_F(ImportGui, BadFilesKeepThePreviousDataset) {

@@ -8,6 +8,7 @@
 
 #include "plot_blocks.h"
 #include "plot_kit.h"
+#include "plot_text.h"
 
 namespace kfw::plot {
 
@@ -85,7 +86,7 @@ void GainCurvePlot::setCurve(const GainCurve& c, const QString& label, const QSt
     op_->addData(c.at_x, v);
 
   const QString xname = unit.isEmpty() ? label : QString("%1 (%2)").arg(label, unit);
-  plot_->xAxis->setLabel(xname);
+  plot_->xAxis->setLabel(typeset(xname));
   plot_->yAxis->setLabel(gainAxisLabel(c.units));
   if (c.log) {
     setLog(plot_->xAxis);

@@ -14,6 +14,8 @@
 #include <optional>
 #include <vector>
 
+#include "plot_text.h"
+
 namespace kfw {
 
 namespace {
@@ -217,8 +219,8 @@ void MetricsPanel::setRuns(const Scenario& scenario, std::shared_ptr<const RunRe
   setRowCount(static_cast<int>(rows.size()) + 4);  // + one header per group at most
 
   auto nameItem = [](const MetricSpec& spec) {
-    QString label = q(spec.label);
-    if (!spec.unit.empty()) label += " (" + q(spec.unit) + ")";
+    QString label = plot::typeset(q(spec.label));
+    if (!spec.unit.empty()) label = plot::withUnit(label, spec.unit);
     auto* name = new QTableWidgetItem(label);
     name->setData(kKeyRole, q(spec.key));
     QString sense = QString(direction_name(spec.direction)) + " is better";

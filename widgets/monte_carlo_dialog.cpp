@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "plot_kit.h"
+#include "plot_text.h"
 
 namespace kfw {
 
@@ -161,8 +162,7 @@ void MonteCarloDialog::showSummary(const MonteCarloSummary& s) {
   error_plot_->clearPlottables();
   if (s.error) {
     const ErrorBand& e = *s.error;
-    error_plot_->yAxis->setLabel(q(e.label + (e.unit.empty() ? "" : " (" + e.unit + ")")) +
-                                 " error");
+    error_plot_->yAxis->setLabel(plot::typeset(plot::withUnit(q(e.label) + " error", e.unit)));
     std::vector<double> lo, hi, f_lo, f_hi, zero(e.filter_sigma.size(), 0.0);
     two_sided(e.mean, e.sd, -1.0, lo);
     two_sided(e.mean, e.sd, 1.0, hi);

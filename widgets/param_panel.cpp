@@ -15,6 +15,8 @@
 #include <cmath>
 #include <utility>
 
+#include "plot_text.h"
+
 namespace kfw {
 
 // A control of the scrolling panel that takes the mouse wheel only once it has the focus (clicked
@@ -130,7 +132,7 @@ ParamPanel::ParamPanel(const ParamTable& table, const Ranges& ranges, QWidget* p
       row.hi = it->second.second;
     }
     const QString key = QString::fromStdString(s.key);
-    QString text = QString::fromStdString(s.label);
+    QString text = plot::typeset(QString::fromStdString(s.label));
     auto* label = new QLabel(text, box);
     label->setToolTip(QString::fromStdString(s.key + ": " + s.description));
     label->setObjectName("label." + key);

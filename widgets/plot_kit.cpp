@@ -8,6 +8,7 @@
 
 #include "draw_batch.h"
 #include "plot_fast.h"
+#include "plot_text.h"
 
 namespace kfw::plot {
 
@@ -72,11 +73,11 @@ QCustomPlot* makePlot(QWidget* parent, const QString& title, const QString& xLab
   QFont tf = base;
   tf.setPointSizeF(10.5);
   tf.setBold(true);
-  auto* te = new QCPTextElement(p, title, tf);
+  auto* te = new QCPTextElement(p, typeset(title), tf);
   te->setObjectName("title");
   p->plotLayout()->addElement(0, 0, te);
-  p->xAxis->setLabel(xLabel);
-  p->yAxis->setLabel(yLabel);
+  p->xAxis->setLabel(typeset(xLabel));
+  p->yAxis->setLabel(typeset(yLabel));
   // Every axis, shown or not: an unset font is QFont(), the application's, which presentation
   // scales (an axis made while presenting kept its large font after leaving).
   for (QCPAxis* a : {p->xAxis, p->yAxis, p->xAxis2, p->yAxis2}) {
@@ -186,7 +187,7 @@ void setExportLook(QCustomPlot* p, bool exporting) {
 
 QCPGraph* addGraph(QCustomPlot* p, const QString& name, const QColor& c, Style s, double width) {
   QCPGraph* g = s == Style::kDots ? newDotGraph(p->xAxis, p->yAxis) : p->addGraph();
-  g->setName(name);
+  g->setName(typeset(name));
   QPen pen(c);
   pen.setWidthF(width);
   switch (s) {
@@ -220,12 +221,12 @@ QCPGraph* addGhost(QCustomPlot* p, const QString& name, int i, Style s) {
 QCPGraph* addGraphRight(QCustomPlot* p, const QString& name, const QColor& c,
                         const QString& rightLabel) {
   QCPGraph* g = p->addGraph(p->xAxis, p->yAxis2);
-  g->setName(name);
+  g->setName(typeset(name));
   QPen pen(c);
   pen.setWidthF(1.0);
   g->setPen(pen);
   p->yAxis2->setVisible(true);
-  p->yAxis2->setLabel(rightLabel);
+  p->yAxis2->setLabel(typeset(rightLabel));
   return g;
 }
 
@@ -288,7 +289,7 @@ Band addBand(QCustomPlot* p, const QString& name, const QColor& c, bool overlaps
   const QColor edge = overlaps ? QColor(c.red(), c.green(), c.blue(), 90) : overWhite(c, 90);
   Band b;
   b.upper = new BandEdge(p->xAxis, p->yAxis, fill);
-  b.upper->setName(name);
+  b.upper->setName(typeset(name));
   b.upper->addToLegend();
   b.upper->setPen(QPen(edge));
   b.upper->setBrush(Qt::NoBrush);

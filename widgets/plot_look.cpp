@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "plot_text.h"
+
 namespace kfw {
 
 namespace {
@@ -306,7 +308,7 @@ void setTitle(QCustomPlot* plot, const QString& title) {
   const bool wrapped = t->property(kWrapped).toString() == t->text();
   const QString now =
       wrapped && t->property(kTitleText).isValid() ? t->property(kTitleText).toString() : t->text();
-  if (now != title) t->setText(title);
+  if (now != plot::typeset(title)) t->setText(plot::typeset(title));
 }
 
 bool wrapTitlesToWidth(QCustomPlot* plot) {

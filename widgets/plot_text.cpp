@@ -5,8 +5,73 @@
 namespace kfw::plot {
 
 QString withUnit(const QString& name, const std::string& unit) {
-  return unit.empty() ? QString("%1 (–)").arg(name)
-                      : QString("%1 (%2)").arg(name, QString::fromStdString(unit));
+  const QString u = unit.empty() ? QString("–") : QString::fromStdString(unit);
+  if (name.endsWith(')') && name.contains('(')) return name.chopped(1) + ", " + u + ")";
+  return QString("%1 (%2)").arg(name, u);
+}
+
+namespace {
+
+const QString kSubFrom = "0123456789+-−=()aehijklmnoprstuvxβγρφχ";
+const QString kSubTo = "₀₁₂₃₄₅₆₇₈₉₊₋₋₌₍₎ₐₑₕᵢⱼₖₗₘₙₒₚᵣₛₜᵤᵥₓᵦᵧᵨᵩᵪ";
+const QString kSupFrom = "0123456789+-−=()abcdefghijklmnoprstuvwxyzTβγδθφχ";
+const QString kSupTo = "⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻⁻⁼⁽⁾ᵃᵇᶜᵈᵉᶠᵍʰⁱʲᵏˡᵐⁿᵒᵖʳˢᵗᵘᵛʷˣʸᶻᵀᵝᵞᵟᶿᵠᵡ";
+
+// `run` in the script's forms; empty when a character has none.
+QString script(const QString& run, bool sub) {
+  const QString& from = sub ? kSubFrom : kSupFrom;
+  const QString& to = sub ? kSubTo : kSupTo;
+  QString out;
+  for (const QChar c : run) {
+    const auto i = from.indexOf(c);
+    if (i < 0) return {};
+    out += to[i];
+  }
+  return out;
+}
+
+}  // namespace
+
+QString typeset(const QString& text) {
+  QString out;
+  for (qsizetype i = 0; i < text.size(); ++i) {
+    const QChar c = text[i];
+    const bool sub = c == '_';
+    if ((!sub && c != '^') || i == 0 || i + 1 >= text.size() || text[i - 1].isSpace()) {
+      out += c;
+      continue;
+    }
+    qsizetype end = i + 1;
+    QString run;
+    if (text[end] == '{') {
+      const auto close = text.indexOf('}', end);
+      if (close < 0) {
+        out += c;
+        continue;
+      }
+      run = text.mid(end + 1, close - end - 1);
+      end = close + 1;
+    } else {
+      while (end < text.size() &&
+             (text[end].isLetterOrNumber() || text[end] == '-' || text[end] == QChar(0x2212)) &&
+             end - i <= 2)
+        ++end;
+      run = text.mid(i + 1, end - i - 1);
+      // An identifier's word ("bias_truth"): not a subscript.
+      if (end < text.size() && text[end].isLetterOrNumber()) run.clear();
+    }
+    const QString s = run.isEmpty() ? QString() : script(run, sub);
+    if (!s.isEmpty()) {
+      out += s;
+      i = end - 1;
+    } else if (run.size() == 1 || text[i + 1] == '{') {
+      out += run;  // no Unicode form: joined to its base ("Rψ")
+      i = end - 1;
+    } else {
+      out += c;
+    }
+  }
+  return out;
 }
 
 QString panelTitle(const std::string& declared, const QString& fallback) {

@@ -9,8 +9,14 @@
 
 namespace kfw::plot {
 
-// A quantity with its unit for an axis: "position (m)"; "(–)" only when it has no unit.
+// A quantity with its unit for an axis: "position (m)"; "(–)" only when it has no unit; a name
+// that ends in parentheses takes the unit inside them: "θ (angle, deg)".
 QString withUnit(const QString& name, const std::string& unit);
+// Source notation as a reader of the paper would typeset it, in Unicode: "x_1" → "x₁",
+// "μ^j" → "μʲ", "P^{-1}" → "P⁻¹", "K_{p}" → "Kₚ"; a one-letter subscript with no Unicode form
+// joins its base ("R_ψ" → "Rψ"); longer words after "_" (an identifier: "bias_truth") stay.
+// Every title, axis label and legend name goes through it (plot_kit.h).
+QString typeset(const QString& text);
 // A panel's title: the one the file declares, else `fallback`.
 QString panelTitle(const std::string& declared, const QString& fallback);
 // A legend entry for one of several quantities on an axis: "label" when the axis label carries

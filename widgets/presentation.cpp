@@ -18,6 +18,7 @@ namespace {
 const char* const kStamp = "kfwLookStamp";
 const char* const kGridPos = "kfwGridPos";  // QRect(column, row, column span, row span)
 const char* const kMinHeight = "kfwMinHeight";
+const char* const kColumnStretch = "kfwColumnStretch";  // the grid's own, while presenting
 
 QSettings settings() {
   return QSettings("kfw", "kfw");
@@ -178,6 +179,13 @@ void Presentation::arrange(const QList<PlotPanel>& plots) {
       grid->removeWidget(p.plot);
   }
   const int columns = shown.size() <= 2 ? 1 : 2;
+  if (grid) {
+    // One column takes the whole width (the window's grid gives its two columns equal stretch).
+    QWidget* host = grid->parentWidget();
+    if (!host->property(kColumnStretch).isValid())
+      host->setProperty(kColumnStretch, QPoint(grid->columnStretch(0), grid->columnStretch(1)));
+    grid->setColumnStretch(1, columns == 2 ? std::max(1, grid->columnStretch(0)) : 0);
+  }
   int k = 0;
   for (const PlotPanel& p : plots) {
     const bool show = shown.contains(p.name);
@@ -195,6 +203,12 @@ void Presentation::restoreLayout(const QList<PlotPanel>& plots) {
   if (grid) {
     for (const PlotPanel& p : plots)
       grid->removeWidget(p.plot);
+    QWidget* host = grid->parentWidget();
+    if (const QVariant s = host->property(kColumnStretch); s.isValid()) {
+      grid->setColumnStretch(0, s.toPoint().x());
+      grid->setColumnStretch(1, s.toPoint().y());
+      host->setProperty(kColumnStretch, QVariant());
+    }
   }
   for (const PlotPanel& p : plots) {
     const QVariant pos = p.plot->property(kGridPos);

@@ -144,6 +144,11 @@ TEST_F(ScreenFitGui, PresentationShowsTheFirstThreeParameters) {
       ++checked;
     }
     EXPECT_EQ(checked, 3);
+    // The presented plots (one column for two) take the plot area's width.
+    for (const auto& p : w.plots()) {
+      if (!p.plot->isVisible()) continue;
+      EXPECT_GE(p.plot->width(), p.plot->parentWidget()->width() * 9 / 10) << p.name.toStdString();
+    }
     if (const QByteArray dir = qgetenv("KFW_TEST_SCREENSHOTS"); !dir.isEmpty())
       w.grab().save(QString("%1/present_%2x%3_%4.png")
                         .arg(QString::fromUtf8(dir))

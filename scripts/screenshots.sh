@@ -24,10 +24,20 @@ for preset in presets/*.json; do
   grep -v propagateSizeHints "$out/.log" >&2 || true
   rm -f "$out/.log"
 done
-# Presentation mode at a projector's 1366 × 768.
-"$kfw" --screenshot "$out/present_radome.png" --present presets/radome.json >/dev/null
-# The window on a 1366 × 768 laptop screen.
-"$kfw" --screenshot "$out/window_1366x768_radome.png" --size 1366x768 presets/radome.json >/dev/null
+# The window and presentation mode on a 1280 × 720 projector and a 1366 × 768 laptop, the screen
+# itself set to that size (the offscreen platform's screen configuration).
+for size in 1280x720 1366x768; do
+  for preset in helicopter radome models/cv_imm; do
+    stem=$(echo "$preset" | tr / _)
+    for mode in window present; do
+      flag=()
+      [ "$mode" = present ] && flag=(--present)
+      QT_QPA_PLATFORM="offscreen:configfile=tests/gui/screens/$size.json" \
+        "$kfw" --screenshot "$out/${mode}_${size}_$stem.png" "${flag[@]}" --size "$size" \
+        "presets/$preset.json" >/dev/null 2>&1
+    done
+  done
+done
 # Variants shown in the README beside the defaults.
 "$kfw" --export "$out/radome_B_Kp045" presets/radome.json --set sim.amplitude=0.08 --set Kp=0.45 >/dev/null
 "$kfw" --export "$out/radome_B_Kp0" presets/radome.json --set sim.amplitude=0.08 --set Kp=0 >/dev/null

@@ -32,7 +32,7 @@ TEST(Notation, TypesetWritesScriptsInUnicode) {
 // Every preset's plots: no one-letter "_x" subscript or "^" superscript in source notation, no
 // ") (" doubled parentheses. (An identifier a file declares, a role "x_meas", is its name.)
 TEST(Notation, NoSourceNotationInAnyPresetsPlots) {
-  const QRegularExpression source(R"([^\s_]_[^\s_A-Z](?![\p{L}\p{N}])|\^|\) \()");
+  const QRegularExpression source(R"([^\s_]_[^\s_A-Z](?![\p{Ll}\p{Lu}\p{N}])|\^|\) \()");
   QStringList presets;
   for (const QString& dir : {QString("presets"), QString("presets/models")}) {
     const QDir d(QString(KFW_SOURCE_DIR) + "/" + dir);

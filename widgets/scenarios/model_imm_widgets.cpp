@@ -98,8 +98,8 @@ void ImmPanels::create(QWidget* parent, const ModelLayout& layout, QList<PlotPan
     // The grid's extent first (a band under the lines), moved by renewal.
     a.envelope = plot::addBand(a.plot, "grid envelope", plot::color::kSensor);
     a.truth = plot::addGraph(a.plot, "truth", plot::color::kTruth, plot::Style::kLine);
-    a.estimate = plot::addGraph(a.plot, "IMM estimate Σ μʲ " + label + "ʲ", plot::color::kEstimate,
-                                plot::Style::kLine);
+    a.estimate = plot::addGraph(a.plot, "IMM estimate Σ μʲ " + plot::typeset(label) + "ʲ",
+                                plot::color::kEstimate, plot::Style::kLine);
     a.cursor = plot::addCursor(a.plot);
     out.push_back({q("grid." + g.param), "IMM " + label, a.plot});
     axes_.push_back(a);

@@ -4,6 +4,7 @@
 #include <QMessageBox>
 
 #include "consistency_panel.h"
+#include "export_dialog.h"
 #include "run_controller.h"
 
 namespace kfw {
@@ -51,14 +52,31 @@ Expected<QStringList> ExportController::exportAll(const QString& dir, const QStr
 }
 
 void ExportController::exportWithDialog() {
-  const QString dir = QFileDialog::getExistingDirectory(window_, "Export plots to");
-  if (dir.isEmpty()) return;
-  auto r = exportAll(dir, {"png", "pdf", "svg"});
-  if (!r) {
-    QMessageBox::warning(window_, "Export", QString::fromStdString(r.error()));
-  } else {
-    emit status(QString("exported %1 files to %2").arg(r->size()).arg(dir));
+  ExportDialog d(plotNames(), window_);
+  if (!last_folder_.isEmpty()) d.setFolder(last_folder_);
+  if (dialog_hook_) {
+    if (!dialog_hook_(d)) return;
+  } else if (d.exec() != QDialog::Accepted) {
+    return;
   }
+  const Status st = exportFromDialog(d);
+  if (!st) QMessageBox::warning(window_, "Export", QString::fromStdString(st.error()));
+}
+
+Status ExportController::exportFromDialog(const ExportDialog& d) {
+  if (d.folder().isEmpty()) return Error{"export: choose a folder"};
+  if (d.formats().isEmpty()) return Error{"export: choose at least one format"};
+  const QStringList chosen = d.chosenPlots();
+  if (chosen.isEmpty()) return Error{"export: choose at least one plot"};
+  auto spec = d.spec();
+  if (!spec) return spec.err();
+  // Every plot checked: no selection (the consistency panel's per-channel names stay whole).
+  const QStringList only = chosen.size() == plotNames().size() ? QStringList() : chosen;
+  auto r = exportAll(d.folder(), d.formats(), *spec, only);
+  if (!r) return r.err();
+  last_folder_ = d.folder();
+  emit status(QString("exported %1 files to %2").arg(r->size()).arg(d.folder()));
+  return Ok{};
 }
 
 }  // namespace kfw

@@ -8,6 +8,7 @@
 #include <QPointer>
 #include <QString>
 #include <QStringList>
+#include <functional>
 
 #include "core/expected.h"
 #include "plot_export.h"
@@ -18,6 +19,7 @@ class QWidget;
 namespace kfw {
 
 class ConsistencyPanel;
+class ExportDialog;
 class RunController;
 
 class ExportController : public QObject {
@@ -35,9 +37,12 @@ class ExportController : public QObject {
   // Every plot (or those named in `only`) in every format into `dir`, all or nothing.
   Expected<QStringList> exportAll(const QString& dir, const QStringList& formats,
                                   const ExportSpec& spec = {}, const QStringList& only = {});
-  // File → Export plots…: a folder chosen in a dialog, every plot as PNG, PDF and SVG; the
-  // outcome in a message box or status().
+  // File → Export plots…: the folder, plots, formats, size, dpi, text scale and theme chosen in
+  // a dialog (export_dialog.h: what kfw --export takes); the outcome in a message box or
+  // status(). Tests set a hook that fills the dialog instead of showing it (false: cancelled).
   void exportWithDialog();
+  Status exportFromDialog(const ExportDialog& d);
+  void setDialogHook(std::function<bool(ExportDialog&)> hook) { dialog_hook_ = std::move(hook); }
 
  public slots:
   // The last problem the window showed: named when there is no result to export.
@@ -53,6 +58,8 @@ class ExportController : public QObject {
   QList<PlotPanel> plots_;
   QString stem_;
   QString last_problem_;
+  QString last_folder_;
+  std::function<bool(ExportDialog&)> dialog_hook_;
 };
 
 }  // namespace kfw

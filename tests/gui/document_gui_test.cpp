@@ -90,7 +90,7 @@ TEST(DocumentGui, MetricsTableShowsLabelUnitAndDescription) {
     if (key == "rmse") {
       saw_rmse = true;
       EXPECT_EQ(r, 0) << "the primary accuracy metric comes first";
-      EXPECT_TRUE(table->item(r, 0)->text().contains("(deg)"))
+      EXPECT_TRUE(table->item(r, 0)->text().contains("(angle, deg)"))
           << table->item(r, 0)->text().toStdString();
       EXPECT_TRUE(table->item(r, 0)->toolTip().contains("root-mean-square"));
     }

@@ -66,7 +66,7 @@ TEST(ModelPlotBlocksWindow, EachBlockIsAPanelWithItsTitleAndData) {
   EXPECT_EQ(titleOf(curve), "k1 and p11 against beta");
   EXPECT_EQ(curve->xAxis->scaleType(), QCPAxis::stLogarithmic);
   EXPECT_EQ(curve->yAxis2->scaleType(), QCPAxis::stLogarithmic);
-  EXPECT_TRUE(curve->xAxis->label().startsWith("β = m Ts² N_ω / N_θ"))
+  EXPECT_TRUE(curve->xAxis->label().startsWith("β = m Ts² Nω / Nθ"))
       << curve->xAxis->label().toStdString();
   QCPGraph* k1 = graphNamed(curve, "k1(β), closed-form angle gain");
   ASSERT_NE(k1, nullptr);

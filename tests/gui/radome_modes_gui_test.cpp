@@ -18,10 +18,10 @@
 namespace kfw {
 namespace {
 
-// The slopes a legend name states: "R_ψ = A, R_θ = B[ at t = T s]".
+// The slopes a legend name states: "Rψ = A, Rθ = B[ at t = T s]" (typeset: plot_text.h).
 bool parse(const QString& name, double& a, double& b, double& t) {
   static const QRegularExpression re(
-      R"(^R_ψ = (-?[0-9.]+), R_θ = (-?[0-9.]+)(?: at t = ([0-9.]+) s)?$)");
+      R"(^Rψ = (-?[0-9.]+), Rθ = (-?[0-9.]+)(?: at t = ([0-9.]+) s)?$)");
   const auto m = re.match(name);
   if (!m.hasMatch()) return false;
   a = m.captured(1).toDouble();

@@ -17,7 +17,7 @@ namespace {
 
 QCPCurve* addTrack(QCustomPlot* p, const QString& name, const QColor& c) {
   auto* curve = new QCPCurve(p->xAxis, p->yAxis);
-  curve->setName(name);
+  curve->setName(typeset(name));
   curve->setPen(QPen(c));
   return curve;
 }

@@ -233,7 +233,8 @@ void ImmPanels::nameLinesAt(std::size_t k) {
       name += (a ? ", " : "") + q(axis.label) + " = " +
               q(model::grid_value_text(axis.values[j] + shift_at(axis, k), decimals_[a]));
     }
-    graphs_[g]->setName(name + QString(" at t = %1 s").arg(result_->t[k], 0, 'f', 1));
+    graphs_[g]->setName(plot::typeset(name) +
+                        QString(" at t = %1 s").arg(result_->t[k], 0, 'f', 1));
   }
 }
 

@@ -36,17 +36,14 @@
 #include "sweep_dialog.h"
 #include "transport_bar.h"
 #include "tune_dialog.h"
+#include "window_report.h"
 
 namespace kfw {
 
-namespace {
-QString q(const std::string& s) {
-  return QString::fromStdString(s);
-}
+using window::q;
+using window::report;
 
-void report(QWidget* parent, const char* title, const Status& st) {
-  if (!st) QMessageBox::warning(parent, title, q(st.error()));
-}
+namespace {
 
 QPushButton* button(const QString& text, const char* name, const QString& tip = {}) {
   auto* b = new QPushButton(text);

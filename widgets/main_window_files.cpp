@@ -17,18 +17,14 @@
 #include "document/command_line.h"
 #include "document/session.h"
 #include "main_window.h"
+#include "window_report.h"
 
 namespace kfw {
 
+using window::q;
+using window::report;
+
 namespace {
-QString q(const std::string& s) {
-  return QString::fromStdString(s);
-}
-
-void report(QWidget* parent, const char* title, const Status& st) {
-  if (!st) QMessageBox::warning(parent, title, q(st.error()));
-}
-
 const char* const kRecentKey = "recent/files";
 }  // namespace
 

@@ -66,9 +66,41 @@ class ExportLook {
       text.replace('\n', ' ');
       t->setText(wrapText(text, t->font(), spec.layoutWidth() - 12));
     }
+    if (spec.layoutWidth() < kNarrowLayout) narrow();
     // The legend's columns for the figure's width.
     legend_wrap_ = p_->legend ? p_->legend->wrap() : 0;
     plot::fitLegend(p_, spec.layoutWidth());
+  }
+  // A column-wide figure (issue 32, item 12): the sensor's dots smaller and, in a plot with dots,
+  // the lines over them stronger (the dots hid the estimate and truth); the legend's icons
+  // shorter and its rows tighter (it took a fifth of the height).
+  void narrow() {
+    bool dots = false;
+    for (int i = 0; i < p_->graphCount(); ++i) {
+      const QCPGraph* g = p_->graph(i);
+      dots = dots || (g->lineStyle() == QCPGraph::lsNone &&
+                      g->scatterStyle().shape() == QCPScatterStyle::ssSquare);
+    }
+    for (int i = 0; i < p_->graphCount(); ++i) {
+      QCPGraph* g = p_->graph(i);
+      styles_.push_back({g, g->scatterStyle(), g->pen()});
+      if (g->lineStyle() == QCPGraph::lsNone &&
+          g->scatterStyle().shape() == QCPScatterStyle::ssSquare) {
+        QCPScatterStyle s = g->scatterStyle();
+        s.setSize(kNarrowDot);
+        g->setScatterStyle(s);
+      } else if (dots && g->lineStyle() != QCPGraph::lsNone && g->pen().widthF() < kNarrowLine) {
+        QPen pen = g->pen();
+        pen.setWidthF(kNarrowLine);
+        g->setPen(pen);
+      }
+    }
+    if (QCPLegend* l = p_->legend) {
+      legend_icon_ = l->iconSize();
+      legend_spacing_ = l->rowSpacing();
+      l->setIconSize(QSize(16, 8));
+      l->setRowSpacing(-3);
+    }
   }
   ~ExportLook() {
     p_->setProperty(kExportingProperty, QVariant());
@@ -78,6 +110,14 @@ class ExportLook {
       t->setText(text);
     for (const auto& [a, f] : ticks_)
       a->setTickLabelFont(f);
+    for (const auto& s : styles_) {
+      s.graph->setScatterStyle(s.scatter);
+      s.graph->setPen(s.pen);
+    }
+    if (p_->legend && legend_icon_.isValid()) {
+      p_->legend->setIconSize(legend_icon_);
+      p_->legend->setRowSpacing(legend_spacing_);
+    }
     setPlotLook(p_, before_);
     if (p_->legend && p_->legend->wrap() != legend_wrap_) {
       p_->legend->setWrap(legend_wrap_);
@@ -96,6 +136,16 @@ class ExportLook {
   std::vector<std::pair<QCPAxis*, QFont>> ticks_;
   std::vector<std::pair<QSharedPointer<QCPAxisTicker>, int>> tick_counts_;
   int legend_wrap_ = 0;
+  struct GraphStyle {
+    QCPGraph* graph;
+    QCPScatterStyle scatter;
+    QPen pen;
+  };
+  std::vector<GraphStyle> styles_;
+  QSize legend_icon_;
+  int legend_spacing_ = 0;
+  static constexpr int kNarrowLayout = 600;  // layout px (3.5 in is 336)
+  static constexpr double kNarrowDot = 1.0, kNarrowLine = 1.4;
 };
 
 // The PDF's creation date: from SOURCE_DATE_EPOCH (reproducible builds), else none.

@@ -5,6 +5,7 @@
 #include <QDir>
 #include <QImage>
 #include <QTemporaryDir>
+#include <cstdlib>
 
 #include "export_controller.h"
 #include "export_dialog.h"
@@ -41,6 +42,31 @@ TEST(ExportDialog, WritesTheChosenPlotsFormatsAndSize) {
   ASSERT_FALSE(st.ok());
   EXPECT_NE(st.error().find("12 by 7"), std::string::npos) << st.error();
   EXPECT_TRUE(QDir(other.path()).isEmpty());
+}
+
+// A column-wide figure (issue 32, item 12): the predicted line shows over the sensor's dots
+// (line 7 743 px against 56 346 px of dots before; 30 740 against 30 689 now).
+TEST(ExportDialog, AColumnFigureShowsTheLineOverTheDots) {
+  QTemporaryDir dir;
+  MainWindow w;
+  ASSERT_TRUE(w.loadPreset("helicopter").ok());
+  ASSERT_TRUE(w.waitForRun());
+  ExportSpec spec;
+  ASSERT_TRUE(parseSize("column", 300, spec).ok());
+  spec.dpi = 300;
+  auto files = w.exportController()->exportAll(dir.path(), {"png"}, spec, {"measured.angle.angle"});
+  ASSERT_TRUE(files.ok()) << files.error();
+  const QImage png(dir.filePath("helicopter_measured.angle.angle.png"));
+  ASSERT_FALSE(png.isNull());
+  long line = 0, dots = 0;
+  for (int y = 0; y < png.height(); ++y) {
+    for (int x = 0; x < png.width(); ++x) {
+      const QColor c = png.pixelColor(x, y);
+      if (std::abs(c.red() - 31) < 40 && std::abs(c.green() - 119) < 40 && c.blue() > 140) ++line;
+      if (std::abs(c.red() - c.green()) < 12 && c.red() > 110 && c.red() < 190) ++dots;
+    }
+  }
+  EXPECT_GT(line, dots / 3) << "the dots hide the line";
 }
 
 }  // namespace

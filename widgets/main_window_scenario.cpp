@@ -64,7 +64,9 @@ void MainWindow::rebuildScenarioUi() {
   const QString stem = preset().path.empty() ? q(scenario()->name())
                                              : QFileInfo(q(preset().path)).completeBaseName();
   export_->setPlots(plots_, stem);
-  present_->setScenario(q(scenario()->name()));
+  // The plots shown when presenting are remembered per preset: every model file is the scenario
+  // "model", so per scenario one file's choice was offered to all.
+  present_->setScenario(stem);
   updateDataLabel();
 }
 

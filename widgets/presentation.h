@@ -35,7 +35,8 @@ class Presentation : public QObject {
   double scale() const { return scale_; }
   // Remembered (QSettings "present/scale"); applied at once when on.
   void setScale(double scale);
-  // The plots shown when on, by name; empty: the first two. Remembered per scenario.
+  // The plots shown when on, by name; none chosen: those the view flags (PlotPanel::presented),
+  // else the first two. Remembered per preset (setScenario takes its stem).
   QStringList chosen(const QList<PlotPanel>& plots) const;
   void setChosen(const QString& scenario, const QStringList& names);
   void setScenario(const QString& scenario);

@@ -34,7 +34,7 @@ class PresentationController : public QObject {
   // the others (consistency, data: their look only).
   void setPlotSources(std::function<QList<PlotPanel>()> plots,
                       std::function<QList<QCustomPlot*>()> others);
-  // The scenario whose chosen plots are remembered.
+  // What the chosen plots are remembered under (the preset's stem).
   void setScenario(const QString& name) { scenario_ = name; }
   // The View menu: presentation mode (F11, Esc leaves), text size (Ctrl+= / Ctrl+−), the plots
   // shown when presenting, the dark theme.

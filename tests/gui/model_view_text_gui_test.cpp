@@ -65,5 +65,21 @@ TEST(ModelViewText, PresentationOpensOnTheInnovationAndTheNis) {
   EXPECT_EQ(radome.presentedPlots(), (QStringList{radome.plots()[0].name, radome.plots()[1].name}));
 }
 
+// A choice of presented plots belongs to its preset: another model file keeps its own default.
+TEST(ModelViewText, PresentedPlotsAreRememberedPerPreset) {
+  MainWindow w;
+  ASSERT_TRUE(w.loadPreset("models/cv1d").ok());
+  ASSERT_TRUE(w.waitForRun());
+  w.setPresentedPlots({"state.v"});
+  ASSERT_TRUE(w.loadPreset("models/cv2d").ok());
+  ASSERT_TRUE(w.waitForRun());
+  ASSERT_FALSE(w.presentedPlots().isEmpty());
+  EXPECT_TRUE(w.presentedPlots()[0].startsWith("innovation."))
+      << w.presentedPlots()[0].toStdString();
+  ASSERT_TRUE(w.loadPreset("models/cv1d").ok());
+  ASSERT_TRUE(w.waitForRun());
+  EXPECT_EQ(w.presentedPlots(), QStringList{"state.v"});
+}
+
 }  // namespace
 }  // namespace kfw

@@ -92,9 +92,11 @@ Status MainWindow::saveSessionAs(const QString& path) {
 MainWindow::OpenAs MainWindow::openAsFor(const QString& path) {
   const QString suffix = QFileInfo(path).suffix().toLower();
   if (suffix != "json") return OpenAs::kData;
-  // A session names its format in its first lines; anything else .json is a preset.
+  // A session names its format in its first lines; anything else .json is a preset. Only a
+  // regular file is read here (a FIFO would block): the loader refuses the others, naming them.
   QFile f(path);
-  if (f.open(QIODevice::ReadOnly) && QString::fromUtf8(f.read(4096)).contains(kSessionFormat))
+  if (QFileInfo(path).isFile() && f.open(QIODevice::ReadOnly) &&
+      QString::fromUtf8(f.read(4096)).contains(kSessionFormat))
     return OpenAs::kSession;
   return OpenAs::kPreset;
 }

@@ -4,6 +4,7 @@
 #include <qcustomplot.h>
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <QAction>
 #include <QApplication>
@@ -72,6 +73,22 @@ TEST(FileConveniences, DropOpensByKindAndRecentFilesRemember) {
   QFile f(session);
   ASSERT_TRUE(f.open(QIODevice::ReadOnly));
   EXPECT_EQ(nlohmann::json::parse(f.readAll().toStdString())["values"]["R"], 5.0);
+}
+
+// A FIFO named .json (dropped, or left in the recent list) is refused at once, naming it; the
+// open preset stays.
+TEST(FileConveniences, AFifoIsRefusedWithoutWaiting) {
+  QTemporaryDir dir;
+  const QString fifo = dir.filePath("pipe.json");
+  ASSERT_EQ(::mkfifo(fifo.toLocal8Bit().constData(), 0600), 0);
+  MainWindow w;
+  ASSERT_TRUE(w.loadPreset("models/cv1d").ok());
+  ASSERT_TRUE(w.waitForRun());
+  EXPECT_EQ(MainWindow::openAsFor(fifo), MainWindow::OpenAs::kPreset);
+  const Status st = w.openAnyFile(fifo);
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.error().find("pipe.json"), std::string::npos) << st.error();
+  EXPECT_TRUE(QString::fromStdString(w.preset().path).endsWith("cv1d.json"));
 }
 
 TEST(FileConveniences, ShortcutsAreThereAndDistinct) {

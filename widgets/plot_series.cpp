@@ -100,11 +100,14 @@ namespace {
 class BandSource : public QObject {
  public:
   using Limits = std::function<void(std::size_t, double&, double&)>;
-  BandSource(QCPGraph* upper, const std::vector<double>* x, std::size_t n, Limits limits)
-      : QObject(upper), x_(x), n_(n), limits_(std::move(limits)) {
-    setObjectName("kfwBandSource");
+  explicit BandSource(QCPGraph* upper) : QObject(upper) { setObjectName("kfwBandSource"); }
+  void set(const std::vector<double>* x, std::size_t n, Limits limits) {
+    x_ = x;
+    n_ = n;
+    limits_ = std::move(limits);
   }
   bool at(double t, double& lo, double& hi) const {
+    if (!x_ || !limits_) return false;
     const auto end = x_->begin() + static_cast<std::ptrdiff_t>(std::min(n_, x_->size()));
     const auto it = std::upper_bound(x_->begin(), end, t);
     if (it == x_->begin()) return false;
@@ -113,15 +116,17 @@ class BandSource : public QObject {
   }
 
  private:
-  const std::vector<double>* x_;
-  std::size_t n_;
+  const std::vector<double>* x_ = nullptr;
+  std::size_t n_ = 0;
   Limits limits_;
 };
 
 void setBandSource(const Band& b, const std::vector<double>& x, std::size_t n,
                    BandSource::Limits limits) {
-  delete b.upper->findChild<BandSource*>("kfwBandSource", Qt::FindDirectChildrenOnly);
-  new BandSource(b.upper, &x, n, std::move(limits));
+  // One per band, made once and updated by every draw (a slider drag redraws every band).
+  auto* s = b.upper->findChild<BandSource*>("kfwBandSource", Qt::FindDirectChildrenOnly);
+  if (!s) s = new BandSource(b.upper);
+  s->set(&x, n, std::move(limits));
 }
 }  // namespace
 

@@ -16,7 +16,10 @@ std::string exact(double v) {
   return std::string(buf, r.ptr);
 }
 
-void add_mapping(std::vector<std::string>& a, const Mapping& m) {
+}  // namespace
+
+std::vector<std::string> mapping_args(const Mapping& m) {
+  std::vector<std::string> a;
   if (auto t = m.find("t"); t != m.end() && !t->second.column.empty()) {
     a.insert(a.end(),
              {"--time", t->second.column + (t->second.unit.empty() ? "" : ":" + t->second.unit)});
@@ -31,9 +34,8 @@ void add_mapping(std::vector<std::string>& a, const Mapping& m) {
   }
   if (m.separator) a.insert(a.end(), {"--sep", separator_key(m.separator)});
   if (m.header != HeaderRow::detect) a.insert(a.end(), {"--header", header_row_name(m.header)});
+  return a;
 }
-
-}  // namespace
 
 std::vector<std::string> document_args(const Document& doc) {
   const Preset& p = doc.preset();
@@ -41,7 +43,10 @@ std::vector<std::string> document_args(const Document& doc) {
   const auto& data = doc.data();
   const bool preset_data = data && p.data_path && data->path == *p.data_path;
   if (data && !preset_data) a.insert(a.end(), {"--data", data->path});
-  if (data && !(preset_data && data->mapping == p.mapping)) add_mapping(a, data->mapping);
+  if (data && !(preset_data && data->mapping == p.mapping)) {
+    const auto m = mapping_args(data->mapping);
+    a.insert(a.end(), m.begin(), m.end());
+  }
   for (const auto& [key, v] : doc.values()) {
     auto it = p.values.find(key);
     if (it != p.values.end() && (it->second == v || (std::isnan(it->second) && std::isnan(v))))

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "data/import.h"
+#include "document/command_line.h"
 
 namespace kfw {
 
@@ -32,19 +33,8 @@ Expected<Workspace> open_workspace(const std::string& preset,
 
 std::string mapping_options(const Mapping& m) {
   std::string s;
-  if (auto t = m.find("t"); t != m.end()) {
-    s = "--time " + t->second.column + (t->second.unit.empty() ? "" : ":" + t->second.unit);
-  }
-  for (const auto& [role, r] : m) {
-    if (role == "t") continue;
-    s += (s.empty() ? "" : " ") + std::string("--map ") + role + "=" + r.column;
-    if (!r.unit.empty()) s += " --unit " + role + "=" + r.unit;
-    if (r.scale != 1.0) s += " --scale " + role + "=" + std::to_string(r.scale);
-    if (r.offset != 0.0) s += " --offset " + role + "=" + std::to_string(r.offset);
-    if (r.flip) s += " --flip " + role;
-  }
-  if (m.separator) s += " --sep " + separator_key(m.separator);
-  if (m.header != HeaderRow::detect) s += " --header " + header_row_name(m.header);
+  for (const auto& a : mapping_args(m))
+    s += (s.empty() ? "" : " ") + shell_quote(a);
   return s;
 }
 

@@ -38,7 +38,8 @@ Expected<Dataset> load_dataset_file(const Scenario& scenario, const std::string&
                                     const Mapping& mapping = {});
 Expected<Dataset> import_dataset(const Scenario& scenario, const Table& table,
                                  const Mapping& mapping);
-// The command-line options that give a mapping: "--time time_ms:ms --map gyro=omega ...".
+// The command-line options that give a mapping: "--time time_ms:ms --map gyro=omega ...", each
+// shell-quoted (command_line.h writes them).
 std::string mapping_options(const Mapping& m);
 
 }  // namespace kfw

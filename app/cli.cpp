@@ -49,6 +49,7 @@ struct Cli {
   SweepArgs sweep;
   ParamsArgs params;
   PresetArgs preset;
+  ExportCArgs export_c;
   MetricsArgs metrics;
   InspectArgs inspect;
   NoiseArgs noise;
@@ -257,6 +258,24 @@ void declare_preset(CLI::App& app, PresetArgs& a) {
   add_required_path(c, "--out", a.out, "FILE.json", "where to write the preset");
 }
 
+void declare_export_c(CLI::App& app, ExportCArgs& a) {
+  CLI::App* c = app.add_subcommand(
+      "export-c", "write the filter as dependency-free C99: NAME.h, NAME.c, NAME_example.c");
+  add_target_and_data(c, a.target, a.data);
+  c->add_option("--out-dir", a.out_dir, "the directory the three files go to")
+      ->type_name("DIR")
+      ->capture_default_str();
+  add_path(c, "--prefix", a.prefix, "NAME",
+           "the files' and functions' prefix (a C identifier); default: the preset's file name");
+  c->add_flag("--float", a.single, "single precision throughout (no double-precision FPU)");
+  c->add_flag("--steady", a.steady,
+              "the fixed-gain filter with the DARE gain (linear time-invariant models)");
+  c->add_option("--dt", a.dt,
+                "--steady: the fixed interval (s); default: the data's median interval, else "
+                "the simulation step")
+      ->type_name("S");
+}
+
 void declare_metrics(CLI::App& app, MetricsArgs& a) {
   CLI::App* c = app.add_subcommand(
       "metrics", "list the metrics a scenario reports: key, label, unit, group, direction");
@@ -337,6 +356,7 @@ void declare(Cli& cli) {
   declare_sweep(app, cli.sweep);
   declare_params(app, cli.params);
   declare_preset(app, cli.preset);
+  declare_export_c(app, cli.export_c);
   declare_metrics(app, cli.metrics);
   app.add_subcommand("list", "list the scenarios and presets");
   declare_inspect(app, cli.inspect);
@@ -439,6 +459,7 @@ int dispatch(const Cli& cli, std::ostream& out, std::ostream& err) {
   if (cmd == "params") return cmd_params(cli.params, out, err);
   if (cmd == "metrics") return cmd_metrics(cli.metrics, out, err);
   if (cmd == "preset") return cmd_preset(cli.preset, out, err);
+  if (cmd == "export-c") return cmd_export_c(cli.export_c, out, err);
   if (cmd == "list") return cmd_list(out);
   if (cmd == "merge") return cmd_merge(cli.merge, out, err);
   if (cmd == "inspect") return cmd_inspect(cli.inspect, out, err);

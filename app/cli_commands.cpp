@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "codegen/c_export.h"
 #include "core/dataset.h"
 #include "core/metrics.h"
 #include "core/retired.h"
@@ -208,6 +209,37 @@ int cmd_preset(const PresetArgs& a, std::ostream& out, std::ostream& err) {
   if (auto st = outs.stage(a.out, preset_to_json(p)); !st) return fail(err, st.err());
   if (auto st = outs.commit(); !st) return fail(err, st.err());
   out << "wrote " << a.out << "\n";
+  return kExitOk;
+}
+
+int cmd_export_c(const ExportCArgs& a, std::ostream& out, std::ostream& err) {
+  auto ws = open_workspace_for_cli(a.target, a.data, err);
+  if (!ws) return fail(err, ws.err());
+  codegen::CExportOptions o = codegen::default_options(ws->preset.path);
+  if (a.prefix) o.prefix = *a.prefix;
+  o.single = a.single;
+  o.steady = a.steady;
+  if (a.steady) {
+    std::optional<Dataset> data;
+    if (ws->data_path && !a.dt) {
+      auto d = load_dataset(*ws);
+      if (!d) return fail(err, d.err());
+      data = std::move(*d);
+    }
+    auto dt = codegen::steady_interval(*ws->scenario, ws->values, a.dt, data ? &*data : nullptr);
+    if (!dt) return fail(err, dt.err());
+    o.steady_dt = *dt;
+  } else if (a.dt) {
+    return fail(err, Error{"--dt: only with --steady (the full filter takes each row's interval)"});
+  }
+  auto files = codegen::export_c(*ws->scenario, ws->values, o);
+  if (!files) return fail(err, files.err());
+  if (auto st = codegen::write_c_export(a.out_dir, o.prefix, *files); !st)
+    return fail(err, st.err());
+  const std::filesystem::path dir(a.out_dir);
+  out << "wrote " << (dir / (o.prefix + ".h")).string() << ", "
+      << (dir / (o.prefix + ".c")).string() << ", " << (dir / (o.prefix + "_example.c")).string()
+      << "\n";
   return kExitOk;
 }
 

@@ -25,6 +25,7 @@ int cmd_tune(const TuneArgs& a, std::ostream& out, std::ostream& err);
 int cmd_sweep(const SweepArgs& a, std::ostream& out, std::ostream& err);
 int cmd_params(const ParamsArgs& a, std::ostream& out, std::ostream& err);
 int cmd_preset(const PresetArgs& a, std::ostream& out, std::ostream& err);
+int cmd_export_c(const ExportCArgs& a, std::ostream& out, std::ostream& err);
 int cmd_metrics(const MetricsArgs& a, std::ostream& out, std::ostream& err);
 int cmd_list(std::ostream& out);
 // run --seeds (app/cli_montecarlo.cpp): Monte Carlo over simulator seeds; a part with --shard.

@@ -102,6 +102,17 @@ struct ParamsArgs {
   TargetArgs target;
 };
 
+// export-c PRESET: the filter as C (engine/codegen/c_export.h).
+struct ExportCArgs {
+  TargetArgs target;
+  DataArgs data;                      // --data: --steady's interval is its median
+  std::string out_dir = ".";          // --out-dir DIR
+  std::optional<std::string> prefix;  // --prefix NAME; default: the preset's file stem
+  bool single = false;                // --float
+  bool steady = false;                // --steady
+  std::optional<double> dt;           // --dt S: --steady's interval
+};
+
 struct PresetArgs {
   TargetArgs target;
   std::string out;  // --out FILE.json (required)

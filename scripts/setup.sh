@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages kfw needs to build, test and run; does nothing when all are present.
 set -euo pipefail
 packages=(
-  build-essential cmake make pkg-config clang-format-14
+  build-essential cmake make pkg-config clang-format-14 clang
   qt6-base-dev qt6-svg-dev libqcustomplot-dev
   libeigen3-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev

@@ -114,6 +114,10 @@ class MainWindow : public QMainWindow {
   // (document/command_line.h); copyCommandLine puts them on the clipboard.
   QString commandLine() const;
   void copyCommandLine();
+  // File → Export filter as C… (main_window_c_export.cpp): the open preset's filter at the
+  // window's values into `dir` (codegen/c_export.h; an empty prefix: the preset's file name).
+  Status exportFilterAsC(const QString& dir, const QString& prefix, bool single, bool steady);
+  void exportFilterAsCWithDialog();
   Status loadSession(const QString& path, const QString& ask = {}) {
     return doc_->loadSession(path, ask);
   }

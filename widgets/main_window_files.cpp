@@ -65,6 +65,7 @@ void MainWindow::buildFileMenu() {
   });
   file->addAction("&Export plots…", QKeySequence(Qt::CTRL | Qt::Key_E), export_,
                   &ExportController::exportWithDialog);
+  file->addAction("Export filter as &C…", this, &MainWindow::exportFilterAsCWithDialog);
   file->addSeparator();
   file->addAction("&Quit", QKeySequence::Quit, this, &QWidget::close);
   setAcceptDrops(true);

@@ -1,5 +1,7 @@
 #include "model/model_scenario.h"
 
+#include "model/model_filter_view.h"
+
 #include <Eigen/Core>
 #include <algorithm>
 #include <cctype>
@@ -156,6 +158,14 @@ class ModelScenario final : public Scenario {
     return spec_->primary.size() == 1 ? spec_->primary.front() : std::string();
   }
   const std::shared_ptr<const model::ModelSpec>& spec() const { return spec_; }
+  Expected<ModelFilterView> filter_view(const ParamValues& checked) const {
+    if (auto st = params().check(checked); !st) return st.err();
+    ModelFilterView view{spec_, with_mode_params(checked), {}};
+    auto o = options(view.values);
+    if (!o) return o.err();
+    view.options = *o;
+    return view;
+  }
 
   std::vector<ColumnSpec> columns() const override {
     std::vector<ColumnSpec> c{{"t", "s", "time", true}};
@@ -491,6 +501,12 @@ Expected<Metrics> ModelScenario::gain(const ParamValues& checked, const Dataset*
 }
 
 }  // namespace
+
+Expected<ModelFilterView> model_filter_view(const Scenario& s, const ParamValues& values) {
+  const auto* m = dynamic_cast<const ModelScenario*>(&s);
+  if (!m) return Error{"scenario '" + s.name() + "' is not a model file"};
+  return m->filter_view(values);
+}
 
 std::optional<ModelLayout> model_layout_of(const Scenario& s) {
   const auto* m = dynamic_cast<const ModelScenario*>(&s);

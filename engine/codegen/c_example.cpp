@@ -1,0 +1,221 @@
+// NAME_example.c (c_export_detail.h): reads a CSV in kfw's format — a header, then t, the inputs
+// and the channels' roles as columns — runs the exported filter row by row as kfw runs it, and
+// writes t, x and the upper triangle of P under the column names of `kfw-cli run --out`. The
+// clock is the caller's, shown here: the inputs' last finite values held, a channel updated on
+// rows k with k % every == 0 where every role has a value.
+#include <algorithm>
+
+#include "codegen/c_export_detail.h"
+
+namespace kfw::codegen::detail {
+
+namespace {
+
+const char* kHelpers = R"C(#define LINE_CHARS 65536
+#define MAX_FIELDS 1024
+
+/* Splits a line at commas in place (its line end removed); the number of fields, -1 when more
+   than MAX_FIELDS. */
+static int split(char *line, char **field) {
+  int n = 0;
+  size_t len = strlen(line);
+  char *p;
+  while (len > 0 && (line[len - 1] == '\n' || line[len - 1] == '\r')) line[--len] = '\0';
+  field[n++] = line;
+  for (p = line; *p; ++p) {
+    if (*p != ',') continue;
+    *p = '\0';
+    if (n == MAX_FIELDS) return -1;
+    field[n++] = p + 1;
+  }
+  return n;
+}
+
+/* Field i of a row as a number: NaN when absent, empty or not a number. */
+static double value_of(char **field, int n, int i) {
+  const char *f;
+  char *end;
+  double v;
+  if (i < 0 || i >= n) return NAN;
+  f = field[i];
+  while (*f == ' ') ++f;
+  if (!*f) return NAN;
+  v = strtod(f, &end);
+  return end == f ? NAN : v;
+}
+
+static int column(char **field, int n, const char *name) {
+  int i;
+  for (i = 0; i < n; ++i) {
+    if (strcmp(field[i], name) == 0) return i;
+  }
+  return -1;
+}
+
+/* A line, or 0 at the end; exits with 2 on a line longer than LINE_CHARS. */
+static char *read_line(char *line, FILE *in, const char *path) {
+  if (!fgets(line, LINE_CHARS, in)) return 0;
+  if (!strchr(line, '\n') && !feof(in)) {
+    fprintf(stderr, "%s: a line longer than %d characters\n", path, LINE_CHARS - 1);
+    exit(2);
+  }
+  return line;
+}
+
+static int require(int col, const char *path, const char *name) {
+  if (col < 0) {
+    fprintf(stderr, "%s: no column '%s'\n", path, name);
+    exit(2);
+  }
+  return col;
+}
+
+)C";
+
+std::string quoted_c(const std::string& s) {
+  std::string q = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') q += '\\';
+    q += (static_cast<unsigned char>(c) < 0x20) ? ' ' : c;
+  }
+  return q + "\"";
+}
+
+std::string output_header(const Gen& g) {
+  std::string h = "t";
+  for (const auto& st : g.spec.states)
+    h += ",x." + st.name;
+  if (g.steady()) return h;
+  for (int i = 0; i < g.n; ++i) {
+    for (int j = i; j < g.n; ++j) {
+      const auto& a = g.spec.states[static_cast<std::size_t>(i)].name;
+      const auto& b = g.spec.states[static_cast<std::size_t>(j)].name;
+      h += ",P." + a + (i == j ? "" : "." + b);
+    }
+  }
+  return h;
+}
+
+}  // namespace
+
+std::string example_program(const Gen& g) {
+  const model::ModelSpec& s = g.spec;
+  const std::string M = c_macro(g.P), fmt = g.opt.single ? "%.9g" : "%.17g";
+  std::string c = "/* " + g.P + "_example.c: runs " + g.P +
+                  ".c over a CSV in kfw's format and writes "
+                  "the estimates\n   as CSV, the columns of kfw-cli run --out. Build and run:\n"
+                  "     cc -std=c99 -O2 " +
+                  g.P + ".c " + g.P + "_example.c -lm -o " + g.P + "_example\n     ./" + g.P +
+                  "_example DATA.csv [ESTIMATES.csv]\n"
+                  "   exported by kfw " KFW_VERSION " from " +
+                  comment_text(g.opt.preset) + ". */\n";
+  c += "#include <math.h>\n#include <stdio.h>\n#include <stdlib.h>\n#include <string.h>\n\n";
+  c += "#include \"" + g.P + ".h\"\n\n" + kHelpers;
+  // The x0 columns read from their first finite sample.
+  std::vector<std::string> firsts;
+  for (const auto& x0 : s.x0) {
+    if (!x0.first_column.empty() &&
+        std::find(firsts.begin(), firsts.end(), x0.first_column) == firsts.end())
+      firsts.push_back(x0.first_column);
+  }
+  c += "int main(int argc, char **argv) {\n  static char line[LINE_CHARS];\n"
+       "  char *field[MAX_FIELDS];\n  const char *path;\n  FILE *in, *out;\n  " +
+       g.P + "_state s;\n  " + g.P + "_real u[" + std::to_string(std::max(g.nu, 1)) +
+       "] = {0}, z[" + std::to_string(g.mx) +
+       "], nis;\n"
+       "  double t, t_prev = 0; /* in double: a float time loses the interval (7.6e-6 s at 100 s) "
+       "*/\n"
+       "  long k = 0;\n  int n, col_t, j, ready, r;\n";
+  c += "  int col_u[" + std::to_string(std::max(g.nu, 1)) + "] = {-1};\n";
+  for (std::size_t ch = 0; ch < s.channels.size(); ++ch)
+    c += "  int col_" + c_name(s.channels[ch].name) + "[" + std::to_string(s.channels[ch].size()) +
+         "];\n";
+  for (std::size_t f = 0; f < firsts.size(); ++f)
+    c += "  int col_first" + std::to_string(f) + ";\n  double first" + std::to_string(f) +
+         " = NAN;\n";
+  c += "  if (argc < 2 || argc > 3) {\n    fprintf(stderr, \"usage: %s DATA.csv "
+       "[ESTIMATES.csv]\\n\", argv[0]);\n    return 2;\n  }\n  path = argv[1];\n";
+  c += "  in = fopen(path, \"r\");\n  if (!in) {\n    fprintf(stderr, \"%s: cannot open\\n\", "
+       "path);\n    return 2;\n  }\n";
+  c += "  if (!read_line(line, in, path) || (n = split(line, field)) < 0) {\n"
+       "    fprintf(stderr, \"%s: no header\\n\", path);\n    return 2;\n  }\n";
+  c += "  col_t = require(column(field, n, \"t\"), path, \"t\");\n";
+  for (int i = 0; i < g.nu; ++i) {
+    const auto q = quoted_c(s.inputs[static_cast<std::size_t>(i)].name);
+    c += "  col_u[" + std::to_string(i) + "] = require(column(field, n, " + q + "), path, " + q +
+         ");\n";
+  }
+  for (const auto& ch : s.channels) {
+    for (std::size_t j = 0; j < ch.roles.size(); ++j) {
+      const auto q = quoted_c(ch.roles[j].name);
+      c += "  col_" + c_name(ch.name) + "[" + std::to_string(j) + "] = require(column(field, n, " +
+           q + "), path, " + q + ");\n";
+    }
+  }
+  for (std::size_t f = 0; f < firsts.size(); ++f)
+    c += "  col_first" + std::to_string(f) + " = column(field, n, " + quoted_c(firsts[f]) + ");\n";
+  if (!firsts.empty()) {
+    c += "  /* x0: the first finite sample of each x0 column (kfw's rule). */\n";
+    c += "  while (read_line(line, in, path)) {\n    n = split(line, field);\n";
+    for (std::size_t f = 0; f < firsts.size(); ++f) {
+      const std::string v = "first" + std::to_string(f);
+      c += "    if (!isfinite(" + v + ")) " + v + " = value_of(field, n, col_first" +
+           std::to_string(f) + ");\n";
+    }
+    c += "  }\n  rewind(in);\n  (void)read_line(line, in, path);\n";
+  }
+  c += "  " + g.P + "_init(&s);\n";
+  for (std::size_t f = 0; f < firsts.size(); ++f) {
+    const std::string v = "first" + std::to_string(f);
+    c += "  if (isfinite(" + v + ")) " + g.P + "_init_from_" + c_name(firsts[f]) + "(&s, (" + g.P +
+         "_real)" + v + ");\n";
+  }
+  c += "  out = argc == 3 ? fopen(argv[2], \"w\") : stdout;\n  if (!out) {\n    fprintf(stderr, "
+       "\"%s: cannot write\\n\", argv[2]);\n    return 2;\n  }\n";
+  c += "  fputs(" + quoted_c(output_header(g)) + ", out);\n  fputs(\"\\n\", out);\n";
+  c += "  while (read_line(line, in, path)) {\n    n = split(line, field);\n"
+       "    if (n <= 1 && field[0][0] == '\\0') continue; /* a blank line */\n"
+       "    t = value_of(field, n, col_t);\n";
+  c += "    if (k > 0 && (r = " + g.P + "_predict(&s, u, (" + g.P + "_real)t_prev, (" + g.P +
+       "_real)(t - t_prev))) < 0) {\n"
+       "      fprintf(stderr, \"%s: row %ld: the filter diverged\\n\", path, k);\n      return 1;\n"
+       "    }\n";
+  if (g.nu > 0) {
+    c += "    for (j = 0; j < " + M +
+         "_NU; ++j) { /* the inputs' last finite values held */\n"
+         "      const double v = value_of(field, n, col_u[j]);\n      if (isfinite(v)) u[j] = (" +
+         g.P + "_real)v;\n    }\n";
+  }
+  for (std::size_t ch = 0; ch < s.channels.size(); ++ch) {
+    const auto& cs = s.channels[ch];
+    const std::string name = c_name(cs.name);
+    c += "    if (k % " + M + "_EVERY_" + c_macro(cs.name) +
+         " == 0) {\n      ready = 1;\n"
+         "      for (j = 0; j < " +
+         std::to_string(cs.size()) +
+         "; ++j) {\n"
+         "        const double v = value_of(field, n, col_" +
+         name +
+         "[j]);\n"
+         "        if (!isfinite(v)) ready = 0;\n        z[j] = (" +
+         g.P + "_real)v;\n      }\n";
+    c += "      if (ready && (r = " + g.P + "_update_" + name + "(&s, z, " +
+         (channel_reads_step(cs) ? "u, (" + g.P + "_real)t, " : "") + "&nis)) == " + M +
+         "_DIVERGED) {\n"
+         "        fprintf(stderr, \"%s: row %ld: the filter diverged\\n\", path, k);\n"
+         "        return 1;\n      }\n    }\n";
+  }
+  c += "    fprintf(out, \"" + fmt + "\", (double)t);\n";
+  c += "    for (j = 0; j < " + M + "_N; ++j) fprintf(out, \"," + fmt + "\", (double)s.x[j]);\n";
+  if (!g.steady()) {
+    c += "    for (j = 0; j < " + M + "_N; ++j) {\n      int i;\n      for (i = j; i < " + M +
+         "_N; ++i) fprintf(out, \"," + fmt + "\", (double)s.P[j][i]);\n    }\n";
+  }
+  c += "    fprintf(out, \"\\n\");\n    t_prev = t;\n    ++k;\n  }\n";
+  c += "  (void)nis;\n  (void)r;\n  (void)ready;\n  (void)col_u;\n  (void)z;\n  fclose(in);\n"
+       "  if (out != stdout && fclose(out) != 0) {\n    fprintf(stderr, \"%s: cannot write\\n\", "
+       "argv[2]);\n    return 1;\n  }\n  return 0;\n}\n";
+  return c;
+}
+
+}  // namespace kfw::codegen::detail

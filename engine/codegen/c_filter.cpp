@@ -1,0 +1,535 @@
+// The exported filter's own functions (c_export_detail.h): the model's matrices as C, and the
+// bodies of NAME_init, NAME_predict and NAME_update_<channel> — the engine's KalmanFilter and
+// UnscentedFilter (model/model_filters.h) step for step, and its steady-state filter.
+#include <cmath>
+#include <stdexcept>
+
+#include "codegen/c_export_detail.h"
+#include "filter/ukf.h"
+#include "model/model_steady.h"
+
+namespace kfw::codegen::detail {
+
+namespace {
+
+struct Assign {
+  std::string target;
+  const model::Expr* e;
+  std::string key;
+};
+
+// "target = expression;" lines, the expressions' common sub-expressions computed once before.
+Expected<std::string> assignments(Gen& g, const std::vector<Assign>& list,
+                                  const std::string& indent = "  ") {
+  CExprSet set = g.exprs();
+  for (const Assign& a : list) {
+    if (auto r = set.add(a.e->text, a.key); !r) return r.err();
+  }
+  std::vector<std::string> texts;
+  std::string out;
+  try {
+    out = set.emit(indent, texts);
+  } catch (const std::exception& e) {
+    return Error{e.what()};
+  }
+  for (std::size_t i = 0; i < list.size(); ++i)
+    out += indent + list[i].target + " = " + texts[i] + ";\n";
+  g.runtime.insert(set.helpers().begin(), set.helpers().end());
+  return out;
+}
+
+std::string ij(int i, int j) {
+  return "[" + std::to_string(i) + "][" + std::to_string(j) + "]";
+}
+
+// The entries of `m` into `target` (prefix such as "s->F") whose class `pick` accepts.
+void matrix(std::vector<Assign>& out, const model::MatrixSpec& m, const std::string& target,
+            bool step) {
+  for (int i = 0; i < m.rows; ++i) {
+    for (int j = 0; j < m.cols; ++j) {
+      const model::Expr& e = m.at(i, j);
+      if ((e.dep >= model::Dep::kStep) != step) continue;
+      out.push_back({target + ij(i, j), &e, m.key + ij(i, j)});
+    }
+  }
+}
+
+// process_at(s, dt): the process at a new interval: process_dt, or (continuous) Van Loan's
+// result for that interval from the cache.
+std::string process_at(const Gen& g) {
+  std::string s = "/* F, B and Q at the interval dt. */\nstatic void process_at(" + g.P +
+                  "_state *s, real dt) {\n";
+  if (g.spec.process.form != model::ProcessForm::kContinuous)
+    return s + "  process_dt(s, dt);\n  s->dt = dt;\n}\n\n";
+  const std::string C = c_macro(g.P) + "_DT_CACHE";
+  const bool b = g.nu > 0 && !g.spec.process.Bc.empty();
+  s += "  int c, i, j;\n  for (c = 0; c < " + C +
+       "; ++c) {\n    if (s->cache_dt[c] == dt) break;\n"
+       "  }\n  if (c == " +
+       C +
+       ") {\n    process_dt(s, dt);\n    c = s->next;\n"
+       "    s->next = (s->next + 1) % " +
+       C +
+       ";\n    s->cache_dt[c] = dt;\n"
+       "    for (i = 0; i < NX; ++i) {\n      for (j = 0; j < NX; ++j) {\n"
+       "        s->cache_F[c][i][j] = s->F[i][j];\n        s->cache_Q[c][i][j] = s->Q[i][j];\n"
+       "      }\n";
+  if (b) s += "      for (j = 0; j < NU; ++j) s->cache_B[c][i][j] = s->B[i][j];\n";
+  s += "    }\n  } else {\n    for (i = 0; i < NX; ++i) {\n      for (j = 0; j < NX; ++j) {\n"
+       "        s->F[i][j] = s->cache_F[c][i][j];\n        s->Q[i][j] = s->cache_Q[c][i][j];\n"
+       "      }\n";
+  if (b) s += "      for (j = 0; j < NU; ++j) s->B[i][j] = s->cache_B[c][i][j];\n";
+  return s + "    }\n  }\n  s->dt = dt;\n}\n\n";
+}
+
+const char* kVoidAll = "  (void)x;\n  (void)u;\n  (void)t;\n  (void)dt;\n";
+
+// process_dt(s, dt): the entries of F, B and Q of parameters and dt (Van Loan for the continuous
+// form), recomputed only when dt changes. process_step(s, x, u, t, dt, fx): those of t, the
+// inputs and the state, and (nonlinear) f, at x.
+Expected<std::string> process_parts(Gen& g) {
+  const auto& pr = g.spec.process;
+  const bool nonlinear = g.spec.nonlinear_process();
+  std::string s = "/* F, B and Q of parameters and dt: when dt changes. */\n";
+  s += "static void process_dt(" + g.P + "_state *s, real dt) {\n";
+  std::vector<Assign> at_dt;
+  if (pr.form == model::ProcessForm::kContinuous) {
+    g.runtime.insert("van_loan");
+    const int gcols = pr.G.empty() ? g.n : pr.G.cols;
+    s += "  real A[NX][NX], W[NX][NX], G[NX][" + std::to_string(gcols) + "], Qc[" +
+         std::to_string(pr.Qc.rows) + "][" + std::to_string(pr.Qc.cols) + "];\n  int i, j, a, b;\n";
+    matrix(at_dt, pr.A, "A", false);
+    if (!pr.G.empty()) {
+      matrix(at_dt, pr.G, "G", false);
+    }
+    matrix(at_dt, pr.Qc, "Qc", false);
+    if (!pr.Bc.empty()) matrix(at_dt, pr.Bc, "Bc", false);
+    if (!pr.Bc.empty()) s += "  real Bc[NX][NU];\n";
+    auto a = assignments(g, at_dt);
+    if (!a) return a.err();
+    s += *a;
+    if (pr.G.empty()) {
+      s += "  for (i = 0; i < NX; ++i) {\n    for (j = 0; j < NX; ++j) G[i][j] = i == j ? LIT(1.0) "
+           ": LIT(0.0);\n  }\n";
+    }
+    const std::string q = std::to_string(pr.G.empty() ? g.n : pr.G.cols);
+    s += "  for (i = 0; i < NX; ++i) { /* W = G Qc G' */\n    for (j = 0; j < NX; ++j) {\n"
+         "      real v = LIT(0.0);\n      for (a = 0; a < " +
+         q +
+         "; ++a) {\n"
+         "        real gq = LIT(0.0);\n        for (b = 0; b < " +
+         q +
+         "; ++b) gq += G[i][b] * "
+         "Qc[b][a];\n        v += gq * G[j][a];\n      }\n      W[i][j] = v;\n    }\n  }\n";
+    s += "  van_loan(A, W, dt, s->F, s->Q);\n";
+    if (!pr.Bc.empty()) {
+      g.runtime.insert("van_loan_input");
+      s += "  van_loan_input(A, Bc, dt, s->B);\n";
+    }
+    s += "}\n\n";
+  } else {
+    if (!(nonlinear && g.ukf())) matrix(at_dt, pr.F, "s->F", false);
+    if (!pr.B.empty()) matrix(at_dt, pr.B, "s->B", false);
+    matrix(at_dt, pr.Q, "s->Q", false);
+    auto a = assignments(g, at_dt);
+    if (!a) return a.err();
+    s += "  (void)s;\n  (void)dt;\n" + *a + "}\n\n";
+  }
+  s += process_at(g);
+  std::vector<Assign> step;
+  if (pr.form != model::ProcessForm::kContinuous) {
+    if (nonlinear && !g.ukf()) {
+      for (int i = 0; i < g.n; ++i)
+        step.push_back({"fx[" + std::to_string(i) + "]", &pr.f[static_cast<std::size_t>(i)],
+                        "model.process.f[" + std::to_string(i) + "]"});
+    }
+    if (!(nonlinear && g.ukf())) matrix(step, pr.F, "s->F", true);
+    if (!pr.B.empty()) matrix(step, pr.B, "s->B", true);
+    matrix(step, pr.Q, "s->Q", true);
+  }
+  auto a = assignments(g, step);
+  if (!a) return a.err();
+  s += "/* The entries of t, the inputs and the state, at x" +
+       std::string(nonlinear && !g.ukf() ? "; fx = f(x)" : "") + ". */\n";
+  s += "static void process_step(" + g.P +
+       "_state *s, const real x[NX], const real *u, real t, "
+       "real dt, real fx[NX]) {\n  (void)s;\n  (void)fx;\n" +
+       kVoidAll + *a + "}\n\n";
+  if (nonlinear && g.ukf()) {
+    std::vector<Assign> f;
+    for (int i = 0; i < g.n; ++i)
+      f.push_back({"fx[" + std::to_string(i) + "]", &pr.f[static_cast<std::size_t>(i)],
+                   "model.process.f[" + std::to_string(i) + "]"});
+    auto fa = assignments(g, f);
+    if (!fa) return fa.err();
+    s += "/* fx = f(x): one sigma point through the process. */\n";
+    s += "static void process_f(const real x[NX], const real *u, real t, real dt, real fx[NX]) "
+         "{\n" +
+         std::string(kVoidAll) + *fa + "}\n\n";
+  }
+  return s;
+}
+
+// channel_C(x, u, t, hx, H, R): ẑ = h(x) (EKF), H (KF, EKF, linear UKF) and R at x; and for the
+// UKF of a nonlinear channel channel_C_h(x, u, t, hx) for the sigma points.
+Expected<std::string> channel_parts(Gen& g, std::size_t c) {
+  const auto& ch = g.spec.channels[c];
+  const std::string name = c_name(ch.name);
+  std::vector<Assign> list;
+  const std::string key = "model.measurements." + ch.name;
+  if (!ch.linear && !g.ukf()) {
+    for (int j = 0; j < ch.size(); ++j)
+      list.push_back({"hx[" + std::to_string(j) + "]", &ch.h[static_cast<std::size_t>(j)],
+                      key + ".h[" + std::to_string(j) + "]"});
+  }
+  for (bool step : {false, true}) {
+    if (ch.linear || !g.ukf()) matrix(list, ch.H, "H", step);
+    matrix(list, ch.R, "R", step);
+  }
+  auto a = assignments(g, list);
+  if (!a) return a.err();
+  std::string s = "/* Channel " + comment_text(ch.name) + " at x. */\n";
+  s += "static void channel_" + name +
+       "(const real x[NX], const real *u, real t, real hx[MX], "
+       "real H[MX][NX], real R[MX][MX]) {\n  (void)x;\n  (void)u;\n  (void)t;\n  (void)hx;\n"
+       "  (void)H;\n" +
+       *a + "}\n\n";
+  if (!ch.linear && g.ukf()) {
+    std::vector<Assign> h;
+    for (int j = 0; j < ch.size(); ++j)
+      h.push_back({"hx[" + std::to_string(j) + "]", &ch.h[static_cast<std::size_t>(j)],
+                   key + ".h[" + std::to_string(j) + "]"});
+    auto ha = assignments(g, h);
+    if (!ha) return ha.err();
+    s += "static void channel_" + name +
+         "_h(const real x[NX], const real *u, real t, "
+         "real hx[MX]) {\n  (void)x;\n  (void)u;\n  (void)t;\n" +
+         *ha + "}\n\n";
+  }
+  return s;
+}
+
+// s->x[i] wrapped where state i is an angle.
+std::string wrap_states(Gen& g, const std::string& indent) {
+  std::string s;
+  for (int i = 0; i < g.n; ++i) {
+    const int k = angle_kind(g.spec.states[static_cast<std::size_t>(i)].angle);
+    if (!k) continue;
+    g.runtime.insert("wrap_angle");
+    const std::string x = "s->x[" + std::to_string(i) + "]";
+    s += indent + x + " = wrap_angle(" + x + ", " + std::to_string(k) + ");\n";
+  }
+  return s;
+}
+
+std::string init_function(Gen& g, std::string& error) {
+  std::vector<Assign> list;
+  for (int i = 0; i < g.n; ++i)
+    list.push_back({"s->x[" + std::to_string(i) + "]",
+                    &g.spec.x0[static_cast<std::size_t>(i)].value,
+                    "model.x0[" + std::to_string(i) + "]"});
+  if (!g.steady()) matrix(list, g.spec.P0, "s->P", false);
+  auto a = assignments(g, list);
+  if (!a) {
+    error = a.error();
+    return {};
+  }
+  std::string s = "void " + g.P + "_init(" + g.P + "_state *s) {\n" + *a;
+  if (!g.steady()) {
+    s += "  s->dt = NAN;\n  {\n    int i, j;\n    for (i = 0; i < NX; ++i) {\n"
+         "      for (j = 0; j < NX; ++j) s->F[i][j] = s->Q[i][j] = LIT(0.0);\n";
+    if (g.nu > 0) s += "      for (j = 0; j < NU; ++j) s->B[i][j] = LIT(0.0);\n";
+    s += "    }\n";
+    if (g.spec.process.form == model::ProcessForm::kContinuous) {
+      s += "    for (i = 0; i < " + c_macro(g.P) +
+           "_DT_CACHE; ++i) s->cache_dt[i] = NAN;\n"
+           "    s->next = 0;\n";
+    }
+    s += "  }\n";
+  }
+  s += "}\n\n";
+  std::set<std::string> cols;
+  for (const auto& x0 : g.spec.x0) {
+    if (x0.first_column.empty() || !cols.insert(x0.first_column).second) continue;
+    s += "void " + g.P + "_init_from_" + c_name(x0.first_column) + "(" + g.P + "_state *s, " + g.P +
+         "_real value) {\n";
+    for (int i = 0; i < g.n; ++i) {
+      if (g.spec.x0[static_cast<std::size_t>(i)].first_column == x0.first_column)
+        s += "  s->x[" + std::to_string(i) + "] = value;\n";
+    }
+    s += "}\n\n";
+  }
+  return s;
+}
+
+std::string predict_kf(Gen& g) {
+  const bool nonlinear = g.spec.nonlinear_process();
+  g.runtime.insert("predict_cov");
+  g.runtime.insert("diverged");
+  std::string s = "int " + g.P + "_predict(" + g.P + "_state *s, const " + g.P + "_real *u, " +
+                  g.P + "_real t, " + g.P + "_real dt) {\n  real fx[NX];\n  int i;\n";
+  s += "  if (!(dt == s->dt)) process_at(s, dt);\n";
+  s += "  process_step(s, s->x, u, t, dt, fx);\n";
+  if (!nonlinear) {
+    s += "  for (i = 0; i < NX; ++i) { /* fx = F x + B u */\n    int j;\n    real v = LIT(0.0);\n"
+         "    for (j = 0; j < NX; ++j) v += s->F[i][j] * s->x[j];\n    fx[i] = v;\n  }\n";
+    if (g.nu > 0) {
+      s += "  {\n    int j;\n    for (j = 0; j < NU; ++j) {\n      for (i = 0; i < NX; ++i) "
+           "fx[i] += s->B[i][j] * u[j];\n    }\n  }\n";
+    }
+  }
+  s += "  predict_cov(s->P, s->F, s->Q);\n  for (i = 0; i < NX; ++i) s->x[i] = fx[i];\n";
+  s += wrap_states(g, "  ");
+  return s + "  return diverged(s->x, s->P) ? " + c_macro(g.P) + "_DIVERGED : 0;\n}\n\n";
+}
+
+std::string angles_array(const std::string& name, const std::vector<int>& kinds) {
+  std::string s = "static const int " + name + "[" + std::to_string(kinds.size()) + "] = {";
+  for (std::size_t i = 0; i < kinds.size(); ++i)
+    s += (i ? ", " : "") + std::to_string(kinds[i]);
+  return s + "};\n";
+}
+
+std::string predict_ukf(Gen& g) {
+  const bool nonlinear = g.spec.nonlinear_process();
+  g.runtime.insert("sigma_points");
+  g.runtime.insert("diverged");
+  std::string s = "int " + g.P + "_predict(" + g.P + "_state *s, const " + g.P + "_real *u, " +
+                  g.P + "_real t, " + g.P + "_real dt) {\n";
+  s += "  real X[NX][NS], Y[NX][NS], xs[NX], ys[NX], d[NX];\n  int i, j, r;\n";
+  s += "  if (!(dt == s->dt)) process_at(s, dt);\n";
+  s += "  process_step(s, s->x, u, t, dt, ys);\n";
+  s += "  if (!sigma_points(s->x, s->P, X)) return " + c_macro(g.P) + "_DIVERGED;\n";
+  s += "  for (j = 0; j < NS; ++j) {\n    for (i = 0; i < NX; ++i) xs[i] = X[i][j];\n";
+  if (nonlinear) {
+    s += "    process_f(xs, u, t, dt, ys);\n";
+  } else {
+    s += "    for (i = 0; i < NX; ++i) {\n      int k;\n      real v = LIT(0.0);\n"
+         "      for (k = 0; k < NX; ++k) v += s->F[i][k] * xs[k];\n      ys[i] = v;\n    }\n";
+    if (g.nu > 0) {
+      s += "    for (r = 0; r < NU; ++r) {\n      for (i = 0; i < NX; ++i) ys[i] += s->B[i][r] * "
+           "u[r];\n    }\n";
+    }
+  }
+  s += "    for (i = 0; i < NX; ++i) Y[i][j] = ys[i];\n  }\n";
+  s += "  for (r = 0; r < NX; ++r) s->x[r] = sigma_mean(Y[r], state_angle[r]);\n";
+  s += "  for (i = 0; i < NX; ++i) {\n    for (r = 0; r < NX; ++r) s->P[i][r] = s->Q[i][r];\n  }\n";
+  s += "  for (j = 0; j < NS; ++j) {\n    for (r = 0; r < NX; ++r) d[r] = wrap_angle(Y[r][j] - "
+       "s->x[r], state_angle[r]);\n    for (i = 0; i < NX; ++i) {\n      for (r = 0; r < NX; ++r) "
+       "s->P[i][r] += ukf_wc(j) * d[i] * d[r];\n    }\n  }\n";
+  s += "  for (i = 0; i < NX; ++i) {\n    for (r = 0; r < i; ++r) {\n      const real v = LIT(0.5) "
+       "* (s->P[i][r] + s->P[r][i]);\n      s->P[i][r] = s->P[r][i] = v;\n    }\n  }\n";
+  return s + "  return diverged(s->x, s->P) ? " + c_macro(g.P) + "_DIVERGED : 0;\n}\n\n";
+}
+
+// The head of an update function: its locals, u and t where the channel does not read them.
+std::string update_head(Gen& g, std::size_t c) {
+  std::string s = update_signature(g, c) + " {\n";
+  if (!channel_reads_step(g.spec.channels[c]))
+    s += "  const real *u = 0;\n  const real t = LIT(0.0);\n";
+  return s;
+}
+
+std::string update_kf(Gen& g, std::size_t c) {
+  const auto& ch = g.spec.channels[c];
+  const std::string M = c_macro(g.P), name = c_name(ch.name);
+  const int m = ch.size();
+  const double gate = g.ev.channel(c).gate_nis;
+  g.runtime.insert("diverged");
+  std::string s = update_head(g, c);
+  s += "  real hx[MX], H[MX][NX], R[MX][MX], y[MX];\n  int j, r;\n";
+  s += "  channel_" + name + "(s->x, u, t, hx, H, R);\n";
+  if (ch.linear) {
+    s += "  for (j = 0; j < " + std::to_string(m) +
+         "; ++j) { /* zhat = H x */\n    int i;\n"
+         "    real v = LIT(0.0);\n    for (i = 0; i < NX; ++i) v += H[j][i] * s->x[i];\n"
+         "    hx[j] = v;\n  }\n";
+  }
+  s += "  for (j = 0; j < " + std::to_string(m) +
+       "; ++j) {\n    if (!isfinite(hx[j])) {\n"
+       "      if (nis) *nis = NAN;\n      return " +
+       M +
+       "_SKIPPED;\n    }\n"
+       "    y[j] = z[j] - hx[j];\n  }\n";
+  for (int j = 0; j < m; ++j) {
+    const int k = angle_kind(ch.comps[static_cast<std::size_t>(j)].angle);
+    if (!k) continue;
+    g.runtime.insert("wrap_angle");
+    s += "  y[" + std::to_string(j) + "] = wrap_angle(y[" + std::to_string(j) + "], " +
+         std::to_string(k) + ");\n";
+  }
+  if (m == 1) {
+    g.runtime.insert("update_scalar");
+    s += "  r = update_scalar(s->x, s->P, H[0], R[0][0], y[0], " + g.lit(gate) + ", nis);\n";
+  } else {
+    g.runtime.insert("update_vec");
+    const std::string ms = std::to_string(m);
+    s += "  {\n    real C[NX][MX], S[MX][MX];\n    int i, a, b;\n";
+    s += "    for (i = 0; i < NX; ++i) { /* C = P H' */\n      for (a = 0; a < " + ms +
+         "; ++a) {\n        real v = LIT(0.0);\n        for (b = 0; b < NX; ++b) v += s->P[i][b] "
+         "* H[a][b];\n        C[i][a] = v;\n      }\n    }\n";
+    s += "    for (a = 0; a < " + ms + "; ++a) { /* S = H C + R */\n      for (b = 0; b < " + ms +
+         "; ++b) {\n        real v = LIT(0.0);\n        for (i = 0; i < NX; ++i) v += H[a][i] * "
+         "C[i][b];\n        S[a][b] = v + R[a][b];\n      }\n    }\n";
+    s += "    r = update_vec(s->x, s->P, " + ms + ", y, S, C, H, R, " + g.lit(gate) + ", nis);\n";
+    s += "  }\n";
+  }
+  s += "  if (r != " + M + "_APPLIED) return r;\n" + wrap_states(g, "  ");
+  return s + "  return diverged(s->x, s->P) ? " + M + "_DIVERGED : " + M + "_APPLIED;\n}\n\n";
+}
+
+std::string update_ukf(Gen& g, std::size_t c) {
+  const auto& ch = g.spec.channels[c];
+  const std::string M = c_macro(g.P), name = c_name(ch.name), ms = std::to_string(ch.size());
+  const double gate = g.ev.channel(c).gate_nis;
+  g.runtime.insert("update_vec");
+  g.runtime.insert("sigma_points");
+  g.runtime.insert("diverged");
+  std::string s = update_head(g, c);
+  s += "  real hx[MX], H[MX][NX], R[MX][MX], y[MX], X[NX][NS], Z[MX][NS], S[MX][MX], C[NX][MX];\n"
+       "  real xs[NX], zhat[MX], dz[MX], d[NX];\n  int i, j, a, r;\n";
+  s += "  channel_" + name + "(s->x, u, t, hx, H, R);\n";
+  s += "  if (!sigma_points(s->x, s->P, X)) return " + M + "_DIVERGED;\n";
+  s += "  for (j = 0; j < NS; ++j) {\n    for (i = 0; i < NX; ++i) xs[i] = X[i][j];\n";
+  if (ch.linear) {
+    s += "    for (a = 0; a < " + ms +
+         "; ++a) {\n      real v = LIT(0.0);\n      for (i = 0; i < "
+         "NX; ++i) v += H[a][i] * xs[i];\n      hx[a] = v;\n    }\n";
+  } else {
+    s += "    channel_" + name + "_h(xs, u, t, hx);\n";
+  }
+  s += "    for (a = 0; a < " + ms + "; ++a) Z[a][j] = hx[a];\n  }\n";
+  s += "  for (a = 0; a < " + ms + "; ++a) zhat[a] = sigma_mean(Z[a], role_angle_" + name +
+       "[a]);\n";
+  s += "  for (a = 0; a < " + ms + "; ++a) {\n    for (r = 0; r < " + ms +
+       "; ++r) S[a][r] = R[a][r];\n    for (i = 0; i < NX; ++i) C[i][a] = LIT(0.0);\n  }\n";
+  s += "  for (j = 0; j < NS; ++j) {\n    for (a = 0; a < " + ms +
+       "; ++a) dz[a] = wrap_angle(Z[a][j] "
+       "- zhat[a], role_angle_" +
+       name +
+       "[a]);\n    for (i = 0; i < NX; ++i) d[i] = "
+       "wrap_angle(X[i][j] - s->x[i], state_angle[i]);\n    for (a = 0; a < " +
+       ms +
+       "; ++a) {\n"
+       "      for (r = 0; r < " +
+       ms +
+       "; ++r) S[a][r] += ukf_wc(j) * dz[a] * dz[r];\n"
+       "      for (i = 0; i < NX; ++i) C[i][a] += ukf_wc(j) * d[i] * dz[a];\n    }\n  }\n";
+  s += "  for (a = 0; a < " + ms +
+       "; ++a) {\n    if (!isfinite(zhat[a])) {\n      if (nis) *nis = "
+       "NAN;\n      return " +
+       M +
+       "_SKIPPED;\n    }\n    y[a] = wrap_angle(z[a] - zhat[a], "
+       "role_angle_" +
+       name + "[a]);\n  }\n";
+  s += "  r = update_vec(s->x, s->P, " + ms + ", y, S, C, 0, 0, " + g.lit(gate) + ", nis);\n";
+  s += "  if (r != " + M + "_APPLIED) return r;\n" + wrap_states(g, "  ");
+  return s + "  return diverged(s->x, s->P) ? " + M + "_DIVERGED : " + M + "_APPLIED;\n}\n\n";
+}
+
+// --steady: x = F x + B u and x += K (z - H x) with F, B, H and the DARE gain K at the fixed dt.
+Expected<std::string> steady_functions(Gen& g) {
+  auto& ev = g.ev;
+  if (auto st = ev.check_dt(g.opt.steady_dt, "--dt"); !st) return st.err();
+  auto ss = model::model_steady_state(g.spec, ev);
+  if (!ss) return ss.err();
+  const MatX& K = ss->dare.K;
+  const auto& ch = g.spec.channels[0];
+  const MatX& H = ev.channel(0).H;
+  const int m = ch.size();
+  const auto mat = [&](const std::string& name, const MatX& A) {
+    std::string s = "static const real " + name + "[" + std::to_string(A.rows()) + "][" +
+                    std::to_string(A.cols()) + "] = {";
+    for (Eigen::Index i = 0; i < A.rows(); ++i) {
+      s += std::string(i ? ", " : "") + "{";
+      for (Eigen::Index j = 0; j < A.cols(); ++j)
+        s += (j ? ", " : "") + g.lit(A(i, j));
+      s += "}";
+    }
+    return s + "};\n";
+  };
+  std::string s =
+      "/* The process, the channel and the DARE gain at dt = " + g.lit(g.opt.steady_dt) +
+      " s (every " + std::to_string(ss->every) + " rows). */\n";
+  s += mat("F", ev.F) + mat("H", H) + mat("K", K);
+  if (g.nu > 0) s += mat("B", ev.B);
+  s += "\n";
+  const std::string M = c_macro(g.P);
+  s += "int " + g.P + "_predict(" + g.P + "_state *s, const " + g.P + "_real *u, " + g.P +
+       "_real t, " + g.P +
+       "_real dt) {\n  real fx[NX];\n  int i, j;\n  (void)u;\n  (void)t;\n"
+       "  (void)dt;\n  for (i = 0; i < NX; ++i) {\n    real v = LIT(0.0);\n    for (j = 0; j < NX; "
+       "++j) v += F[i][j] * s->x[j];\n";
+  if (g.nu > 0) s += "    for (j = 0; j < NU; ++j) v += B[i][j] * u[j];\n";
+  s += "    fx[i] = v;\n  }\n  for (i = 0; i < NX; ++i) s->x[i] = fx[i];\n" + wrap_states(g, "  ");
+  s += "  for (i = 0; i < NX; ++i) {\n    if (!isfinite(s->x[i])) return " + M +
+       "_DIVERGED;\n  }\n  return 0;\n}\n\n";
+  s += update_head(g, 0) + "  real y[" + std::to_string(m) +
+       "];\n  int i, j;\n  (void)u;\n"
+       "  (void)t;\n";
+  s += "  for (j = 0; j < " + std::to_string(m) +
+       "; ++j) {\n    real v = LIT(0.0);\n"
+       "    for (i = 0; i < NX; ++i) v += H[j][i] * s->x[i];\n    y[j] = z[j] - v;\n  }\n";
+  for (int j = 0; j < m; ++j) {
+    const int k = angle_kind(ch.comps[static_cast<std::size_t>(j)].angle);
+    if (!k) continue;
+    g.runtime.insert("wrap_angle");
+    s += "  y[" + std::to_string(j) + "] = wrap_angle(y[" + std::to_string(j) + "], " +
+         std::to_string(k) + ");\n";
+  }
+  s += "  for (i = 0; i < NX; ++i) {\n    real v = LIT(0.0);\n    for (j = 0; j < " +
+       std::to_string(m) + "; ++j) v += K[i][j] * y[j];\n    s->x[i] += v;\n  }\n";
+  s += wrap_states(g, "  ") + "  if (nis) *nis = NAN; /* no S on the target */\n";
+  s += "  for (i = 0; i < NX; ++i) {\n    if (!isfinite(s->x[i])) return " + M +
+       "_DIVERGED;\n  }\n  return " + M + "_APPLIED;\n}\n\n";
+  return s;
+}
+
+}  // namespace
+
+Expected<std::string> filter_functions(Gen& g) {
+  std::string error;
+  std::string init = init_function(g, error);
+  if (!error.empty()) return Error{error};
+  if (g.steady()) {
+    auto s = steady_functions(g);
+    if (!s) return s.err();
+    return init + *s;
+  }
+  std::string s;
+  if (g.ukf()) {
+    std::string& d = g.defs;
+    const auto w = UkfWeights::scaled(g.n, g.filter.alpha, g.filter.beta, g.filter.kappa);
+    d += "/* The scaled unscented transform: alpha = " + g.lit(g.filter.alpha) +
+         ", beta = " + g.lit(g.filter.beta) + ", kappa = " + g.lit(g.filter.kappa) + ". */\n";
+    d += "static const real UKF_C = " + g.lit(w.c) + ", UKF_WM0 = " + g.lit(w.m0) +
+         ", UKF_WC0 = " + g.lit(w.c0) + ", UKF_WI = " + g.lit(w.i) + ";\n";
+    std::vector<int> kinds;
+    for (const auto& st : g.spec.states)
+      kinds.push_back(angle_kind(st.angle));
+    d += angles_array("state_angle", kinds);
+    for (const auto& ch : g.spec.channels) {
+      kinds.clear();
+      for (const auto& r : ch.comps)
+        kinds.push_back(angle_kind(r.angle));
+      d += angles_array("role_angle_" + c_name(ch.name), kinds);
+    }
+    d += "\n";
+    g.runtime.insert("wrap_angle");
+  }
+  auto p = process_parts(g);
+  if (!p) return p.err();
+  s += *p;
+  for (std::size_t c = 0; c < g.spec.channels.size(); ++c) {
+    auto ch = channel_parts(g, c);
+    if (!ch) return ch.err();
+    s += *ch;
+  }
+  s += init;
+  s += g.ukf() ? predict_ukf(g) : predict_kf(g);
+  for (std::size_t c = 0; c < g.spec.channels.size(); ++c)
+    s += g.ukf() ? update_ukf(g, c) : update_kf(g, c);
+  return s;
+}
+
+}  // namespace kfw::codegen::detail

@@ -28,7 +28,7 @@ Status MainWindow::exportFilterAsC(const QString& dir, const QString& prefix, bo
   if (!prefix.isEmpty()) o.prefix = prefix.toStdString();
   o.single = single;
   o.steady = steady;
-  if (steady) {
+  if (codegen::exports_steady(d.scenario(), d.values(), steady)) {
     const auto file = data_->fileData();
     auto dt = codegen::steady_interval(d.scenario(), d.values(), std::nullopt, file.get());
     if (!dt) return dt.err();

@@ -93,6 +93,8 @@ std::string output_header(const Gen& g) {
       h += ",P." + a + (i == j ? "" : "." + b);
     }
   }
+  for (const auto& m : g.mode_names)
+    h += ",mu." + m;
   return h;
 }
 
@@ -133,6 +135,9 @@ std::string example_program(const Gen& g) {
   for (std::size_t f = 0; f < firsts.size(); ++f)
     c += "  int col_first" + std::to_string(f) + ";\n  double first" + std::to_string(f) +
          " = NAN;\n";
+  for (std::size_t ch = 0; ch < s.channels.size(); ++ch) {
+    if (g.missing_on[ch]) c += "  int col_missing_" + c_name(s.channels[ch].name) + ";\n";
+  }
   c += "  if (argc < 2 || argc > 3) {\n    fprintf(stderr, \"usage: %s DATA.csv "
        "[ESTIMATES.csv]\\n\", argv[0]);\n    return 2;\n  }\n  path = argv[1];\n";
   c += "  in = fopen(path, \"r\");\n  if (!in) {\n    fprintf(stderr, \"%s: cannot open\\n\", "
@@ -154,12 +159,26 @@ std::string example_program(const Gen& g) {
   }
   for (std::size_t f = 0; f < firsts.size(); ++f)
     c += "  col_first" + std::to_string(f) + " = column(field, n, " + quoted_c(firsts[f]) + ");\n";
+  for (std::size_t ch = 0; ch < s.channels.size(); ++ch) {
+    if (!g.missing_on[ch]) continue;
+    c += "  col_missing_" + c_name(s.channels[ch].name) + " = column(field, n, " +
+         quoted_c(s.channels[ch].missing.column) + "); /* none: nothing flagged */\n";
+  }
   if (!firsts.empty()) {
     c += "  /* x0: the first finite sample of each x0 column (kfw's rule). */\n";
     c += "  while (read_line(line, in, path)) {\n    n = split(line, field);\n";
     for (std::size_t f = 0; f < firsts.size(); ++f) {
       const std::string v = "first" + std::to_string(f);
-      c += "    if (!isfinite(" + v + ")) " + v + " = value_of(field, n, col_first" +
+      std::string flagged;  // a channel reading this column flags the row missing
+      for (std::size_t ch = 0; ch < s.channels.size(); ++ch) {
+        if (!g.missing_on[ch]) continue;
+        for (const auto& r : s.channels[ch].roles) {
+          if (r.name != firsts[f]) continue;
+          flagged += " && value_of(field, n, col_missing_" + c_name(s.channels[ch].name) +
+                     ") != " + M + "_MISSING_" + c_macro(s.channels[ch].name);
+        }
+      }
+      c += "    if (!isfinite(" + v + ")" + flagged + ") " + v + " = value_of(field, n, col_first" +
            std::to_string(f) + ");\n";
     }
     c += "  }\n  rewind(in);\n  (void)read_line(line, in, path);\n";
@@ -199,6 +218,10 @@ std::string example_program(const Gen& g) {
          "[j]);\n"
          "        if (!isfinite(v)) ready = 0;\n        z[j] = (" +
          g.P + "_real)v;\n      }\n";
+    if (g.missing_on[ch]) {
+      c += "      if (ready && value_of(field, n, col_missing_" + name + ") == " + M + "_MISSING_" +
+           c_macro(cs.name) + ") ready = 0; /* flagged missing */\n";
+    }
     c += "      if (ready && (r = " + g.P + "_update_" + name + "(&s, z, " +
          (channel_reads_step(cs) ? "u, (" + g.P + "_real)t, " : "") + "&nis)) == " + M +
          "_DIVERGED) {\n"
@@ -210,6 +233,10 @@ std::string example_program(const Gen& g) {
   if (!g.steady()) {
     c += "    for (j = 0; j < " + M + "_N; ++j) {\n      int i;\n      for (i = j; i < " + M +
          "_N; ++i) fprintf(out, \"," + fmt + "\", (double)s.P[j][i]);\n    }\n";
+  }
+  if (g.modes > 0) {
+    c += "    for (j = 0; j < " + M + "_MODES; ++j) fprintf(out, \"," + fmt +
+         "\", (double)s.mu[j]);\n";
   }
   c += "    fprintf(out, \"\\n\");\n    t_prev = t;\n    ++k;\n  }\n";
   c += "  (void)nis;\n  (void)r;\n  (void)ready;\n  (void)col_u;\n  (void)z;\n  fclose(in);\n"

@@ -7,11 +7,14 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <numbers>
 
 #include "codegen/c_export_detail.h"
 #include "codegen/c_runtime.h"
 #include "data/output.h"
+#include "model/imm/imm_spec.h"
 #include "model/model_filter_view.h"
+#include "model/world/model_world_noise.h"
 
 namespace kfw::codegen {
 
@@ -54,7 +57,9 @@ int angle_kind(Angle a) {
 }
 
 std::string Gen::symbol(const std::string& name) {
-  const int slot = spec.symbols.find(name);
+  const model::ModelSpec& m = ms ? *ms : spec;
+  const ParamValues& vals = mv ? *mv : values;
+  const int slot = m.symbols.find(name);
   if (slot < 0) throw std::runtime_error("unknown symbol '" + name + "'");
   const auto in = [&](const std::vector<int>& slots) {
     for (std::size_t i = 0; i < slots.size(); ++i) {
@@ -62,22 +67,27 @@ std::string Gen::symbol(const std::string& name) {
     }
     return -1;
   };
-  switch (spec.symbols.kinds[static_cast<std::size_t>(slot)]) {
+  switch (m.symbols.kinds[static_cast<std::size_t>(slot)]) {
     case model::kParamSymbol: {
-      const int i = in(spec.param_slots);
-      if (i < 0 || !values.count(spec.param_keys[static_cast<std::size_t>(i)]))
-        throw std::runtime_error("the parameter '" + name + "' has no value");
-      params.insert(name);
-      return "par_" + name;
+      const int i = in(m.param_slots);
+      const auto it = i < 0 ? vals.end() : vals.find(m.param_keys[static_cast<std::size_t>(i)]);
+      if (it == vals.end()) throw std::runtime_error("the parameter '" + name + "' has no value");
+      std::string c = "par_" + name;
+      // A mode's own value (an IMM's mode sets it) gets a constant of its own.
+      const auto base = values.find(it->first);
+      if (mode >= 0 && (base == values.end() || base->second != it->second))
+        c += "_m" + std::to_string(mode);
+      consts[c] = it->second;
+      return c;
     }
     case model::kDtSymbol:
       return "dt";
     case model::kTimeSymbol:
       return "t";
     case model::kStateSymbol:
-      return "x[" + std::to_string(in(spec.state_slots)) + "]";
+      return "x[" + std::to_string(in(m.state_slots)) + "]";
     case model::kInputSymbol:
-      if (const int i = in(spec.input_slots); i >= 0) return "u[" + std::to_string(i) + "]";
+      if (const int i = in(m.input_slots); i >= 0) return "u[" + std::to_string(i) + "]";
       throw std::runtime_error("the input age '" + name + "' is not exported");
     default:
       throw std::runtime_error("the symbol '" + name + "' is not exported");
@@ -115,20 +125,25 @@ using detail::Gen;
 namespace {
 
 // Why a model's filter cannot be exported (one line), or empty.
-std::string refusal(const model::ModelSpec& s, const CExportOptions& o,
+std::string refusal(const model::ModelSpec& s, const ParamValues& values, const CExportOptions& o,
                     const model::FilterOptions& f) {
-  if (s.modes) return "an IMM over modes (model.modes) is not exported yet";
+  if (s.modes) {
+    if (o.steady || f.kind == model::FilterKind::kSteady)
+      return "--steady: an IMM over modes has no single steady state";
+    if (s.modes->renewal && s.modes->renewal->gain.at(values) != 0.0)
+      return "an IMM's renewal (model.modes.renewal, " + s.modes->renewal->gain.key +
+             " ≠ 0) is not exported";
+    if (s.modes->structure.at(values))
+      return "an IMM's block structure (model.modes.structure) is not exported";
+  }
   if (!s.groups.empty()) return "channel groups (model.groups) are not exported";
   if (s.start_channel >= 0) return "x0 from a channel's first sample is not exported";
-  if (s.process.form == model::ProcessForm::kContinuousNonlinear)
-    return "the continuous nonlinear process (model.process.xdot) is not exported yet";
   for (const auto& in : s.inputs) {
     if (!in.age.empty()) return "the input age '" + in.age + "' is not exported";
   }
   for (const auto& c : s.channels) {
     const std::string key = "model.measurements." + c.name;
     if (c.preprocessed()) return key + ".z: pre-processed measurements are not exported";
-    if (c.missing.on()) return key + ".missing: missing-sample flags are not exported";
     if (c.size() > model::kMaxChannelSize) return key + ": too many components";
     auto reads_dt = [](const model::Expr& e) { return (e.uses & model::kDtSymbol) != 0; };
     for (const auto* m : {&c.H, &c.R}) {
@@ -181,11 +196,13 @@ std::string state_struct(const Gen& g) {
   const std::string R = g.P + "_real", N = c_macro(g.P) + "_N";
   std::string s = "typedef struct {\n  " + R + " x[" + N + "]; /* the estimate */\n";
   if (g.steady()) return s + "} " + g.P + "_state;\n";
+  const std::string name = g.modes > 0 ? g.P + "_filter" : g.P + "_state";
+  if (g.modes > 0) s = "/* One mode's filter. */\n" + s;
   s += "  " + R + " P[" + N + "][" + N + "]; /* its covariance */\n";
   s += "  " + R + " dt; /* the interval F, B and Q hold the process for (NaN: none yet) */\n";
   s += "  " + R + " F[" + N + "][" + N + "], Q[" + N + "][" + N + "];\n";
   if (g.nu > 0) s += "  " + R + " B[" + N + "][" + c_macro(g.P) + "_NU];\n";
-  if (g.spec.process.form == model::ProcessForm::kContinuous) {
+  if (g.cache) {
     // A log's intervals differ in their last bits (0.3 − 0.2 ≠ 0.1): Van Loan's exponential is
     // kept for the last few, as the engine keeps 64.
     const std::string C = c_macro(g.P) + "_DT_CACHE";
@@ -196,7 +213,17 @@ std::string state_struct(const Gen& g) {
     if (g.nu > 0) s += "  " + R + " cache_B[" + C + "][" + N + "][" + c_macro(g.P) + "_NU];\n";
     s += "  int next;\n";
   }
-  return s + "} " + g.P + "_state;\n";
+  s += "} " + name + ";\n";
+  if (g.modes == 0) return s;
+  const std::string NM = c_macro(g.P) + "_MODES";
+  s += "\n/* The IMM: the combined estimate, the mode probabilities and each mode's filter. */\n";
+  s += "typedef struct {\n  " + R + " x[" + N + "];\n  " + R + " P[" + N + "][" + N + "];\n";
+  s += "  " + R + " mu[" + NM + "]; /* mode probabilities:";
+  for (std::size_t j = 0; j < g.mode_names.size(); ++j)
+    s += std::string(j ? "," : "") + " " + std::to_string(j) + " " + comment_text(g.mode_names[j]);
+  s += " */\n  " + R + " log_mu[" + NM + "];\n  " + g.P + "_filter mode[" + NM + "];\n} " + g.P +
+       "_state;\n";
+  return s;
 }
 
 std::string header_text(const Gen& g) {
@@ -217,7 +244,9 @@ std::string header_text(const Gen& g) {
     h += std::string(i ? "," : ":") + " u[" + std::to_string(i) + "] " + comment_text(in.name);
   }
   h += " */\n";
-  if (s.process.form == model::ProcessForm::kContinuous)
+  if (g.modes > 0)
+    h += "#define " + M + "_MODES " + std::to_string(g.modes) + " /* the IMM's modes */\n";
+  if (g.cache)
     h += "#define " + M + "_DT_CACHE 8 /* Van Loan's results kept for this many intervals */\n";
   for (std::size_t c = 0; c < s.channels.size(); ++c) {
     const auto& ch = s.channels[c];
@@ -225,6 +254,14 @@ std::string header_text(const Gen& g) {
     h += "#define " + M + "_EVERY_" + c_macro(ch.name) + " " + std::to_string(every) +
          " /* channel " + comment_text(ch.name) + " updates on rows k with k % " +
          std::to_string(every) + " == 0 */\n";
+  }
+  for (std::size_t c = 0; c < s.channels.size(); ++c) {
+    if (!g.missing_on[c]) continue;
+    const auto& ch = s.channels[c];
+    h += "#define " + M + "_MISSING_" + c_macro(ch.name) + " " +
+         c_number(g.missing_equals[c], false) + " /* channel " + comment_text(ch.name) +
+         ": a sample is missing (no update) where column " + comment_text(ch.missing.column) +
+         " reads this */\n";
   }
   h += "\n/* What an update returns. */\nenum { " + M + "_APPLIED = 1, " + M + "_GATED = 0, " + M +
        "_SKIPPED = -1, " + M + "_DIVERGED = -2 };\n\n";
@@ -265,7 +302,8 @@ std::string source_prelude(const Gen& g) {
   s += "typedef " + g.P + "_real real;\n";
   const bool f = g.opt.single;
   s += f ? "#define LIT(v) v##f\n" : "#define LIT(v) v\n";
-  for (const char* fn : {"SQRT", "FABS", "SIN", "COS", "LOG2", "CEIL", "LDEXP", "REMAINDER"}) {
+  for (const char* fn :
+       {"SQRT", "FABS", "SIN", "COS", "LOG", "LOG2", "EXP", "CEIL", "LDEXP", "REMAINDER"}) {
     std::string name = fn;
     for (char& c : name)
       c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -275,20 +313,18 @@ std::string source_prelude(const Gen& g) {
   s += "#define NX " + M + "_N\n#define MX " + std::to_string(g.mx) + "\n";
   if (g.nu > 0) s += "#define NU " + M + "_NU\n";
   s += "#define NS (2 * NX + 1)\n";
+  if (g.modes > 0) {
+    s += "#define NM " + M + "_MODES\n#define LOG_2PI LIT(" +
+         c_number(std::log(2.0 * std::numbers::pi), false) + ")\n";
+  }
   s += "#define EM " + std::to_string(std::max(2 * g.n, g.n + g.nu)) + "\n\n";
   return s;
 }
 
 std::string constants(const Gen& g) {
-  std::string s = "/* The tuned parameters. */\n";
-  for (const auto& name : g.params) {
-    const int slot = g.spec.symbols.find(name);
-    std::string key = name;
-    for (std::size_t i = 0; i < g.spec.param_slots.size(); ++i) {
-      if (g.spec.param_slots[i] == slot) key = g.spec.param_keys[i];
-    }
-    s += "static const real par_" + name + " = " + g.lit(g.values.at(key)) + ";\n";
-  }
+  std::string s = "/* The tuned parameters (par_NAME_mJ: mode J's own value). */\n";
+  for (const auto& [name, v] : g.consts)
+    s += "static const real " + name + " = " + g.lit(v) + ";\n";
   return s + "\n";
 }
 
@@ -302,6 +338,12 @@ bool is_c_identifier(const std::string& name) {
       "sizeof",   "static", "struct", "switch",   "typedef",    "union",    "unsigned", "void",
       "volatile", "while",  "_Bool",  "_Complex", "_Imaginary", "main"};
   return model::is_identifier(name) && !kKeywords.count(name);
+}
+
+bool exports_steady(const Scenario& s, const ParamValues& values, bool flag) {
+  if (flag) return true;
+  auto view = model_filter_view(s, values);
+  return view && view->options.kind == model::FilterKind::kSteady;
 }
 
 Expected<double> steady_interval(const Scenario& s, const ParamValues& values,
@@ -341,7 +383,8 @@ Expected<CExport> export_c(const Scenario& scenario, const ParamValues& values,
   const std::string what = "cannot export " + spec.path + " as C: ";
   if (!is_c_identifier(options.prefix))
     return Error{"--prefix '" + options.prefix + "': not a C identifier"};
-  if (auto why = refusal(spec, options, view->options); !why.empty()) return Error{what + why};
+  if (auto why = refusal(spec, view->values, options, view->options); !why.empty())
+    return Error{what + why};
   auto ev = model::ModelEval::create(spec, view->values);
   if (!ev) return ev.err();
   Gen g{spec,
@@ -359,6 +402,39 @@ Expected<CExport> export_c(const Scenario& scenario, const ParamValues& values,
         static_cast<int>(spec.inputs.size()),
         1};
   if (view->options.kind == model::FilterKind::kSteady) g.opt.steady = true;
+  if (g.opt.steady && !(g.opt.steady_dt > 0.0)) {
+    auto dt = steady_interval(scenario, values, std::nullopt, nullptr);
+    if (!dt) return dt.err();
+    g.opt.steady_dt = *dt;
+  }
+  g.cache = spec.process.form == model::ProcessForm::kContinuous;
+  std::vector<double> vars = g.ev.vars();
+  for (const auto& c : spec.channels) {
+    const std::string key = "model.measurements." + c.name + ".missing";
+    double when = 0.0, equals = 0.0;
+    if (c.missing.on()) {
+      auto w = model::detail::param_value(c.missing.when, spec, vars, key + ".when");
+      if (!w) return w.err();
+      auto e = model::detail::param_value(c.missing.equals, spec, vars, key + ".equals");
+      if (!e) return e.err();
+      when = *w;
+      equals = *e;
+    }
+    g.missing_on.push_back(when != 0.0);
+    g.missing_equals.push_back(equals);
+  }
+  if (spec.modes) {
+    auto modes = spec.modes->modes(spec, view->values);
+    if (!modes) return modes.err();
+    g.modes = static_cast<int>(modes->size());
+    for (const auto& m : *modes) {
+      g.mode_names.push_back(m.name);
+      if (m.model && m.model->process.form == model::ProcessForm::kContinuous) g.cache = true;
+      if (m.model)
+        for (const auto& c : m.model->channels)
+          g.mx = std::max(g.mx, c.size());
+    }
+  }
   for (const auto& c : spec.channels)
     g.mx = std::max(g.mx, c.size());
   auto functions = detail::filter_functions(g);

@@ -33,6 +33,10 @@ struct CExport {
 Expected<CExport> export_c(const Scenario& s, const ParamValues& values,
                            const CExportOptions& options);
 
+// True when the export is the steady-state filter: `flag` (--steady), or the preset's
+// `filter = steady`.
+bool exports_steady(const Scenario& s, const ParamValues& values, bool flag);
+
 // --steady's interval: `dt` when given, else the data's median interval (two rows or more), else
 // the model's simulation step (sim.dt or the file's own key). An Error when not positive.
 Expected<double> steady_interval(const Scenario& s, const ParamValues& values,

@@ -2,6 +2,7 @@
 // generator reads — the model, the values, the options — and the writers they share.
 #pragma once
 
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -24,9 +25,23 @@ struct Gen {
   std::string P;                  // the prefix, NAME
   std::string real;               // "double" or "float"
   std::set<std::string> runtime;  // the runtime pieces the functions call
-  std::set<std::string> params;   // the parameters the expressions read (their constants)
-  std::string defs;               // constants the runtime reads (the UKF's weights, angles)
+  std::map<std::string, double> consts;  // the parameters read: par_NAME (par_NAME_mJ) -> value
+  std::string defs;                      // constants the runtime reads (the UKF's weights, angles)
   int n = 0, nu = 0, mx = 1;
+  // The filter being written: the model's, or an IMM mode's (its model, values and evaluator).
+  const model::ModelSpec* ms = nullptr;
+  const ParamValues* mv = nullptr;
+  model::ModelEval* me = nullptr;
+  int mode = -1;    // the IMM mode, or -1
+  std::string sfx;  // its functions' suffix: "" or "_mJ"
+  std::string ft;   // the struct a filter's functions take: NAME_state, or NAME_filter (IMM)
+  int modes = 0;    // an IMM's modes; 0: none
+  std::vector<std::string> mode_names;
+  bool cache = false;  // a continuous process (in the model or a mode): Van Loan's cache
+  // Per channel: its missing-sample flag in force (model.measurements.C.missing, `when` ≠ 0), and
+  // the value that flags a sample (the caller skips such an update; the example does).
+  std::vector<char> missing_on;
+  std::vector<double> missing_equals;
 
   bool ukf() const { return filter.kind == model::FilterKind::kUkf; }
   bool steady() const { return opt.steady; }
@@ -50,10 +65,20 @@ int angle_kind(Angle a);
 
 // The model's functions and the API's bodies (c_filter.cpp): appended to the .c text.
 Expected<std::string> filter_functions(Gen& g);
-// The process's matrices as C: assignments into F, B, Q (or fx, the process f) at x, u, t, dt.
-Expected<std::string> process_functions(Gen& g);
-// The measurement channels' functions: ẑ, H and R at x, u, t.
-Expected<std::string> channel_functions(Gen& g);
+// One filter's static functions (the model's, or mode g.mode's): its process and channels, and
+// filter_predict<sfx>(FT *s, u, t, dt), filter_update_<channel><sfx>(FT *s, z, u, t, nis,
+// logdet), filter_init<sfx>(FT *s) (c_filter.cpp).
+Expected<std::string> one_filter(Gen& g);
+// The IMM over the modes (c_imm.cpp): every mode's filter, the mixing, the probabilities and the
+// combination, and the API.
+Expected<std::string> imm_functions(Gen& g);
+// s->x[i] = wrap_angle(...) lines for the angle states.
+std::string wrap_state_lines(Gen& g, const std::string& indent);
+// The UKF's weights and angle tables (once, before the runtime).
+void ukf_defs(Gen& g);
+// `name`(FT *s) setting x0 and P0 (and the process unset): "void NAME_init" or an IMM's
+// "static void filter_init".
+Expected<std::string> filter_init(Gen& g, const std::string& name);
 // The example program (c_example.cpp).
 std::string example_program(const Gen& g);
 // The header's declarations of the API (c_export.cpp); the example calls them.

@@ -205,7 +205,9 @@ struct CExprSet::Impl {
     Kind ck = nodes[static_cast<std::size_t>(c)].kind;
     if (temps.count(plain_key(c))) ck = Kind::kSym;
     const int pp = precedence(pk), cp = precedence(ck);
-    const bool wrap = cp < pp || (right && cp == pp) || (pk == Kind::kNeg && ck == Kind::kNeg);
+    // A sign as a right operand or under another sign is parenthesised: a - (-b), -(-b).
+    const bool wrap =
+        cp < pp || (right && cp == pp) || (ck == Kind::kNeg && (right || pk == Kind::kNeg));
     return wrap ? "(" + s + ")" : s;
   }
 

@@ -7,6 +7,7 @@
 #include "codegen/c_export_detail.h"
 #include "filter/ukf.h"
 #include "model/model_steady.h"
+#include "model/world/model_world_noise.h"
 
 namespace kfw::codegen::detail {
 
@@ -57,12 +58,12 @@ void matrix(std::vector<Assign>& out, const model::MatrixSpec& m, const std::str
 // process_at(s, dt): the process at a new interval: process_dt, or (continuous) Van Loan's
 // result for that interval from the cache.
 std::string process_at(const Gen& g) {
-  std::string s = "/* F, B and Q at the interval dt. */\nstatic void process_at(" + g.P +
-                  "_state *s, real dt) {\n";
-  if (g.spec.process.form != model::ProcessForm::kContinuous)
-    return s + "  process_dt(s, dt);\n  s->dt = dt;\n}\n\n";
+  std::string s = "/* F, B and Q at the interval dt. */\nstatic void process_at" + g.sfx + "(" +
+                  g.ft + " *s, real dt) {\n";
+  if (g.ms->process.form != model::ProcessForm::kContinuous)
+    return s + "  process_dt" + g.sfx + "(s, dt);\n  s->dt = dt;\n}\n\n";
   const std::string C = c_macro(g.P) + "_DT_CACHE";
-  const bool b = g.nu > 0 && !g.spec.process.Bc.empty();
+  const bool b = g.nu > 0 && !g.ms->process.Bc.empty();
   s += "  int c, i, j;\n  for (c = 0; c < " + C +
        "; ++c) {\n    if (s->cache_dt[c] == dt) break;\n"
        "  }\n  if (c == " +
@@ -87,11 +88,78 @@ const char* kVoidAll = "  (void)x;\n  (void)u;\n  (void)t;\n  (void)dt;\n";
 // process_dt(s, dt): the entries of F, B and Q of parameters and dt (Van Loan for the continuous
 // form), recomputed only when dt changes. process_step(s, x, u, t, dt, fx): those of t, the
 // inputs and the state, and (nonlinear) f, at x.
+// The continuous nonlinear process: xdot(x, u, t, k) = ẋ, xdot_A(x, u, t, A) = ∂ẋ/∂x (GiNaC's),
+// and process_noise(x, u, t, dt, Q): Van Loan of (A(x), G Qc Gᵀ) over dt.
+Expected<std::string> xdot_parts(Gen& g) {
+  const auto& pr = g.ms->process;
+  std::vector<Assign> k, a;
+  for (int i = 0; i < g.n; ++i)
+    k.push_back({"k[" + std::to_string(i) + "]", &pr.f[static_cast<std::size_t>(i)],
+                 "model.process.xdot[" + std::to_string(i) + "]"});
+  matrix(a, pr.A, "A", false);
+  matrix(a, pr.A, "A", true);
+  auto kt = assignments(g, k);
+  if (!kt) return kt.err();
+  auto at = assignments(g, a);
+  if (!at) return at.err();
+  std::string s = "/* xdot = f(x, u, t). */\nstatic void xdot" + g.sfx +
+                  "(const real *x, const real *u, real t, real *k) {\n  (void)x;\n  (void)u;\n"
+                  "  (void)t;\n" +
+                  *kt + "}\n\n";
+  s += "/* A = df/dx at x, u, t. */\nstatic void xdot_A" + g.sfx +
+       "(const real *x, const real *u, real t, real (*A)[NX]) {\n  (void)x;\n  (void)u;\n"
+       "  (void)t;\n" +
+       *at + "}\n\n";
+  std::vector<Assign> noise;
+  if (!pr.G.empty()) matrix(noise, pr.G, "G", false);
+  matrix(noise, pr.Qc, "Qc", false);
+  auto nt = assignments(g, noise);
+  if (!nt) return nt.err();
+  const int q = pr.G.empty() ? g.n : pr.G.cols;
+  const std::string qs = std::to_string(q);
+  g.runtime.insert("van_loan");
+  g.runtime.insert("rk4");
+  s += "/* Q by Van Loan's method on the linearisation (A(x), G Qc G') over dt. */\n";
+  s += "static void process_noise" + g.sfx +
+       "(const real x[NX], const real *u, real t, real dt, real Q[NX][NX]) {\n"
+       "  real A[NX][NX], W[NX][NX], Fd[NX][NX], G[NX][" +
+       qs + "], Qc[" + qs + "][" + qs + "];\n  int i, j, a, b;\n" + *nt;
+  if (pr.G.empty()) {
+    s += "  for (i = 0; i < NX; ++i) {\n    for (j = 0; j < NX; ++j) G[i][j] = i == j ? LIT(1.0) : "
+         "LIT(0.0);\n  }\n";
+  }
+  s += "  for (i = 0; i < NX; ++i) { /* W = G Qc G' */\n    for (j = 0; j < NX; ++j) {\n"
+       "      real v = LIT(0.0);\n      for (a = 0; a < " +
+       qs +
+       "; ++a) {\n"
+       "        real gq = LIT(0.0);\n        for (b = 0; b < " +
+       qs +
+       "; ++b) gq += G[i][b] * "
+       "Qc[b][a];\n        v += gq * G[j][a];\n      }\n      W[i][j] = v;\n    }\n  }\n";
+  s += "  xdot_A" + g.sfx + "(x, u, t, A);\n  van_loan(A, W, dt, Fd, Q);\n}\n\n";
+  return s;
+}
+
+// The number of RK4 sub-steps over dt (at most `substep` seconds each; 1 without).
+std::string rk4_steps(Gen& g) {
+  double substep = 0.0;
+  if (!g.ms->process.substep.text.empty()) {
+    std::vector<double> vars = g.me->vars();
+    auto v =
+        model::detail::param_value(g.ms->process.substep, *g.ms, vars, "model.process.substep");
+    if (v) substep = *v;
+  }
+  if (!(substep > 0.0)) return "  const int steps = 1;\n";
+  return "  int steps = (int)CEIL(dt / " + g.lit(substep) +
+         " - LIT(1e-9));\n  if (steps < 1) steps = 1;\n";
+}
+
 Expected<std::string> process_parts(Gen& g) {
-  const auto& pr = g.spec.process;
-  const bool nonlinear = g.spec.nonlinear_process();
+  const auto& pr = g.ms->process;
+  const bool nonlinear = g.ms->nonlinear_process();
+  if (pr.form == model::ProcessForm::kContinuousNonlinear) return xdot_parts(g);
   std::string s = "/* F, B and Q of parameters and dt: when dt changes. */\n";
-  s += "static void process_dt(" + g.P + "_state *s, real dt) {\n";
+  s += "static void process_dt" + g.sfx + "(" + g.ft + " *s, real dt) {\n";
   std::vector<Assign> at_dt;
   if (pr.form == model::ProcessForm::kContinuous) {
     g.runtime.insert("van_loan");
@@ -151,8 +219,8 @@ Expected<std::string> process_parts(Gen& g) {
   if (!a) return a.err();
   s += "/* The entries of t, the inputs and the state, at x" +
        std::string(nonlinear && !g.ukf() ? "; fx = f(x)" : "") + ". */\n";
-  s += "static void process_step(" + g.P +
-       "_state *s, const real x[NX], const real *u, real t, "
+  s += "static void process_step" + g.sfx + "(" + g.ft +
+       " *s, const real x[NX], const real *u, real t, "
        "real dt, real fx[NX]) {\n  (void)s;\n  (void)fx;\n" +
        kVoidAll + *a + "}\n\n";
   if (nonlinear && g.ukf()) {
@@ -163,7 +231,8 @@ Expected<std::string> process_parts(Gen& g) {
     auto fa = assignments(g, f);
     if (!fa) return fa.err();
     s += "/* fx = f(x): one sigma point through the process. */\n";
-    s += "static void process_f(const real x[NX], const real *u, real t, real dt, real fx[NX]) "
+    s += "static void process_f" + g.sfx +
+         "(const real x[NX], const real *u, real t, real dt, real fx[NX]) "
          "{\n" +
          std::string(kVoidAll) + *fa + "}\n\n";
   }
@@ -173,7 +242,7 @@ Expected<std::string> process_parts(Gen& g) {
 // channel_C(x, u, t, hx, H, R): ẑ = h(x) (EKF), H (KF, EKF, linear UKF) and R at x; and for the
 // UKF of a nonlinear channel channel_C_h(x, u, t, hx) for the sigma points.
 Expected<std::string> channel_parts(Gen& g, std::size_t c) {
-  const auto& ch = g.spec.channels[c];
+  const auto& ch = g.ms->channels[c];
   const std::string name = c_name(ch.name);
   std::vector<Assign> list;
   const std::string key = "model.measurements." + ch.name;
@@ -189,7 +258,7 @@ Expected<std::string> channel_parts(Gen& g, std::size_t c) {
   auto a = assignments(g, list);
   if (!a) return a.err();
   std::string s = "/* Channel " + comment_text(ch.name) + " at x. */\n";
-  s += "static void channel_" + name +
+  s += "static void channel_" + name + g.sfx +
        "(const real x[NX], const real *u, real t, real hx[MX], "
        "real H[MX][NX], real R[MX][MX]) {\n  (void)x;\n  (void)u;\n  (void)t;\n  (void)hx;\n"
        "  (void)H;\n" +
@@ -201,8 +270,8 @@ Expected<std::string> channel_parts(Gen& g, std::size_t c) {
                    key + ".h[" + std::to_string(j) + "]"});
     auto ha = assignments(g, h);
     if (!ha) return ha.err();
-    s += "static void channel_" + name +
-         "_h(const real x[NX], const real *u, real t, "
+    s += "static void channel_" + name + "_h" + g.sfx +
+         "(const real x[NX], const real *u, real t, "
          "real hx[MX]) {\n  (void)x;\n  (void)u;\n  (void)t;\n" +
          *ha + "}\n\n";
   }
@@ -222,7 +291,8 @@ std::string wrap_states(Gen& g, const std::string& indent) {
   return s;
 }
 
-std::string init_function(Gen& g, std::string& error) {
+// `name`(FT *s): x0 and P0, the process unset. The model's NAME_init, or an IMM's filter_init.
+std::string init_function(Gen& g, std::string& error, const std::string& name) {
   std::vector<Assign> list;
   for (int i = 0; i < g.n; ++i)
     list.push_back({"s->x[" + std::to_string(i) + "]",
@@ -234,7 +304,7 @@ std::string init_function(Gen& g, std::string& error) {
     error = a.error();
     return {};
   }
-  std::string s = "void " + g.P + "_init(" + g.P + "_state *s) {\n" + *a;
+  std::string s = name + "(" + g.ft + " *s) {\n" + *a;
   if (!g.steady()) {
     s += "  s->dt = NAN;\n  {\n    int i, j;\n    for (i = 0; i < NX; ++i) {\n"
          "      for (j = 0; j < NX; ++j) s->F[i][j] = s->Q[i][j] = LIT(0.0);\n";
@@ -248,6 +318,7 @@ std::string init_function(Gen& g, std::string& error) {
     s += "  }\n";
   }
   s += "}\n\n";
+  if (g.modes > 0) return s;  // the IMM sets every mode's
   std::set<std::string> cols;
   for (const auto& x0 : g.spec.x0) {
     if (x0.first_column.empty() || !cols.insert(x0.first_column).second) continue;
@@ -263,13 +334,21 @@ std::string init_function(Gen& g, std::string& error) {
 }
 
 std::string predict_kf(Gen& g) {
-  const bool nonlinear = g.spec.nonlinear_process();
+  const bool nonlinear = g.ms->nonlinear_process();
   g.runtime.insert("predict_cov");
   g.runtime.insert("diverged");
-  std::string s = "int " + g.P + "_predict(" + g.P + "_state *s, const " + g.P + "_real *u, " +
-                  g.P + "_real t, " + g.P + "_real dt) {\n  real fx[NX];\n  int i;\n";
-  s += "  if (!(dt == s->dt)) process_at(s, dt);\n";
-  s += "  process_step(s, s->x, u, t, dt, fx);\n";
+  std::string s = "static int filter_predict" + g.sfx + "(" + g.ft +
+                  " *s, const real *u, real t, real dt) {\n  real fx[NX];\n  int i;\n";
+  if (g.ms->process.form == model::ProcessForm::kContinuousNonlinear) {
+    s += rk4_steps(g) + "  rk4(xdot" + g.sfx + ", xdot_A" + g.sfx +
+         ", s->x, u, t, dt, steps, fx, s->F);\n  process_noise" + g.sfx +
+         "(s->x, u, t, dt, s->Q);\n";
+    s += "  predict_cov(s->P, s->F, s->Q);\n  for (i = 0; i < NX; ++i) s->x[i] = fx[i];\n";
+    s += wrap_states(g, "  ");
+    return s + "  return diverged(s->x, s->P) ? " + c_macro(g.P) + "_DIVERGED : 0;\n}\n\n";
+  }
+  s += "  if (!(dt == s->dt)) process_at" + g.sfx + "(s, dt);\n";
+  s += "  process_step" + g.sfx + "(s, s->x, u, t, dt, fx);\n";
   if (!nonlinear) {
     s += "  for (i = 0; i < NX; ++i) { /* fx = F x + B u */\n    int j;\n    real v = LIT(0.0);\n"
          "    for (j = 0; j < NX; ++j) v += s->F[i][j] * s->x[j];\n    fx[i] = v;\n  }\n";
@@ -291,18 +370,25 @@ std::string angles_array(const std::string& name, const std::vector<int>& kinds)
 }
 
 std::string predict_ukf(Gen& g) {
-  const bool nonlinear = g.spec.nonlinear_process();
+  const bool nonlinear = g.ms->nonlinear_process();
   g.runtime.insert("sigma_points");
   g.runtime.insert("diverged");
-  std::string s = "int " + g.P + "_predict(" + g.P + "_state *s, const " + g.P + "_real *u, " +
-                  g.P + "_real t, " + g.P + "_real dt) {\n";
+  std::string s =
+      "static int filter_predict" + g.sfx + "(" + g.ft + " *s, const real *u, real t, real dt) {\n";
   s += "  real X[NX][NS], Y[NX][NS], xs[NX], ys[NX], d[NX];\n  int i, j, r;\n";
-  s += "  if (!(dt == s->dt)) process_at(s, dt);\n";
-  s += "  process_step(s, s->x, u, t, dt, ys);\n";
+  const bool xdot = g.ms->process.form == model::ProcessForm::kContinuousNonlinear;
+  if (xdot) {
+    s += rk4_steps(g) + "  process_noise" + g.sfx + "(s->x, u, t, dt, s->Q);\n";
+  } else {
+    s += "  if (!(dt == s->dt)) process_at" + g.sfx + "(s, dt);\n";
+    s += "  process_step" + g.sfx + "(s, s->x, u, t, dt, ys);\n";
+  }
   s += "  if (!sigma_points(s->x, s->P, X)) return " + c_macro(g.P) + "_DIVERGED;\n";
   s += "  for (j = 0; j < NS; ++j) {\n    for (i = 0; i < NX; ++i) xs[i] = X[i][j];\n";
-  if (nonlinear) {
-    s += "    process_f(xs, u, t, dt, ys);\n";
+  if (xdot) {
+    s += "    rk4(xdot" + g.sfx + ", xdot_A" + g.sfx + ", xs, u, t, dt, steps, ys, 0);\n";
+  } else if (nonlinear) {
+    s += "    process_f" + g.sfx + "(xs, u, t, dt, ys);\n";
   } else {
     s += "    for (i = 0; i < NX; ++i) {\n      int k;\n      real v = LIT(0.0);\n"
          "      for (k = 0; k < NX; ++k) v += s->F[i][k] * xs[k];\n      ys[i] = v;\n    }\n";
@@ -324,21 +410,19 @@ std::string predict_ukf(Gen& g) {
 
 // The head of an update function: its locals, u and t where the channel does not read them.
 std::string update_head(Gen& g, std::size_t c) {
-  std::string s = update_signature(g, c) + " {\n";
-  if (!channel_reads_step(g.spec.channels[c]))
-    s += "  const real *u = 0;\n  const real t = LIT(0.0);\n";
-  return s;
+  return "static int filter_update_" + c_name(g.spec.channels[c].name) + g.sfx + "(" + g.ft +
+         " *s, const real *z, const real *u, real t, real *nis, real *logdet) {\n";
 }
 
 std::string update_kf(Gen& g, std::size_t c) {
-  const auto& ch = g.spec.channels[c];
+  const auto& ch = g.ms->channels[c];
   const std::string M = c_macro(g.P), name = c_name(ch.name);
   const int m = ch.size();
-  const double gate = g.ev.channel(c).gate_nis;
+  const double gate = g.me->channel(c).gate_nis;
   g.runtime.insert("diverged");
   std::string s = update_head(g, c);
   s += "  real hx[MX], H[MX][NX], R[MX][MX], y[MX];\n  int j, r;\n";
-  s += "  channel_" + name + "(s->x, u, t, hx, H, R);\n";
+  s += "  channel_" + name + g.sfx + "(s->x, u, t, hx, H, R);\n";
   if (ch.linear) {
     s += "  for (j = 0; j < " + std::to_string(m) +
          "; ++j) { /* zhat = H x */\n    int i;\n"
@@ -360,7 +444,8 @@ std::string update_kf(Gen& g, std::size_t c) {
   }
   if (m == 1) {
     g.runtime.insert("update_scalar");
-    s += "  r = update_scalar(s->x, s->P, H[0], R[0][0], y[0], " + g.lit(gate) + ", nis);\n";
+    s +=
+        "  r = update_scalar(s->x, s->P, H[0], R[0][0], y[0], " + g.lit(gate) + ", nis, logdet);\n";
   } else {
     g.runtime.insert("update_vec");
     const std::string ms = std::to_string(m);
@@ -371,7 +456,8 @@ std::string update_kf(Gen& g, std::size_t c) {
     s += "    for (a = 0; a < " + ms + "; ++a) { /* S = H C + R */\n      for (b = 0; b < " + ms +
          "; ++b) {\n        real v = LIT(0.0);\n        for (i = 0; i < NX; ++i) v += H[a][i] * "
          "C[i][b];\n        S[a][b] = v + R[a][b];\n      }\n    }\n";
-    s += "    r = update_vec(s->x, s->P, " + ms + ", y, S, C, H, R, " + g.lit(gate) + ", nis);\n";
+    s += "    r = update_vec(s->x, s->P, " + ms + ", y, S, C, H, R, " + g.lit(gate) +
+         ", nis, logdet);\n";
     s += "  }\n";
   }
   s += "  if (r != " + M + "_APPLIED) return r;\n" + wrap_states(g, "  ");
@@ -379,16 +465,16 @@ std::string update_kf(Gen& g, std::size_t c) {
 }
 
 std::string update_ukf(Gen& g, std::size_t c) {
-  const auto& ch = g.spec.channels[c];
+  const auto& ch = g.ms->channels[c];
   const std::string M = c_macro(g.P), name = c_name(ch.name), ms = std::to_string(ch.size());
-  const double gate = g.ev.channel(c).gate_nis;
+  const double gate = g.me->channel(c).gate_nis;
   g.runtime.insert("update_vec");
   g.runtime.insert("sigma_points");
   g.runtime.insert("diverged");
   std::string s = update_head(g, c);
   s += "  real hx[MX], H[MX][NX], R[MX][MX], y[MX], X[NX][NS], Z[MX][NS], S[MX][MX], C[NX][MX];\n"
        "  real xs[NX], zhat[MX], dz[MX], d[NX];\n  int i, j, a, r;\n";
-  s += "  channel_" + name + "(s->x, u, t, hx, H, R);\n";
+  s += "  channel_" + name + g.sfx + "(s->x, u, t, hx, H, R);\n";
   s += "  if (!sigma_points(s->x, s->P, X)) return " + M + "_DIVERGED;\n";
   s += "  for (j = 0; j < NS; ++j) {\n    for (i = 0; i < NX; ++i) xs[i] = X[i][j];\n";
   if (ch.linear) {
@@ -396,7 +482,7 @@ std::string update_ukf(Gen& g, std::size_t c) {
          "; ++a) {\n      real v = LIT(0.0);\n      for (i = 0; i < "
          "NX; ++i) v += H[a][i] * xs[i];\n      hx[a] = v;\n    }\n";
   } else {
-    s += "    channel_" + name + "_h(xs, u, t, hx);\n";
+    s += "    channel_" + name + "_h" + g.sfx + "(xs, u, t, hx);\n";
   }
   s += "    for (a = 0; a < " + ms + "; ++a) Z[a][j] = hx[a];\n  }\n";
   s += "  for (a = 0; a < " + ms + "; ++a) zhat[a] = sigma_mean(Z[a], role_angle_" + name +
@@ -422,7 +508,8 @@ std::string update_ukf(Gen& g, std::size_t c) {
        "_SKIPPED;\n    }\n    y[a] = wrap_angle(z[a] - zhat[a], "
        "role_angle_" +
        name + "[a]);\n  }\n";
-  s += "  r = update_vec(s->x, s->P, " + ms + ", y, S, C, 0, 0, " + g.lit(gate) + ", nis);\n";
+  s += "  r = update_vec(s->x, s->P, " + ms + ", y, S, C, 0, 0, " + g.lit(gate) +
+       ", nis, logdet);\n";
   s += "  if (r != " + M + "_APPLIED) return r;\n" + wrap_states(g, "  ");
   return s + "  return diverged(s->x, s->P) ? " + M + "_DIVERGED : " + M + "_APPLIED;\n}\n\n";
 }
@@ -464,9 +551,8 @@ Expected<std::string> steady_functions(Gen& g) {
   s += "    fx[i] = v;\n  }\n  for (i = 0; i < NX; ++i) s->x[i] = fx[i];\n" + wrap_states(g, "  ");
   s += "  for (i = 0; i < NX; ++i) {\n    if (!isfinite(s->x[i])) return " + M +
        "_DIVERGED;\n  }\n  return 0;\n}\n\n";
-  s += update_head(g, 0) + "  real y[" + std::to_string(m) +
-       "];\n  int i, j;\n  (void)u;\n"
-       "  (void)t;\n";
+  s += update_signature(g, 0) + " {\n  real y[" + std::to_string(m) + "];\n  int i, j;\n";
+  if (channel_reads_step(ch)) s += "  (void)u;\n  (void)t;\n";
   s += "  for (j = 0; j < " + std::to_string(m) +
        "; ++j) {\n    real v = LIT(0.0);\n"
        "    for (i = 0; i < NX; ++i) v += H[j][i] * s->x[i];\n    y[j] = z[j] - v;\n  }\n";
@@ -485,51 +571,89 @@ Expected<std::string> steady_functions(Gen& g) {
   return s;
 }
 
+// The model's own filter: NAME_predict and NAME_update_CHANNEL over filter_predict and
+// filter_update_CHANNEL.
+std::string api_wrappers(Gen& g) {
+  std::string s = "int " + g.P + "_predict(" + g.P + "_state *s, const " + g.P + "_real *u, " +
+                  g.P + "_real t, " + g.P +
+                  "_real dt) {\n  return filter_predict(s, u, t, dt);\n}\n\n";
+  for (std::size_t c = 0; c < g.spec.channels.size(); ++c) {
+    s += update_signature(g, c) + " {\n";
+    if (!channel_reads_step(g.spec.channels[c]))
+      s += "  const real *u = 0;\n  const real t = LIT(0.0);\n";
+    s += "  return filter_update_" + c_name(g.spec.channels[c].name) +
+         "(s, z, u, t, nis, 0);\n}\n\n";
+  }
+  return s;
+}
+
 }  // namespace
 
-Expected<std::string> filter_functions(Gen& g) {
-  std::string error;
-  std::string init = init_function(g, error);
-  if (!error.empty()) return Error{error};
-  if (g.steady()) {
-    auto s = steady_functions(g);
-    if (!s) return s.err();
-    return init + *s;
+std::string wrap_state_lines(Gen& g, const std::string& indent) {
+  return wrap_states(g, indent);
+}
+
+void ukf_defs(Gen& g) {
+  std::string& d = g.defs;
+  const auto w = UkfWeights::scaled(g.n, g.filter.alpha, g.filter.beta, g.filter.kappa);
+  d += "/* The scaled unscented transform: alpha = " + g.lit(g.filter.alpha) +
+       ", beta = " + g.lit(g.filter.beta) + ", kappa = " + g.lit(g.filter.kappa) + ". */\n";
+  d += "static const real UKF_C = " + g.lit(w.c) + ", UKF_WM0 = " + g.lit(w.m0) +
+       ", UKF_WC0 = " + g.lit(w.c0) + ", UKF_WI = " + g.lit(w.i) + ";\n";
+  std::vector<int> kinds;
+  for (const auto& st : g.spec.states)
+    kinds.push_back(angle_kind(st.angle));
+  d += angles_array("state_angle", kinds);
+  for (const auto& ch : g.spec.channels) {
+    kinds.clear();
+    for (const auto& r : ch.comps)
+      kinds.push_back(angle_kind(r.angle));
+    d += angles_array("role_angle_" + c_name(ch.name), kinds);
   }
-  std::string s;
-  if (g.ukf()) {
-    std::string& d = g.defs;
-    const auto w = UkfWeights::scaled(g.n, g.filter.alpha, g.filter.beta, g.filter.kappa);
-    d += "/* The scaled unscented transform: alpha = " + g.lit(g.filter.alpha) +
-         ", beta = " + g.lit(g.filter.beta) + ", kappa = " + g.lit(g.filter.kappa) + ". */\n";
-    d += "static const real UKF_C = " + g.lit(w.c) + ", UKF_WM0 = " + g.lit(w.m0) +
-         ", UKF_WC0 = " + g.lit(w.c0) + ", UKF_WI = " + g.lit(w.i) + ";\n";
-    std::vector<int> kinds;
-    for (const auto& st : g.spec.states)
-      kinds.push_back(angle_kind(st.angle));
-    d += angles_array("state_angle", kinds);
-    for (const auto& ch : g.spec.channels) {
-      kinds.clear();
-      for (const auto& r : ch.comps)
-        kinds.push_back(angle_kind(r.angle));
-      d += angles_array("role_angle_" + c_name(ch.name), kinds);
-    }
-    d += "\n";
-    g.runtime.insert("wrap_angle");
-  }
+  d += "\n";
+  g.runtime.insert("wrap_angle");
+}
+
+Expected<std::string> one_filter(Gen& g) {
   auto p = process_parts(g);
   if (!p) return p.err();
-  s += *p;
-  for (std::size_t c = 0; c < g.spec.channels.size(); ++c) {
+  std::string s = *p;
+  for (std::size_t c = 0; c < g.ms->channels.size(); ++c) {
     auto ch = channel_parts(g, c);
     if (!ch) return ch.err();
     s += *ch;
   }
-  s += init;
   s += g.ukf() ? predict_ukf(g) : predict_kf(g);
-  for (std::size_t c = 0; c < g.spec.channels.size(); ++c)
+  for (std::size_t c = 0; c < g.ms->channels.size(); ++c)
     s += g.ukf() ? update_ukf(g, c) : update_kf(g, c);
   return s;
+}
+
+Expected<std::string> filter_init(Gen& g, const std::string& name) {
+  std::string error;
+  std::string s = init_function(g, error, name);
+  if (!error.empty()) return Error{error};
+  return s;
+}
+
+Expected<std::string> filter_functions(Gen& g) {
+  g.ms = &g.spec;
+  g.mv = &g.values;
+  g.me = &g.ev;
+  g.sfx.clear();
+  g.ft = g.P + "_state";
+  if (g.modes > 0) return imm_functions(g);
+  auto init = filter_init(g, "void " + g.P + "_init");
+  if (!init) return init.err();
+  if (g.steady()) {
+    auto s = steady_functions(g);
+    if (!s) return s.err();
+    return *init + *s;
+  }
+  if (g.ukf()) ukf_defs(g);
+  auto f = one_filter(g);
+  if (!f) return f.err();
+  return *init + *f + api_wrappers(g);
 }
 
 }  // namespace kfw::codegen::detail

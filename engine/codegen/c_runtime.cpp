@@ -97,9 +97,10 @@ static void predict_cov(real P[NX][NX], real F[NX][NX], real Q[NX][NX]) {
        {},
        R"C(/* A scalar measurement, y = z - zhat (wrapped): S = h P h' + r, K = P h'/S, and the Joseph form
    P - K C' - C K' + S K K' on the upper triangle, mirrored (filter/measurement_update.h).
-   1: applied; 0: gated (NIS above `gate`); -1: S not positive or not finite. */
+   1: applied (*logdet = log S when logdet is given); 0: gated (NIS above `gate`); -1: S not
+   positive or not finite. */
 static int update_scalar(real x[NX], real P[NX][NX], const real h[NX], real r, real y, real gate,
-                         real *nis) {
+                         real *nis, real *logdet) {
   real C[NX], K[NX], S = LIT(0.0), v;
   int i, j;
   for (i = 0; i < NX; ++i) {
@@ -114,6 +115,7 @@ static int update_scalar(real x[NX], real P[NX][NX], const real h[NX], real r, r
   v = y * y / S;
   if (nis) *nis = v;
   if (gate > LIT(0.0) && v > gate) return 0;
+  if (logdet) *logdet = LOG(S);
   for (i = 0; i < NX; ++i) {
     K[i] = C[i] / S;
     x[i] += K[i] * y;
@@ -157,9 +159,11 @@ static int chol(int m, int ld, const real *A, real *L) {
        R"C(/* A measurement of m components, y = z - zhat (angles wrapped), S and C = P H' (or the sigma
    points' P_xz): S factored, NIS = y' S^-1 y, K = C S^-1, x += K y, and P in Joseph form
    (I - K H) P (I - K H)' + K R K' when H is given, else P - K S K'; then symmetrised
-   (filter/measurement_update.h). 1: applied; 0: gated; -1: S not positive definite. */
+   (filter/measurement_update.h). 1: applied (*logdet = log det S when logdet is given); 0:
+   gated; -1: S not positive definite. */
 static int update_vec(real x[NX], real P[NX][NX], int m, const real y[MX], real S[MX][MX],
-                      real C[NX][MX], real H[MX][NX], real R[MX][MX], real gate, real *nis) {
+                      real C[NX][MX], real H[MX][NX], real R[MX][MX], real gate, real *nis,
+                      real *logdet) {
   real L[MX][MX], w[MX], K[NX][MX], T[NX][NX], A[NX][NX], v = LIT(0.0);
   int i, j, a, b;
   if (nis) *nis = NAN;
@@ -177,6 +181,11 @@ static int update_vec(real x[NX], real P[NX][NX], int m, const real y[MX], real 
   }
   if (nis) *nis = v;
   if (gate > LIT(0.0) && v > gate) return 0;
+  if (logdet) {
+    real ld = LIT(0.0);
+    for (a = 0; a < m; ++a) ld += LIT(2.0) * LOG(L[a][a]);
+    *logdet = ld;
+  }
   for (i = 0; i < NX; ++i) { /* K(i, :) solves S k = C(i, :)' */
     real s[MX];
     for (a = 0; a < m; ++a) {
@@ -327,6 +336,68 @@ static void van_loan(real A[NX][NX], real W[NX][NX], real dt, real F[NX][NX], re
   for (i = 0; i < NX; ++i) {
     for (j = 0; j < NX; ++j) Q[i][j] = LIT(0.5) * (C[i][j] + C[j][i]);
   }
+}
+)C"},
+      {"rk4",
+       {},
+       R"C(/* The classical RK4 of xdot = f(x, u, t) over dt in `steps` equal sub-steps from x0 at t0, and
+   (F given) the exact Jacobian of that step map, the chain rule through the four stages of every
+   sub-step with A = df/dx (model/model_continuous.cpp). */
+static void rk4(void (*f)(const real *, const real *, real, real *),
+                void (*jac)(const real *, const real *, real, real (*)[NX]), const real x0[NX],
+                const real *u, real t0, real dt, int steps, real fx[NX], real F[NX][NX]) {
+  const real h = dt / (real)steps;
+  const real c[4] = {LIT(0.0), LIT(0.5), LIT(0.5), LIT(1.0)};
+  real x[NX], xs[NX], k[4][NX], A[NX][NX], D[4][NX][NX], T[NX][NX];
+  int i, j, q, s, stage;
+  for (i = 0; i < NX; ++i) {
+    x[i] = x0[i];
+    if (F) {
+      for (j = 0; j < NX; ++j) F[i][j] = i == j ? LIT(1.0) : LIT(0.0);
+    }
+  }
+  for (s = 0; s < steps; ++s) {
+    const real ts = t0 + (real)s * h;
+    for (stage = 0; stage < 4; ++stage) {
+      /* the stage at x + c h k_prev, ts + c h; its D = A (I + c h D_prev) */
+      const real tc = stage ? ts + c[stage] * h : ts;
+      for (i = 0; i < NX; ++i) xs[i] = stage ? x[i] + c[stage] * h * k[stage - 1][i] : x[i];
+      f(xs, u, tc, k[stage]);
+      if (!F) continue;
+      jac(xs, u, tc, A);
+      for (i = 0; i < NX; ++i) {
+        for (j = 0; j < NX; ++j) {
+          real v = LIT(0.0);
+          if (!stage) {
+            D[0][i][j] = A[i][j];
+            continue;
+          }
+          for (q = 0; q < NX; ++q)
+            v += A[i][q] * ((q == j ? LIT(1.0) : LIT(0.0)) + c[stage] * h * D[stage - 1][q][j]);
+          D[stage][i][j] = v;
+        }
+      }
+    }
+    for (i = 0; i < NX; ++i)
+      x[i] += (h / LIT(6.0)) * (k[0][i] + LIT(2.0) * k[1][i] + LIT(2.0) * k[2][i] + k[3][i]);
+    if (!F) continue;
+    for (i = 0; i < NX; ++i) {
+      for (j = 0; j < NX; ++j) {
+        real v = LIT(0.0);
+        for (q = 0; q < NX; ++q) {
+          const real m = (i == q ? LIT(1.0) : LIT(0.0)) +
+                         (h / LIT(6.0)) * (D[0][i][q] + LIT(2.0) * D[1][i][q] +
+                                           LIT(2.0) * D[2][i][q] + D[3][i][q]);
+          v += m * F[q][j];
+        }
+        T[i][j] = v;
+      }
+    }
+    for (i = 0; i < NX; ++i) {
+      for (j = 0; j < NX; ++j) F[i][j] = T[i][j];
+    }
+  }
+  for (i = 0; i < NX; ++i) fx[i] = x[i];
 }
 )C"},
       {"van_loan_input",

@@ -14,6 +14,8 @@
 #include <map>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "common/cli_runner.h"
 #include "common/short_temp_dir.h"
 
@@ -38,6 +40,11 @@ struct CsvTable {
     return -1;
   }
 };
+
+std::string slurp_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
 
 CsvTable read_csv(const std::string& path) {
   CsvTable t;
@@ -65,7 +72,7 @@ double worst_error(const CsvTable& a, const CsvTable& b, double t0, bool states_
   double worst = 0.0;
   for (std::size_t j = 1; j < a.names.size(); ++j) {
     const std::string& n = a.names[j];
-    if ((states_only && n.rfind("x.", 0) != 0) || n == skip) continue;
+    if ((states_only && n.rfind("x.", 0) != 0) || n == skip || n.rfind("mu.", 0) == 0) continue;
     const int jb = b.col(n);
     EXPECT_GE(jb, 0) << n;
     if (jb < 0) return INFINITY;
@@ -91,6 +98,20 @@ double worst_error(const CsvTable& a, const CsvTable& b, double t0, bool states_
                 std::to_string(y);
       }
     }
+  }
+  return worst;
+}
+
+// The largest |a − b| of the mode probabilities (mu.MODE): kfw keeps them in single precision
+// (ImmSeries::mu), so they agree to its rounding, 6e-8, not to 1e-9.
+double mu_error(const CsvTable& a, const CsvTable& b) {
+  double worst = 0.0;
+  for (std::size_t j = 1; j < a.names.size(); ++j) {
+    if (a.names[j].rfind("mu.", 0) != 0) continue;
+    const int jb = b.col(a.names[j]);
+    EXPECT_GE(jb, 0) << a.names[j];
+    for (std::size_t k = 0; jb >= 0 && k < std::min(a.rows.size(), b.rows.size()); ++k)
+      worst = std::max(worst, std::fabs(a.rows[k][j] - b.rows[k][static_cast<std::size_t>(jb)]));
   }
   return worst;
 }
@@ -162,6 +183,11 @@ const Case kCases[] = {
     {"models/range_bearing.json", "", false},                  // range-bearing EKF
     {"models/range_bearing.json", "--set filter=ukf", false},  // and UKF
     {"models/singer.json", "", false},                         // continuous time (Van Loan per dt)
+    // Seed 003's beam replayed (mode 1), its KF: the detection circuit's missing flags, an input.
+    {"ballbeam.json", "--set mode=1 --set filter=kf", false},
+    // The continuous nonlinear process: RK4 in sub-steps, its Jacobian, Van Loan at A(x).
+    {"models/van_der_pol.json", "", false},
+    {"models/van_der_pol.json", "--set filter=ukf", false},
 };
 
 TEST_F(CExport, DoubleExportEqualsRunOutToNineDigits) {
@@ -182,6 +208,43 @@ TEST_F(CExport, DoubleExportEqualsRunOutToNineDigits) {
       std::string where;
       EXPECT_LE(worst_error(est, ref, -INFINITY, false, where), 1e-9) << where;
     }
+  }
+}
+
+// IMMs (issue 28's modes): a list over the constant-velocity model (KF), the CV / coordinated-turn
+// pair (EKF and UKF, a mode with its own process), a Markov matrix with μ0, and a grid: estimates
+// and covariance to 1e-9, mode probabilities to kfw's single-precision record.
+TEST_F(CExport, ImmExportEqualsRunOutInEstimatesAndModeProbabilities) {
+  auto preset = nlohmann::json::parse(slurp_text(kPresets + "models/cv_imm.json"));
+  auto dense = preset;
+  dense["model"]["modes"]["markov"] = {{"matrix", {{0.97, 0.03}, {0.1, 0.9}}}};
+  dense["model"]["modes"]["mu0"] = {0.8, 0.2};
+  auto grid = preset;
+  grid["model"]["modes"] = {
+      {"grid", {{{"param", "q_quiet"}, {"min", 0.01}, {"max", 3}, {"n", 4}, {"label", "q"}}}},
+      {"markov", {{"stay", 0.9}}}};
+  const std::pair<std::string, std::string> cases[] = {
+      {kPresets + "models/cv_imm.json", ""},
+      {kPresets + "models/cv_ct_imm.json", ""},
+      {kPresets + "models/cv_ct_imm.json", "--set filter=ukf"},
+      {write("dense.json", dense.dump()), ""},
+      {write("grid.json", grid.dump()), ""},
+  };
+  for (const auto& [p, sets] : cases) {
+    SCOPED_TRACE(p + " " + sets);
+    const std::string csv = data(p, sets);
+    const CsvTable ref = run(p, sets, csv);
+    const CsvTable est = exported(p, sets, "imm" + std::to_string(runs_++), csv);
+    ASSERT_GT(est.rows.size(), 100u);
+    const auto modes = [](const CsvTable& t) {
+      return std::count_if(t.names.begin(), t.names.end(),
+                           [](const std::string& n) { return n.rfind("mu.", 0) == 0; });
+    };
+    EXPECT_GE(modes(est), 2);
+    EXPECT_EQ(modes(est), modes(ref));
+    std::string where;
+    EXPECT_LE(worst_error(est, ref, -INFINITY, false, where), 1e-9) << where;
+    EXPECT_LE(mu_error(est, ref), 1e-7);
   }
 }
 
@@ -220,6 +283,10 @@ TEST_F(CExport, SteadyEqualsTheSteadyFilterAndTheFullFilterAfterItsTransient) {
       {"helicopter.json", "--set gamma=0.005", 100.0, false},
       {"models/cv1d.json", "--set sim.duration=600", 300.0, false},
       {"broad_imu.json", "", 100.0, true},
+      // Seed 003's α-β filter (the preset's own filter = steady), replayed with its missing
+      // samples: after each gap the full filter's gain differs, so only the steady filter is
+      // compared.
+      {"ballbeam.json", "--set mode=1", INFINITY, false},
   };
   for (const auto& c : cases) {
     if (c.broad && !fs::exists(kBroad)) continue;
@@ -241,7 +308,9 @@ TEST_F(CExport, SteadyEqualsTheSteadyFilterAndTheFullFilterAfterItsTransient) {
 TEST_F(CExport, ExampleUnderAddressAndUndefinedSanitizersReportsNothing) {
   const std::string flags = std::string(kStrict) + " -g -fsanitize=address,undefined " +
                             "-fno-sanitize-recover=all -fno-omit-frame-pointer";
-  for (const Case& c : kCases) {
+  std::vector<Case> cases(std::begin(kCases), std::end(kCases));
+  cases.push_back({"models/cv_ct_imm.json", "", false});  // an IMM's mixing and probabilities
+  for (const Case& c : cases) {
     if (c.broad) continue;  // the same code as cv1d's KF; 55 000 rows under ASan add seconds
     SCOPED_TRACE(std::string(c.preset) + " " + c.sets);
     const std::string p = kPresets + c.preset;
@@ -253,11 +322,6 @@ TEST_F(CExport, ExampleUnderAddressAndUndefinedSanitizersReportsNothing) {
   }
 }
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
 TEST_F(CExport, ReExportIsByteIdentical) {
   const std::string p = kPresets + "models/range_bearing.json";
   for (const std::string args : {"", " --set filter=ukf --float", " --set sigma_a=0.7"}) {
@@ -266,18 +330,19 @@ TEST_F(CExport, ReExportIsByteIdentical) {
       ASSERT_EQ(cli("export-c " + p + args + " --out-dir " + dir_ + d).code, 0);
     }
     for (const char* f : {"/range_bearing.h", "/range_bearing.c", "/range_bearing_example.c"}) {
-      const std::string a = slurp(dir_ + "/a" + f);
+      const std::string a = slurp_text(dir_ + "/a" + f);
       EXPECT_FALSE(a.empty());
-      EXPECT_EQ(a, slurp(dir_ + "/b" + f)) << f;
+      EXPECT_EQ(a, slurp_text(dir_ + "/b" + f)) << f;
     }
   }
 }
 
 TEST_F(CExport, AModelThatCannotBeExportedSaysSoInOneLineAndWritesNothing) {
   const std::pair<std::string, std::string> cases[] = {
-      {"models/van_der_pol.json", ""},            // the continuous nonlinear process
+      {"underwater.json", ""},                    // channel groups, input ages
       {"models/range_bearing.json", "--steady"},  // --steady on a nonlinear model
-      {"models/cv_imm.json", ""},                 // an IMM (not yet)
+      {"radome.json", ""},                        // renewal, blocks, x0 from a channel (not yet)
+      {"models/cv_imm.json", "--steady"},         // an IMM has no single steady state
       {"models/cv1d.json", "--prefix 9lives"},    // not a C identifier
       {"models/cv1d.json", "--prefix int"},       // a keyword
       {"models/cv1d.json", "--dt 0.1"},           // --dt without --steady
@@ -292,9 +357,9 @@ TEST_F(CExport, AModelThatCannotBeExportedSaysSoInOneLineAndWritesNothing) {
     EXPECT_EQ(std::count(c.text.begin(), c.text.end(), '\n'), 1) << c.text;
     EXPECT_TRUE(fs::is_empty(dir_)) << c.text;
   }
-  const auto c = cli("export-c " + kPresets + "models/van_der_pol.json --out-dir " + dir_);
-  EXPECT_NE(c.text.find("van_der_pol.json"), std::string::npos) << c.text;
-  EXPECT_NE(c.text.find("xdot"), std::string::npos) << c.text;
+  const auto c = cli("export-c " + kPresets + "underwater.json --out-dir " + dir_);
+  EXPECT_NE(c.text.find("underwater.json"), std::string::npos) << c.text;
+  EXPECT_NE(c.text.find("model.groups"), std::string::npos) << c.text;
 }
 
 }  // namespace

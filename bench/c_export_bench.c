@@ -1,8 +1,9 @@
 /* Time per step of an exported filter (kfw-cli export-c): NAME_predict and NAME_update_CHANNEL
    over a dataset held in memory, repeated, in ns per row. Built and run by
    bench/c_export_bench.sh, which passes the header (-DEXPORT_H), the update (-DUPDATE), the
-   state type (-DSTATE), init and predict (-DINIT, -DPREDICT) and the channel's size (-DM); the
-   data file holds t and the channel's components, comma-separated, one row per line. */
+   state type (-DSTATE), init and predict (-DINIT, -DPREDICT), the inputs' and the channel's sizes
+   (-DNIN, -DNZ); the data file holds t, the inputs and the channel's components, comma-separated,
+   one row per line. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,7 +13,7 @@
 
 #define MAX_ROWS 200000
 
-static double rows[MAX_ROWS][1 + NZ];
+static double rows[MAX_ROWS][1 + NIN + NZ];
 
 int main(int argc, char **argv) {
   FILE *in;
@@ -26,7 +27,7 @@ int main(int argc, char **argv) {
   in = fopen(argv[1], "r");
   if (!in) return 2;
   while (n < MAX_ROWS) {
-    for (j = 0; j <= NZ; ++j) {
+    for (j = 0; j <= NIN + NZ; ++j) {
       if (fscanf(in, j ? ",%lf" : "%lf", &rows[n][j]) != 1) goto done;
     }
     ++n;
@@ -41,9 +42,12 @@ done:
     clock_gettime(CLOCK_MONOTONIC, &a);
     INIT(&s);
     for (k = 0; k < n; ++k) {
-      REAL z[NZ], nis;
-      if (k > 0) PREDICT(&s, 0, (REAL)rows[k - 1][0], (REAL)(rows[k][0] - rows[k - 1][0]));
-      for (j = 0; j < NZ; ++j) z[j] = (REAL)rows[k][1 + j];
+      REAL z[NZ], u[NIN + 1], nis;
+      if (k > 0) {
+        for (j = 0; j < NIN; ++j) u[j] = (REAL)rows[k - 1][1 + j];
+        PREDICT(&s, u, (REAL)rows[k - 1][0], (REAL)(rows[k][0] - rows[k - 1][0]));
+      }
+      for (j = 0; j < NZ; ++j) z[j] = (REAL)rows[k][1 + NIN + j];
       UPDATE(&s, z, &nis);
     }
     clock_gettime(CLOCK_MONOTONIC, &b);

@@ -98,6 +98,65 @@ std::string output_header(const Gen& g) {
   return h;
 }
 
+// The rows: predict, the inputs held, each channel updated when its clock and its sample allow,
+// the estimates written.
+std::string example_loop(const Gen& g) {
+  const model::ModelSpec& s = g.spec;
+  const std::string M = c_macro(g.P), fmt = g.opt.single ? "%.9g" : "%.17g";
+  std::string c;
+  c += "  while (read_line(line, in, path)) {\n    n = split(line, field);\n"
+       "    if (n <= 1 && field[0][0] == '\\0') continue; /* a blank line */\n"
+       "    t = value_of(field, n, col_t);\n";
+  c += "    if (k > 0 && (r = " + g.P + "_predict(&s, u, (" + g.P + "_real)t_prev, (" + g.P +
+       "_real)(t - t_prev))) < 0) {\n"
+       "      fprintf(stderr, \"%s: row %ld: the filter diverged\\n\", path, k);\n      return 1;\n"
+       "    }\n";
+  if (g.nu > 0) {
+    c += "    for (j = 0; j < " + M +
+         "_NU; ++j) { /* the inputs' last finite values held */\n"
+         "      const double v = value_of(field, n, col_u[j]);\n      if (isfinite(v)) u[j] = (" +
+         g.P + "_real)v;\n    }\n";
+  }
+  for (std::size_t ch = 0; ch < s.channels.size(); ++ch) {
+    const auto& cs = s.channels[ch];
+    const std::string name = c_name(cs.name);
+    c += "    if (k % " + M + "_EVERY_" + c_macro(cs.name) +
+         " == 0) {\n      ready = 1;\n"
+         "      for (j = 0; j < " +
+         std::to_string(cs.size()) +
+         "; ++j) {\n"
+         "        const double v = value_of(field, n, col_" +
+         name +
+         "[j]);\n"
+         "        if (!isfinite(v)) ready = 0;\n        z[j] = (" +
+         g.P + "_real)v;\n      }\n";
+    if (g.missing_on[ch]) {
+      c += "      if (ready && value_of(field, n, col_missing_" + name + ") == " + M + "_MISSING_" +
+           c_macro(cs.name) + ") ready = 0; /* flagged missing */\n";
+    }
+    c += "      if (ready && (r = " + g.P + "_update_" + name + "(&s, z, " +
+         (channel_reads_step(cs) ? "u, (" + g.P + "_real)t, " : "") + "&nis)) == " + M +
+         "_DIVERGED) {\n"
+         "        fprintf(stderr, \"%s: row %ld: the filter diverged\\n\", path, k);\n"
+         "        return 1;\n      }\n    }\n";
+  }
+  c += "    fprintf(out, \"" + fmt + "\", (double)t);\n";
+  c += "    for (j = 0; j < " + M + "_N; ++j) fprintf(out, \"," + fmt + "\", (double)s.x[j]);\n";
+  if (!g.steady()) {
+    c += "    for (j = 0; j < " + M + "_N; ++j) {\n      int i;\n      for (i = j; i < " + M +
+         "_N; ++i) fprintf(out, \"," + fmt + "\", (double)s.P[j][i]);\n    }\n";
+  }
+  if (g.modes > 0) {
+    c += "    for (j = 0; j < " + M + "_MODES; ++j) fprintf(out, \"," + fmt +
+         "\", (double)s.mu[j]);\n";
+  }
+  c += "    fprintf(out, \"\\n\");\n    t_prev = t;\n    ++k;\n  }\n";
+  c += "  (void)nis;\n  (void)r;\n  (void)ready;\n  (void)col_u;\n  (void)z;\n  fclose(in);\n"
+       "  if (out != stdout && fclose(out) != 0) {\n    fprintf(stderr, \"%s: cannot write\\n\", "
+       "argv[2]);\n    return 1;\n  }\n  return 0;\n}\n";
+  return c;
+}
+
 }  // namespace
 
 std::string example_program(const Gen& g) {
@@ -192,56 +251,7 @@ std::string example_program(const Gen& g) {
   c += "  out = argc == 3 ? fopen(argv[2], \"w\") : stdout;\n  if (!out) {\n    fprintf(stderr, "
        "\"%s: cannot write\\n\", argv[2]);\n    return 2;\n  }\n";
   c += "  fputs(" + quoted_c(output_header(g)) + ", out);\n  fputs(\"\\n\", out);\n";
-  c += "  while (read_line(line, in, path)) {\n    n = split(line, field);\n"
-       "    if (n <= 1 && field[0][0] == '\\0') continue; /* a blank line */\n"
-       "    t = value_of(field, n, col_t);\n";
-  c += "    if (k > 0 && (r = " + g.P + "_predict(&s, u, (" + g.P + "_real)t_prev, (" + g.P +
-       "_real)(t - t_prev))) < 0) {\n"
-       "      fprintf(stderr, \"%s: row %ld: the filter diverged\\n\", path, k);\n      return 1;\n"
-       "    }\n";
-  if (g.nu > 0) {
-    c += "    for (j = 0; j < " + M +
-         "_NU; ++j) { /* the inputs' last finite values held */\n"
-         "      const double v = value_of(field, n, col_u[j]);\n      if (isfinite(v)) u[j] = (" +
-         g.P + "_real)v;\n    }\n";
-  }
-  for (std::size_t ch = 0; ch < s.channels.size(); ++ch) {
-    const auto& cs = s.channels[ch];
-    const std::string name = c_name(cs.name);
-    c += "    if (k % " + M + "_EVERY_" + c_macro(cs.name) +
-         " == 0) {\n      ready = 1;\n"
-         "      for (j = 0; j < " +
-         std::to_string(cs.size()) +
-         "; ++j) {\n"
-         "        const double v = value_of(field, n, col_" +
-         name +
-         "[j]);\n"
-         "        if (!isfinite(v)) ready = 0;\n        z[j] = (" +
-         g.P + "_real)v;\n      }\n";
-    if (g.missing_on[ch]) {
-      c += "      if (ready && value_of(field, n, col_missing_" + name + ") == " + M + "_MISSING_" +
-           c_macro(cs.name) + ") ready = 0; /* flagged missing */\n";
-    }
-    c += "      if (ready && (r = " + g.P + "_update_" + name + "(&s, z, " +
-         (channel_reads_step(cs) ? "u, (" + g.P + "_real)t, " : "") + "&nis)) == " + M +
-         "_DIVERGED) {\n"
-         "        fprintf(stderr, \"%s: row %ld: the filter diverged\\n\", path, k);\n"
-         "        return 1;\n      }\n    }\n";
-  }
-  c += "    fprintf(out, \"" + fmt + "\", (double)t);\n";
-  c += "    for (j = 0; j < " + M + "_N; ++j) fprintf(out, \"," + fmt + "\", (double)s.x[j]);\n";
-  if (!g.steady()) {
-    c += "    for (j = 0; j < " + M + "_N; ++j) {\n      int i;\n      for (i = j; i < " + M +
-         "_N; ++i) fprintf(out, \"," + fmt + "\", (double)s.P[j][i]);\n    }\n";
-  }
-  if (g.modes > 0) {
-    c += "    for (j = 0; j < " + M + "_MODES; ++j) fprintf(out, \"," + fmt +
-         "\", (double)s.mu[j]);\n";
-  }
-  c += "    fprintf(out, \"\\n\");\n    t_prev = t;\n    ++k;\n  }\n";
-  c += "  (void)nis;\n  (void)r;\n  (void)ready;\n  (void)col_u;\n  (void)z;\n  fclose(in);\n"
-       "  if (out != stdout && fclose(out) != 0) {\n    fprintf(stderr, \"%s: cannot write\\n\", "
-       "argv[2]);\n    return 1;\n  }\n  return 0;\n}\n";
+  c += example_loop(g);
   return c;
 }
 

@@ -72,8 +72,12 @@ Expected<std::string> one_filter(Gen& g);
 // The IMM over the modes (c_imm.cpp): every mode's filter, the mixing, the probabilities and the
 // combination, and the API.
 Expected<std::string> imm_functions(Gen& g);
+// y[j] = wrap_angle(...) lines for the channel's angle components.
+std::string wrap_innovation(Gen& g, const model::ChannelSpec& ch);
 // s->x[i] = wrap_angle(...) lines for the angle states.
 std::string wrap_state_lines(Gen& g, const std::string& indent);
+// --steady: NAME_predict and NAME_update_CHANNEL of the fixed DARE gain (c_steady.cpp).
+Expected<std::string> steady_functions(Gen& g);
 // The UKF's weights and angle tables (once, before the runtime).
 void ukf_defs(Gen& g);
 // `name`(FT *s) setting x0 and P0 (and the process unset): "void NAME_init" or an IMM's

@@ -169,45 +169,11 @@ static void mix(STATE *s) {
 
 )C";
 
-}  // namespace
-
-Expected<std::string> imm_functions(Gen& g) {
-  const model::ModesSpec& ms = *g.spec.modes;
-  auto modes = ms.modes(g.spec, g.values);
-  if (!modes) return modes.err();
-  const int r = static_cast<int>(modes->size());
+// The API over the modes: NAME_init (every mode at x0, P0; mu0), NAME_init_from_COLUMN,
+// NAME_predict (mixing, each mode's prediction) and NAME_update_CHANNEL (every mode, then mu).
+std::string imm_api(Gen& g, const model::ModesSpec& ms, int r) {
   const std::string M = c_macro(g.P);
-  g.ft = g.P + "_filter";
-  auto init = filter_init(g, "static void filter_init");
-  if (!init) return init.err();
-  if (g.ukf()) ukf_defs(g);
-  std::string s = "#define STATE " + g.P + "_state\n#define NEG_INF " +
-                  std::string(g.opt.single ? "(-HUGE_VALF)" : "(-HUGE_VAL)") + "\n" +
-                  chain_constants(g, ms, r) + "\n" + *init;
-  std::vector<std::unique_ptr<model::ModelEval>> evs;
-  for (int j = 0; j < r; ++j) {
-    const model::Mode& m = (*modes)[static_cast<std::size_t>(j)];
-    const model::ModelSpec* spec = m.model ? m.model : &g.spec;
-    auto ev = model::ModelEval::create(*spec, m.values);
-    if (!ev) return Error{ev.error() + " (in mode '" + m.name + "')"};
-    evs.push_back(std::move(*ev));
-    g.ms = spec;
-    g.mv = &m.values;
-    g.me = evs.back().get();
-    g.mode = j;
-    g.sfx = "_m" + std::to_string(j);
-    s += "/* Mode " + std::to_string(j) + ": " + comment_text(m.name) + ". */\n";
-    auto f = one_filter(g);
-    if (!f) return Error{f.error() + " (in mode '" + m.name + "')"};
-    s += *f;
-  }
-  g.ms = &g.spec;
-  g.mv = &g.values;
-  g.me = &g.ev;
-  g.mode = -1;
-  g.sfx.clear();
-  s += kLogSumExp;
-  s += ms.matrix.empty() ? kMixUniform : kMixDense;
+  std::string s;
   // NAME_init: every mode at x0, P0; μ0.
   s += "void " + g.P + "_init(" + g.P + "_state *s) {\n";
   for (int j = 0; j < r; ++j) {
@@ -262,6 +228,48 @@ Expected<std::string> imm_functions(Gen& g) {
          wrap_state_lines(g, "  ") + "  return " + M + "_APPLIED;\n}\n\n";
   }
   return s;
+}
+
+}  // namespace
+
+Expected<std::string> imm_functions(Gen& g) {
+  const model::ModesSpec& ms = *g.spec.modes;
+  auto modes = ms.modes(g.spec, g.values);
+  if (!modes) return modes.err();
+  const int r = static_cast<int>(modes->size());
+  const std::string M = c_macro(g.P);
+  g.ft = g.P + "_filter";
+  auto init = filter_init(g, "static void filter_init");
+  if (!init) return init.err();
+  if (g.ukf()) ukf_defs(g);
+  std::string s = "#define STATE " + g.P + "_state\n#define NEG_INF " +
+                  std::string(g.opt.single ? "(-HUGE_VALF)" : "(-HUGE_VAL)") + "\n" +
+                  chain_constants(g, ms, r) + "\n" + *init;
+  std::vector<std::unique_ptr<model::ModelEval>> evs;
+  for (int j = 0; j < r; ++j) {
+    const model::Mode& m = (*modes)[static_cast<std::size_t>(j)];
+    const model::ModelSpec* spec = m.model ? m.model : &g.spec;
+    auto ev = model::ModelEval::create(*spec, m.values);
+    if (!ev) return Error{ev.error() + " (in mode '" + m.name + "')"};
+    evs.push_back(std::move(*ev));
+    g.ms = spec;
+    g.mv = &m.values;
+    g.me = evs.back().get();
+    g.mode = j;
+    g.sfx = "_m" + std::to_string(j);
+    s += "/* Mode " + std::to_string(j) + ": " + comment_text(m.name) + ". */\n";
+    auto f = one_filter(g);
+    if (!f) return Error{f.error() + " (in mode '" + m.name + "')"};
+    s += *f;
+  }
+  g.ms = &g.spec;
+  g.mv = &g.values;
+  g.me = &g.ev;
+  g.mode = -1;
+  g.sfx.clear();
+  s += kLogSumExp;
+  s += ms.matrix.empty() ? kMixUniform : kMixDense;
+  return s + imm_api(g, ms, r);
 }
 
 }  // namespace kfw::codegen::detail

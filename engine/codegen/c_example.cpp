@@ -100,6 +100,23 @@ std::string output_header(const Gen& g) {
 
 // The rows: predict, the inputs held, each channel updated when its clock and its sample allow,
 // the estimates written.
+// "ready = ..." lines: channel ch's raw sample read into z, ready when its clock allows, every role
+// has a value and no missing flag marks it.
+std::string channel_sample(const Gen& g, std::size_t ch) {
+  const auto& cs = g.spec.channels[ch];
+  const std::string M = c_macro(g.P), name = c_name(cs.name);
+  std::string c = "      ready = k % " + M + "_EVERY_" + c_macro(cs.name) + " == 0;\n" +
+                  "      for (j = 0; j < " + std::to_string(cs.roles.size()) + "; ++j) {\n" +
+                  "        const double v = value_of(field, n, col_" + name + "[j]);\n" +
+                  "        if (!isfinite(v)) ready = 0;\n        z[j] = (" + g.P + "_real)v;\n" +
+                  "      }\n";
+  if (g.missing_on[ch]) {
+    c += "      if (ready && value_of(field, n, col_missing_" + name + ") == " + M + "_MISSING_" +
+         c_macro(cs.name) + ") ready = 0; /* flagged missing */\n";
+  }
+  return c;
+}
+
 std::string example_loop(const Gen& g) {
   const model::ModelSpec& s = g.spec;
   const std::string M = c_macro(g.P), fmt = g.opt.single ? "%.9g" : "%.17g";
@@ -107,7 +124,8 @@ std::string example_loop(const Gen& g) {
   c += "  while (read_line(line, in, path)) {\n    n = split(line, field);\n"
        "    if (n <= 1 && field[0][0] == '\\0') continue; /* a blank line */\n"
        "    t = value_of(field, n, col_t);\n";
-  c += "    if (k > 0 && (r = " + g.P + "_predict(&s, u, (" + g.P + "_real)t_prev, (" + g.P +
+  c += "    if (k0 >= 0 && k > k0 && (r = " + g.P + "_predict(&s, u, (" + g.P + "_real)t_prev, (" +
+       g.P +
        "_real)(t - t_prev))) < 0) {\n"
        "      fprintf(stderr, \"%s: row %ld: the filter diverged\\n\", path, k);\n      return 1;\n"
        "    }\n";
@@ -117,23 +135,26 @@ std::string example_loop(const Gen& g) {
          "      const double v = value_of(field, n, col_u[j]);\n      if (isfinite(v)) u[j] = (" +
          g.P + "_real)v;\n    }\n";
   }
+  if (s.start_channel >= 0) {  // x0 from the channel's first sample: the filter starts there
+    const auto sc = static_cast<std::size_t>(s.start_channel);
+    const auto& cs = s.channels[sc];
+    c += "    if (k0 < 0) {\n" + channel_sample(g, sc) + "      if (ready) {\n        if (!" + g.P +
+         "_init_from_" + c_name(cs.name) + "(&s, z" +
+         (channel_reads_step(cs) ? ", u, (" + g.P + "_real)t" : "") +
+         ")) {\n          fprintf(stderr, \"%s: row %ld: the first sample of channel " +
+         comment_text(cs.name) +
+         " makes no x0\\n\", path, k);\n          return 1;\n        }\n"
+         "        k0 = k;\n      }\n    }\n";
+    c += "    if (k0 < 0) { /* before the filter starts: no estimate */\n      fprintf(out, \"" +
+         fmt +
+         "\", (double)t);\n      for (j = 1; j < columns; ++j) fputc(',', out);\n"
+         "      fputc('\\n', out);\n      t_prev = t;\n      ++k;\n      continue;\n    }\n";
+  }
   for (std::size_t ch = 0; ch < s.channels.size(); ++ch) {
     const auto& cs = s.channels[ch];
     const std::string name = c_name(cs.name);
-    c += "    if (k % " + M + "_EVERY_" + c_macro(cs.name) +
-         " == 0) {\n      ready = 1;\n"
-         "      for (j = 0; j < " +
-         std::to_string(cs.size()) +
-         "; ++j) {\n"
-         "        const double v = value_of(field, n, col_" +
-         name +
-         "[j]);\n"
-         "        if (!isfinite(v)) ready = 0;\n        z[j] = (" +
-         g.P + "_real)v;\n      }\n";
-    if (g.missing_on[ch]) {
-      c += "      if (ready && value_of(field, n, col_missing_" + name + ") == " + M + "_MISSING_" +
-           c_macro(cs.name) + ") ready = 0; /* flagged missing */\n";
-    }
+    const bool start = static_cast<int>(ch) == s.start_channel;
+    c += std::string(start ? "    if (k > k0) {\n" : "    {\n") + channel_sample(g, ch);
     c += "      if (ready && (r = " + g.P + "_update_" + name + "(&s, z, " +
          (channel_reads_step(cs) ? "u, (" + g.P + "_real)t, " : "") + "&nis)) == " + M +
          "_DIVERGED) {\n"
@@ -182,11 +203,17 @@ std::string example_program(const Gen& g) {
   c += "int main(int argc, char **argv) {\n  static char line[LINE_CHARS];\n"
        "  char *field[MAX_FIELDS];\n  const char *path;\n  FILE *in, *out;\n  " +
        g.P + "_state s;\n  " + g.P + "_real u[" + std::to_string(std::max(g.nu, 1)) +
-       "] = {0}, z[" + std::to_string(g.mx) +
+       "] = {0}, z[" + std::to_string(g.roles_max) +
        "], nis;\n"
        "  double t, t_prev = 0; /* in double: a float time loses the interval (7.6e-6 s at 100 s) "
        "*/\n"
-       "  long k = 0;\n  int n, col_t, j, ready, r;\n";
+       "  long k = 0, k0 = " +
+       (s.start_channel >= 0 ? "-1" : "0") +
+       "; /* the row the filter starts at */\n  int n, col_t, j, ready, r;\n";
+  if (s.start_channel >= 0) {
+    const std::string h = output_header(g);
+    c += "  const int columns = " + std::to_string(std::count(h.begin(), h.end(), ',') + 1) + ";\n";
+  }
   c += "  int col_u[" + std::to_string(std::max(g.nu, 1)) + "] = {-1};\n";
   for (std::size_t ch = 0; ch < s.channels.size(); ++ch)
     c += "  int col_" + c_name(s.channels[ch].name) + "[" + std::to_string(s.channels[ch].size()) +

@@ -76,7 +76,7 @@ std::string Gen::symbol(const std::string& name) {
       // A mode's own value (an IMM's mode sets it) gets a constant of its own.
       const auto base = values.find(it->first);
       if (mode >= 0 && (base == values.end() || base->second != it->second))
-        c += "_m" + std::to_string(mode);
+        c += const_sfx.empty() ? "_m" + std::to_string(mode) : const_sfx;
       consts[c] = it->second;
       return c;
     }
@@ -89,6 +89,12 @@ std::string Gen::symbol(const std::string& name) {
     case model::kInputSymbol:
       if (const int i = in(m.input_slots); i >= 0) return "u[" + std::to_string(i) + "]";
       throw std::runtime_error("the input age '" + name + "' is not exported");
+    case model::kMeasuredSymbol:  // a pre-processed channel's role: the raw sample
+      if (chan >= 0) {
+        const auto& cols = m.channels[static_cast<std::size_t>(chan)].column_slots;
+        if (const int i = in(cols); i >= 0) return "zr[" + std::to_string(i) + "]";
+      }
+      throw std::runtime_error("the column '" + name + "' outside its channel");
     default:
       throw std::runtime_error("the symbol '" + name + "' is not exported");
   }
@@ -104,13 +110,24 @@ bool channel_reads_step(const model::ChannelSpec& c) {
     if (reads(e)) return true;
   for (const auto& e : c.R.e)
     if (reads(e)) return true;
+  for (const auto& e : c.z)
+    if (reads(e)) return true;
   return false;
+}
+
+std::string init_channel_signature(const Gen& g) {
+  if (g.spec.start_channel < 0) return {};
+  const auto& ch = g.spec.channels[static_cast<std::size_t>(g.spec.start_channel)];
+  std::string s = "int " + g.P + "_init_from_" + c_name(ch.name) + "(" + g.P + "_state *s, const " +
+                  g.P + "_real z[" + std::to_string(ch.roles.size()) + "]";
+  if (channel_reads_step(ch)) s += ", const " + g.P + "_real *u, " + g.P + "_real t";
+  return s + ")";
 }
 
 std::string update_signature(const Gen& g, std::size_t c) {
   const auto& ch = g.spec.channels[c];
   std::string s = "int " + g.P + "_update_" + c_name(ch.name) + "(" + g.P + "_state *s, const " +
-                  g.P + "_real z[" + std::to_string(ch.size()) + "], ";
+                  g.P + "_real z[" + std::to_string(ch.roles.size()) + "], ";
   if (channel_reads_step(ch)) s += "const " + g.P + "_real *u, " + g.P + "_real t, ";
   return s + g.P + "_real *nis)";
 }
@@ -133,17 +150,13 @@ std::string refusal(const model::ModelSpec& s, const ParamValues& values, const 
     if (s.modes->renewal && s.modes->renewal->gain.at(values) != 0.0)
       return "an IMM's renewal (model.modes.renewal, " + s.modes->renewal->gain.key +
              " ≠ 0) is not exported";
-    if (s.modes->structure.at(values))
-      return "an IMM's block structure (model.modes.structure) is not exported";
   }
   if (!s.groups.empty()) return "channel groups (model.groups) are not exported";
-  if (s.start_channel >= 0) return "x0 from a channel's first sample is not exported";
   for (const auto& in : s.inputs) {
     if (!in.age.empty()) return "the input age '" + in.age + "' is not exported";
   }
   for (const auto& c : s.channels) {
     const std::string key = "model.measurements." + c.name;
-    if (c.preprocessed()) return key + ".z: pre-processed measurements are not exported";
     if (c.size() > model::kMaxChannelSize) return key + ": too many components";
     auto reads_dt = [](const model::Expr& e) { return (e.uses & model::kDtSymbol) != 0; };
     for (const auto* m : {&c.H, &c.R}) {
@@ -275,6 +288,13 @@ std::string header_text(const Gen& g) {
            "'s first finite sample. */\nvoid " + g.P + "_init_from_" + c_name(x0.first_column) +
            "(" + g.P + "_state *s, " + R + " value);\n";
     }
+  }
+  if (const std::string sig = detail::init_channel_signature(g); !sig.empty()) {
+    h += "/* x0 from the first sample of channel " +
+         comment_text(s.channels[static_cast<std::size_t>(s.start_channel)].name) +
+         " (raw, its roles): the filter starts at that row, which is not also an update. 0 when "
+         "a component is not finite. */\n" +
+         sig + ";\n";
   }
   h += "/* x(k|k-1) and P(k|k-1) from row k-1: u the inputs held at row k-1 (their last finite\n"
        "   values), t = t(k-1), dt = t(k) - t(k-1). " +
@@ -427,6 +447,11 @@ Expected<CExport> export_c(const Scenario& scenario, const ParamValues& values,
     auto modes = spec.modes->modes(spec, view->values);
     if (!modes) return modes.err();
     g.modes = static_cast<int>(modes->size());
+    if (const model::StructureSpec* st = spec.modes->structure.at(view->values)) {
+      g.block_of = st->block_of;
+      g.component_block = st->component_block;
+      g.approximate = st->approximate;
+    }
     for (const auto& m : *modes) {
       g.mode_names.push_back(m.name);
       if (m.model && m.model->process.form == model::ProcessForm::kContinuous) g.cache = true;
@@ -435,8 +460,10 @@ Expected<CExport> export_c(const Scenario& scenario, const ParamValues& values,
           g.mx = std::max(g.mx, c.size());
     }
   }
-  for (const auto& c : spec.channels)
+  for (const auto& c : spec.channels) {
     g.mx = std::max(g.mx, c.size());
+    g.roles_max = std::max(g.roles_max, static_cast<int>(c.roles.size()));
+  }
   auto functions = detail::filter_functions(g);
   if (!functions) return Error{what + functions.error()};
   CExport out;

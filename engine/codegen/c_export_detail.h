@@ -32,12 +32,20 @@ struct Gen {
   const model::ModelSpec* ms = nullptr;
   const ParamValues* mv = nullptr;
   model::ModelEval* me = nullptr;
-  int mode = -1;    // the IMM mode, or -1
-  std::string sfx;  // its functions' suffix: "" or "_mJ"
-  std::string ft;   // the struct a filter's functions take: NAME_state, or NAME_filter (IMM)
-  int modes = 0;    // an IMM's modes; 0: none
+  int mode = -1;          // the IMM mode, or -1
+  std::string const_sfx;  // a mode's own parameter values: par_NAME + this ("_mJ", "_centre")
+  int chan = -1;          // the channel being written: its roles read as zr[j]
+  std::string sfx;        // its functions' suffix: "" or "_mJ"
+  std::string ft;         // the struct a filter's functions take: NAME_state, or NAME_filter (IMM)
+  int modes = 0;          // an IMM's modes; 0: none
   std::vector<std::string> mode_names;
   bool cache = false;  // a continuous process (in the model or a mode): Van Loan's cache
+  // An IMM's block structure (model.modes.structure) at the values: per state its block, per
+  // channel and component the block its H row reads; `approximate` drops Q's and R's cross terms.
+  std::vector<int> block_of;
+  std::vector<std::vector<int>> component_block;
+  bool approximate = false;
+  int roles_max = 1;  // the most roles of a channel (the raw sample's size)
   // Per channel: its missing-sample flag in force (model.measurements.C.missing, `when` ≠ 0), and
   // the value that flags a sample (the caller skips such an update; the example does).
   std::vector<char> missing_on;
@@ -72,6 +80,12 @@ Expected<std::string> one_filter(Gen& g);
 // The IMM over the modes (c_imm.cpp): every mode's filter, the mixing, the probabilities and the
 // combination, and the API.
 Expected<std::string> imm_functions(Gen& g);
+// NAME_init_from_CHANNEL's head, its sample pre-processed by preprocess_CHANNEL<sfx> into zp (a
+// raw channel copied), and the lines setting `x`[i] from it.
+std::string start_head(const Gen& g, const std::string& sfx);
+std::string start_lines(const Gen& g, const std::string& x);
+// preprocess_CHANNEL<sfx>(zr, u, t, z) of g.ms's channel c.
+Expected<std::string> preprocess_part(Gen& g, std::size_t c, const std::string& sfx);
 // y[j] = wrap_angle(...) lines for the channel's angle components.
 std::string wrap_innovation(Gen& g, const model::ChannelSpec& ch);
 // s->x[i] = wrap_angle(...) lines for the angle states.
@@ -85,6 +99,9 @@ void ukf_defs(Gen& g);
 Expected<std::string> filter_init(Gen& g, const std::string& name);
 // The example program (c_example.cpp).
 std::string example_program(const Gen& g);
+// NAME_init_from_CHANNEL(s, z, [u, t]): x0 from the start channel's sample (model.x0 entries
+// "CHANNEL.COMPONENT"); empty when the model has none.
+std::string init_channel_signature(const Gen& g);
 // The header's declarations of the API (c_export.cpp); the example calls them.
 std::string update_signature(const Gen& g, std::size_t c);
 bool channel_reads_step(const model::ChannelSpec& c);  // h, H or R read t or an input

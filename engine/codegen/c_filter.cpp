@@ -42,6 +42,34 @@ std::string ij(int i, int j) {
   return "[" + std::to_string(i) + "][" + std::to_string(j) + "]";
 }
 
+// An IMM's approximate structure (model.modes.structure): R's entries between components whose H
+// rows read different blocks are 0 (model/imm/imm_run.cpp, drop_cross).
+std::string drop_R(const Gen& g, std::size_t c) {
+  if (!g.approximate || c >= g.component_block.size()) return {};
+  std::string s;
+  const auto& b = g.component_block[c];
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    for (std::size_t j = 0; j < b.size(); ++j) {
+      if (b[i] != b[j])
+        s += "  R" + ij(static_cast<int>(i), static_cast<int>(j)) + " = LIT(0.0);\n";
+    }
+  }
+  return s;
+}
+
+// The same for Q, before the prediction.
+std::string drop_Q(const Gen& g) {
+  if (!g.approximate) return {};
+  std::string s;
+  for (std::size_t i = 0; i < g.block_of.size(); ++i) {
+    for (std::size_t j = 0; j < g.block_of.size(); ++j) {
+      if (g.block_of[i] != g.block_of[j])
+        s += "  s->Q" + ij(static_cast<int>(i), static_cast<int>(j)) + " = LIT(0.0);\n";
+    }
+  }
+  return s;
+}
+
 // The entries of `m` into `target` (prefix such as "s->F") whose class `pick` accepts.
 void matrix(std::vector<Assign>& out, const model::MatrixSpec& m, const std::string& target,
             bool step) {
@@ -66,8 +94,8 @@ std::string process_at(const Gen& g) {
   s += "  int c, i, j;\n  for (c = 0; c < " + C +
        "; ++c) {\n    if (s->cache_dt[c] == dt) break;\n"
        "  }\n  if (c == " +
-       C +
-       ") {\n    process_dt(s, dt);\n    c = s->next;\n"
+       C + ") {\n    process_dt" + g.sfx +
+       "(s, dt);\n    c = s->next;\n"
        "    s->next = (s->next + 1) % " +
        C +
        ";\n    s->cache_dt[c] = dt;\n"
@@ -240,6 +268,29 @@ Expected<std::string> process_parts(Gen& g) {
 
 // channel_C(x, u, t, hx, H, R): ẑ = h(x) (EKF), H (KF, EKF, linear UKF) and R at x; and for the
 // UKF of a nonlinear channel channel_C_h(x, u, t, hx) for the sigma points.
+// preprocess_C(zr, u, t, z): a pre-processed channel's components from its roles' raw sample
+// zr (model.measurements.C.z); 0 when one is not finite (the engine skips the update).
+Expected<std::string> preprocess_text(Gen& g, std::size_t c, const std::string& sfx) {
+  const auto& ch = g.ms->channels[c];
+  std::vector<Assign> list;
+  for (int j = 0; j < ch.size(); ++j)
+    list.push_back({"z[" + std::to_string(j) + "]", &ch.z[static_cast<std::size_t>(j)],
+                    "model.measurements." + ch.name + ".z[" + std::to_string(j) + "]"});
+  g.chan = static_cast<int>(c);
+  auto a = assignments(g, list);
+  g.chan = -1;
+  if (!a) return a.err();
+  return "/* Channel " + comment_text(ch.name) + "'s components from its raw sample. */\n" +
+         "static int preprocess_" + c_name(ch.name) + sfx +
+         "(const real *zr, const real *u, real t, real z[MX]) {\n  int j;\n  (void)u;\n"
+         "  (void)t;\n" +
+         *a + "  for (j = 0; j < " + std::to_string(ch.size()) +
+         "; ++j) {\n    if (!isfinite(z[j])) return 0;\n  }\n  return 1;\n}\n\n";
+}
+
+// channel_C(x, zr, u, t, hx, H, R): ẑ = h(x) (EKF), H (KF, EKF, linear UKF) and R at x (zr: the
+// raw sample, which a pre-processed channel's R may read); and for the UKF of a nonlinear channel
+// channel_C_h(x, zr, u, t, hx) for the sigma points.
 Expected<std::string> channel_parts(Gen& g, std::size_t c) {
   const auto& ch = g.ms->channels[c];
   const std::string name = c_name(ch.name);
@@ -254,24 +305,34 @@ Expected<std::string> channel_parts(Gen& g, std::size_t c) {
     if (ch.linear || !g.ukf()) matrix(list, ch.H, "H", step);
     matrix(list, ch.R, "R", step);
   }
+  g.chan = static_cast<int>(c);
   auto a = assignments(g, list);
+  g.chan = -1;
   if (!a) return a.err();
-  std::string s = "/* Channel " + comment_text(ch.name) + " at x. */\n";
+  std::string s;
+  if (ch.preprocessed()) {
+    auto pp = preprocess_text(g, c, g.sfx);
+    if (!pp) return pp.err();
+    s += *pp;
+  }
+  s += "/* Channel " + comment_text(ch.name) + " at x. */\n";
   s += "static void channel_" + name + g.sfx +
-       "(const real x[NX], const real *u, real t, real hx[MX], "
-       "real H[MX][NX], real R[MX][MX]) {\n  (void)x;\n  (void)u;\n  (void)t;\n  (void)hx;\n"
-       "  (void)H;\n" +
+       "(const real x[NX], const real *zr, const real *u, real t, real hx[MX], "
+       "real H[MX][NX], real R[MX][MX]) {\n  (void)x;\n  (void)zr;\n  (void)u;\n  (void)t;\n"
+       "  (void)hx;\n  (void)H;\n" +
        *a + "}\n\n";
   if (!ch.linear && g.ukf()) {
     std::vector<Assign> h;
     for (int j = 0; j < ch.size(); ++j)
       h.push_back({"hx[" + std::to_string(j) + "]", &ch.h[static_cast<std::size_t>(j)],
                    key + ".h[" + std::to_string(j) + "]"});
+    g.chan = static_cast<int>(c);
     auto ha = assignments(g, h);
+    g.chan = -1;
     if (!ha) return ha.err();
     s += "static void channel_" + name + "_h" + g.sfx +
-         "(const real x[NX], const real *u, real t, "
-         "real hx[MX]) {\n  (void)x;\n  (void)u;\n  (void)t;\n" +
+         "(const real x[NX], const real *zr, const real *u, real t, "
+         "real hx[MX]) {\n  (void)x;\n  (void)zr;\n  (void)u;\n  (void)t;\n" +
          *ha + "}\n\n";
   }
   return s;
@@ -347,7 +408,7 @@ std::string predict_kf(Gen& g) {
     return s + "  return diverged(s->x, s->P) ? " + c_macro(g.P) + "_DIVERGED : 0;\n}\n\n";
   }
   s += "  if (!(dt == s->dt)) process_at" + g.sfx + "(s, dt);\n";
-  s += "  process_step" + g.sfx + "(s, s->x, u, t, dt, fx);\n";
+  s += "  process_step" + g.sfx + "(s, s->x, u, t, dt, fx);\n" + drop_Q(g);
   if (!nonlinear) {
     s += "  for (i = 0; i < NX; ++i) { /* fx = F x + B u */\n    int j;\n    real v = LIT(0.0);\n"
          "    for (j = 0; j < NX; ++j) v += s->F[i][j] * s->x[j];\n    fx[i] = v;\n  }\n";
@@ -380,7 +441,7 @@ std::string predict_ukf(Gen& g) {
     s += rk4_steps(g) + "  process_noise" + g.sfx + "(s->x, u, t, dt, s->Q);\n";
   } else {
     s += "  if (!(dt == s->dt)) process_at" + g.sfx + "(s, dt);\n";
-    s += "  process_step" + g.sfx + "(s, s->x, u, t, dt, ys);\n";
+    s += "  process_step" + g.sfx + "(s, s->x, u, t, dt, ys);\n" + drop_Q(g);
   }
   s += "  if (!sigma_points(s->x, s->P, X)) return " + c_macro(g.P) + "_DIVERGED;\n";
   s += "  for (j = 0; j < NS; ++j) {\n    for (i = 0; i < NX; ++i) xs[i] = X[i][j];\n";
@@ -409,8 +470,11 @@ std::string predict_ukf(Gen& g) {
 
 // The head of an update function: its locals, u and t where the channel does not read them.
 std::string update_head(Gen& g, std::size_t c) {
-  return "static int filter_update_" + c_name(g.spec.channels[c].name) + g.sfx + "(" + g.ft +
-         " *s, const real *z, const real *u, real t, real *nis, real *logdet) {\n";
+  std::string s = "static int filter_update_" + c_name(g.spec.channels[c].name) + g.sfx + "(" +
+                  g.ft +
+                  " *s, const real *z, const real *zr, const real *u, real t, real *nis, "
+                  "real *logdet) {\n";
+  return s;
 }
 
 std::string update_kf(Gen& g, std::size_t c) {
@@ -421,7 +485,7 @@ std::string update_kf(Gen& g, std::size_t c) {
   g.runtime.insert("diverged");
   std::string s = update_head(g, c);
   s += "  real hx[MX], H[MX][NX], R[MX][MX], y[MX];\n  int j, r;\n";
-  s += "  channel_" + name + g.sfx + "(s->x, u, t, hx, H, R);\n";
+  s += "  channel_" + name + g.sfx + "(s->x, zr, u, t, hx, H, R);\n" + drop_R(g, c);
   if (ch.linear) {
     s += "  for (j = 0; j < " + std::to_string(m) +
          "; ++j) { /* zhat = H x */\n    int i;\n"
@@ -467,7 +531,7 @@ std::string update_ukf(Gen& g, std::size_t c) {
   std::string s = update_head(g, c);
   s += "  real hx[MX], H[MX][NX], R[MX][MX], y[MX], X[NX][NS], Z[MX][NS], S[MX][MX], C[NX][MX];\n"
        "  real xs[NX], zhat[MX], dz[MX], d[NX];\n  int i, j, a, r;\n";
-  s += "  channel_" + name + g.sfx + "(s->x, u, t, hx, H, R);\n";
+  s += "  channel_" + name + g.sfx + "(s->x, zr, u, t, hx, H, R);\n" + drop_R(g, c);
   s += "  if (!sigma_points(s->x, s->P, X)) return " + M + "_DIVERGED;\n";
   s += "  for (j = 0; j < NS; ++j) {\n    for (i = 0; i < NX; ++i) xs[i] = X[i][j];\n";
   if (ch.linear) {
@@ -475,7 +539,7 @@ std::string update_ukf(Gen& g, std::size_t c) {
          "; ++a) {\n      real v = LIT(0.0);\n      for (i = 0; i < "
          "NX; ++i) v += H[a][i] * xs[i];\n      hx[a] = v;\n    }\n";
   } else {
-    s += "    channel_" + name + "_h" + g.sfx + "(xs, u, t, hx);\n";
+    s += "    channel_" + name + "_h" + g.sfx + "(xs, zr, u, t, hx);\n";
   }
   s += "    for (a = 0; a < " + ms + "; ++a) Z[a][j] = hx[a];\n  }\n";
   s += "  for (a = 0; a < " + ms + "; ++a) zhat[a] = sigma_mean(Z[a], role_angle_" + name +
@@ -517,13 +581,49 @@ std::string api_wrappers(Gen& g) {
     s += update_signature(g, c) + " {\n";
     if (!channel_reads_step(g.spec.channels[c]))
       s += "  const real *u = 0;\n  const real t = LIT(0.0);\n";
-    s += "  return filter_update_" + c_name(g.spec.channels[c].name) +
-         "(s, z, u, t, nis, 0);\n}\n\n";
+    const std::string name = c_name(g.spec.channels[c].name);
+    if (g.spec.channels[c].preprocessed()) {
+      s += "  real zp[MX];\n  if (!preprocess_" + name +
+           "(z, u, t, zp)) {\n    if (nis) *nis = NAN;\n"
+           "    return " +
+           c_macro(g.P) + "_SKIPPED;\n  }\n  return filter_update_" + name +
+           "(s, zp, z, u, t, nis, 0);\n}\n\n";
+    } else {
+      s += "  return filter_update_" + name + "(s, z, z, u, t, nis, 0);\n}\n\n";
+    }
   }
+  if (g.spec.start_channel >= 0)
+    s += start_head(g, "") + start_lines(g, "s->x") + "  return 1;\n}\n\n";
   return s;
 }
 
 }  // namespace
+
+Expected<std::string> preprocess_part(Gen& g, std::size_t c, const std::string& sfx) {
+  return preprocess_text(g, c, sfx);
+}
+
+std::string start_head(const Gen& g, const std::string& sfx) {
+  const auto c = static_cast<std::size_t>(g.spec.start_channel);
+  const auto& ch = g.spec.channels[c];
+  std::string s = init_channel_signature(g) + " {\n  real zp[MX];\n";
+  if (!channel_reads_step(ch)) s += "  const real *u = 0;\n  const real t = LIT(0.0);\n";
+  if (ch.preprocessed())
+    return s + "  if (!preprocess_" + c_name(ch.name) + sfx + "(z, u, t, zp)) return 0;\n";
+  return s + "  int j;\n  (void)u;\n  (void)t;\n  for (j = 0; j < " + std::to_string(ch.size()) +
+         "; ++j) {\n    if (!isfinite(z[j])) return 0;\n    zp[j] = z[j];\n  }\n";
+}
+
+std::string start_lines(const Gen& g, const std::string& x) {
+  std::string s;
+  for (std::size_t i = 0; i < g.spec.x0.size(); ++i) {
+    const auto& x0 = g.spec.x0[i];
+    if (x0.first_channel != g.spec.start_channel) continue;
+    s += "  " + x + "[" + std::to_string(i) + "] = zp[" + std::to_string(x0.first_component) +
+         "];\n";
+  }
+  return s;
+}
 
 std::string wrap_innovation(Gen& g, const model::ChannelSpec& ch) {
   std::string s;

@@ -180,6 +180,7 @@ std::string imm_api(Gen& g, const model::ModesSpec& ms, int r) {
     const double mu0 = ms.mu0.empty() ? 1.0 / r : ms.mu0[static_cast<std::size_t>(j)];
     s += "  filter_init(&s->mode[" + std::to_string(j) + "]);\n  s->log_mu[" + std::to_string(j) +
          "] = " + (mu0 > 0.0 ? g.lit(std::log(mu0)) : std::string("NEG_INF")) + ";\n";
+    if (!g.block_of.empty()) s += "  drop_cross(s->mode[" + std::to_string(j) + "].P);\n";
   }
   s += "  combine(s);\n}\n\n";
   std::set<std::string> cols;
@@ -193,9 +194,17 @@ std::string imm_api(Gen& g, const model::ModesSpec& ms, int r) {
     }
     s += "  }\n  combine(s);\n}\n\n";
   }
+  if (g.spec.start_channel >= 0) {  // from the sample at the grid's centre, into every mode
+    s += start_head(g, "_centre") + "  {\n    int j;\n    for (j = 0; j < NM; ++j) {\n" +
+         start_lines(g, "  s->mode[j].x") + "    }\n  }\n  combine(s);\n" +
+         wrap_state_lines(g, "  ") + "  return 1;\n}\n\n";
+  }
   // NAME_predict: mixing, then each mode's prediction.
   s += "int " + g.P + "_predict(" + g.P + "_state *s, const " + g.P + "_real *u, " + g.P +
        "_real t, " + g.P + "_real dt) {\n  mix(s);\n";
+  if (!g.block_of.empty()) {  // mixing block by block: the spread terms between blocks dropped
+    s += "  {\n    int j;\n    for (j = 0; j < NM; ++j) drop_cross(s->mode[j].P);\n  }\n";
+  }
   for (int j = 0; j < r; ++j) {
     const std::string jj = std::to_string(j);
     s += "  if (filter_predict_m" + jj + "(&s->mode[" + jj + "], u, t, dt) < 0) return " + M +
@@ -207,14 +216,20 @@ std::string imm_api(Gen& g, const model::ModesSpec& ms, int r) {
     const auto& ch = g.spec.channels[c];
     const std::string name = c_name(ch.name);
     s += update_signature(g, c) +
-         " {\n  real ll[NM], n[NM], ld[NM], v[NM], lc;\n  int j, r, best;\n";
+         " {\n  real ll[NM], n[NM], ld[NM], v[NM], lc, zp[MX];\n  int j, r, best;\n";
     if (!channel_reads_step(ch)) s += "  const real *u = 0;\n  const real t = LIT(0.0);\n";
     for (int j = 0; j < r; ++j) {
       const std::string jj = std::to_string(j);
-      s += "  r = filter_update_" + name + "_m" + jj + "(&s->mode[" + jj + "], z, u, t, &n[" + jj +
-           "], &ld[" + jj + "]);\n  if (r == " + M + "_DIVERGED) return r;\n  ll[" + jj +
+      if (ch.preprocessed()) {  // each mode's own pseudo-measurement (seed 001)
+        s += "  if (!preprocess_" + name + "_m" + jj + "(z, u, t, zp)) {\n    ll[" + jj +
+             "] = NEG_INF;\n    n[" + jj + "] = NAN;\n  } else {\n";
+      } else {
+        s += "  {\n    for (j = 0; j < " + std::to_string(ch.size()) + "; ++j) zp[j] = z[j];\n";
+      }
+      s += "  r = filter_update_" + name + "_m" + jj + "(&s->mode[" + jj + "], zp, z, u, t, &n[" +
+           jj + "], &ld[" + jj + "]);\n  if (r == " + M + "_DIVERGED) return r;\n  ll[" + jj +
            "] = r == " + M + "_APPLIED ? -LIT(0.5) * (LIT(" + std::to_string(ch.size()) +
-           ".0) * LOG_2PI + ld[" + jj + "] + n[" + jj + "]) : NEG_INF;\n";
+           ".0) * LOG_2PI + ld[" + jj + "] + n[" + jj + "]) : NEG_INF;\n  }\n";
     }
     s += "  for (j = 0; j < NM; ++j) {\n    v[j] = s->log_mu[j] + (isnan(ll[j]) ? NEG_INF : "
          "ll[j]);\n"
@@ -231,6 +246,31 @@ std::string imm_api(Gen& g, const model::ModesSpec& ms, int r) {
 }
 
 }  // namespace
+
+// x0 from a channel's first sample, pre-processed with each grid axis at its centre (seed 001
+// converts the first measurement with the grid's centre slope; imm_run.cpp start_at_centre).
+Expected<std::string> centre_preprocess(Gen& g, const model::ModesSpec& ms,
+                                        const std::vector<model::Mode>& modes) {
+  const auto c = static_cast<std::size_t>(g.spec.start_channel);
+  if (!g.spec.channels[c].preprocessed()) return std::string();
+  ParamValues centre = g.values;
+  for (std::size_t a = 0; a < ms.grid.size(); ++a) {
+    double lo = modes.front().grid[a], hi = lo;
+    for (const model::Mode& m : modes) {
+      lo = std::min(lo, m.grid[a]);
+      hi = std::max(hi, m.grid[a]);
+    }
+    centre[ms.grid[a].param] = 0.5 * (lo + hi);
+  }
+  g.mv = &centre;
+  g.mode = 0;
+  g.const_sfx = "_centre";
+  auto s = preprocess_part(g, c, "_centre");
+  g.mv = &g.values;
+  g.mode = -1;
+  g.const_sfx.clear();
+  return s;
+}
 
 Expected<std::string> imm_functions(Gen& g) {
   const model::ModesSpec& ms = *g.spec.modes;
@@ -267,6 +307,21 @@ Expected<std::string> imm_functions(Gen& g) {
   g.me = &g.ev;
   g.mode = -1;
   g.sfx.clear();
+  if (!g.block_of.empty()) {
+    s += "/* The blocks of the states (model.modes.structure): entries between them are 0. */\n"
+         "static const int block_of[NX] = {";
+    for (std::size_t i = 0; i < g.block_of.size(); ++i)
+      s += (i ? ", " : "") + std::to_string(g.block_of[i]);
+    s += "};\nstatic void drop_cross(real P[NX][NX]) {\n  int i, k;\n  for (i = 0; i < NX; ++i) {\n"
+         "    for (k = 0; k < NX; ++k) {\n      if (block_of[i] != block_of[k]) P[i][k] = "
+         "LIT(0.0);\n"
+         "    }\n  }\n}\n\n";
+  }
+  if (g.spec.start_channel >= 0) {
+    auto pre = centre_preprocess(g, ms, *modes);
+    if (!pre) return pre.err();
+    s += *pre;
+  }
   s += kLogSumExp;
   s += ms.matrix.empty() ? kMixUniform : kMixDense;
   return s + imm_api(g, ms, r);

@@ -117,6 +117,52 @@ std::string channel_sample(const Gen& g, std::size_t ch) {
   return c;
 }
 
+// The group (index) whose instant channel ch's samples wait for, and ch's index among its
+// members; -1 when it updates on its own.
+std::pair<int, int> waiting_group(const Gen& g, std::size_t ch) {
+  for (std::size_t k = 0; k < g.spec.groups.size(); ++k) {
+    if (g.ev.group(k).scheme == model::GroupScheme::kEach) continue;
+    const auto& m = g.spec.groups[k].members;
+    for (std::size_t a = 0; a < m.size(); ++a) {
+      if (m[a] == static_cast<int>(ch)) return {static_cast<int>(k), static_cast<int>(a)};
+    }
+  }
+  return {-1, -1};
+}
+
+// flush_GROUP: the waiting samples at their instant — the stacked update, or the members' own
+// updates one after the other.
+std::string group_flushes(const Gen& g) {
+  std::string c;
+  const std::string R = g.P + "_real", M = c_macro(g.P);
+  for (std::size_t k = 0; k < g.spec.groups.size(); ++k) {
+    const auto scheme = g.ev.group(k).scheme;
+    if (scheme == model::GroupScheme::kEach) continue;
+    const auto& gs = g.spec.groups[k];
+    const std::string gn = c_name(gs.name), step = group_reads_step(g, k) ? "u, t, " : "";
+    c += "/* Group " + comment_text(gs.name) + "'s waiting samples at their instant. */\n";
+    c += "static int flush_" + gn + "(" + g.P + "_state *s, int *n, const int m[], const " + R +
+         " z[]" + (step.empty() ? "" : ", const " + R + " *u, " + R + " t") + ") {\n  " + R +
+         " nis[" + std::to_string(gs.members.size()) + "];\n  int r = 0, i;\n  (void)i;\n";
+    if (scheme == model::GroupScheme::kStacked) {
+      c += "  if (*n > 0) r = " + g.P + "_update_" + gn + "(s, *n, m, z, " + step + "nis);\n";
+    } else {
+      c += "  for (i = 0; i < *n && r != " + M + "_DIVERGED; ++i) {\n    switch (m[i]) {\n";
+      for (std::size_t a = 0; a < gs.members.size(); ++a) {
+        const auto& ch = g.spec.channels[static_cast<std::size_t>(gs.members[a])];
+        c += "      case " + std::to_string(a) + ":\n        r = " + g.P + "_update_" +
+             c_name(ch.name) + "(s, &z[i], " + (channel_reads_step(ch) ? "u, t, " : "") +
+             "nis);\n        break;\n";
+      }
+      c += "      default:\n        break;\n    }\n  }\n";
+    }
+    c += "  *n = 0;\n  if (r == " + M +
+         "_DIVERGED) fprintf(stderr, \"the filter diverged\\n\");\n"
+         "  return r;\n}\n\n";
+  }
+  return c;
+}
+
 std::string example_loop(const Gen& g) {
   const model::ModelSpec& s = g.spec;
   const std::string M = c_macro(g.P), fmt = g.opt.single ? "%.9g" : "%.17g";
@@ -124,6 +170,12 @@ std::string example_loop(const Gen& g) {
   c += "  while (read_line(line, in, path)) {\n    n = split(line, field);\n"
        "    if (n <= 1 && field[0][0] == '\\0') continue; /* a blank line */\n"
        "    t = value_of(field, n, col_t);\n";
+  if (g.ages) {  // each input's age: the time since its last sample, from the first row on
+    c += "    for (j = 0; j < " + M +
+         "_NU; ++j) {\n      if (k == 0) u_time[j] = t;\n"
+         "      u[" +
+         M + "_NU + j] = (" + g.P + "_real)(t_prev - u_time[j]);\n    }\n";
+  }
   c += "    if (k0 >= 0 && k > k0 && (r = " + g.P + "_predict(&s, u, (" + g.P + "_real)t_prev, (" +
        g.P +
        "_real)(t - t_prev))) < 0) {\n"
@@ -132,8 +184,13 @@ std::string example_loop(const Gen& g) {
   if (g.nu > 0) {
     c += "    for (j = 0; j < " + M +
          "_NU; ++j) { /* the inputs' last finite values held */\n"
-         "      const double v = value_of(field, n, col_u[j]);\n      if (isfinite(v)) u[j] = (" +
-         g.P + "_real)v;\n    }\n";
+         "      const double v = value_of(field, n, col_u[j]);\n      if (isfinite(v)) {\n"
+         "        u[j] = (" +
+         g.P + "_real)v;\n" + (g.ages ? "        u_time[j] = t;\n" : "") + "      }\n    }\n";
+    if (g.ages) {
+      c += "    for (j = 0; j < " + M + "_NU; ++j) u[" + M + "_NU + j] = (" + g.P +
+           "_real)(t - u_time[j]);\n";
+    }
   }
   if (s.start_channel >= 0) {  // x0 from the channel's first sample: the filter starts there
     const auto sc = static_cast<std::size_t>(s.start_channel);
@@ -155,6 +212,23 @@ std::string example_loop(const Gen& g) {
     const std::string name = c_name(cs.name);
     const bool start = static_cast<int>(ch) == s.start_channel;
     c += std::string(start ? "    if (k > k0) {\n" : "    {\n") + channel_sample(g, ch);
+    if (const auto [k, a] = waiting_group(g, ch); k >= 0) {
+      const auto& gs = s.groups[static_cast<std::size_t>(k)];
+      const std::string gn = c_name(gs.name), gm = std::to_string(gs.members.size()),
+                        aa = std::to_string(a);
+      const std::string flush =
+          "flush_" + gn + "(&s, &pn_" + gn + ", pm_" + gn + ", pz_" + gn +
+          (group_reads_step(g, static_cast<std::size_t>(k)) ? ", u, (" + g.P + "_real)t" : "") +
+          ") == " + M + "_DIVERGED";
+      c += "      if (ready) { /* the sample waits for its group's instant */\n"
+           "        for (i = 0; i < pn_" +
+           gn + "; ++i) {\n          if (pm_" + gn + "[i] == " + aa +
+           ") { /* a sample repeats: the instant closes before it */\n            if (" + flush +
+           ") return 1;\n            break;\n          }\n        }\n        pm_" + gn + "[pn_" +
+           gn + "] = " + aa + ";\n        pz_" + gn + "[pn_" + gn + "++] = z[0];\n        if (pn_" +
+           gn + " == " + gm + " && " + flush + ") return 1;\n      }\n    }\n";
+      continue;
+    }
     c += "      if (ready && (r = " + g.P + "_update_" + name + "(&s, z, " +
          (channel_reads_step(cs) ? "u, (" + g.P + "_real)t, " : "") + "&nis)) == " + M +
          "_DIVERGED) {\n"
@@ -172,7 +246,8 @@ std::string example_loop(const Gen& g) {
          "\", (double)s.mu[j]);\n";
   }
   c += "    fprintf(out, \"\\n\");\n    t_prev = t;\n    ++k;\n  }\n";
-  c += "  (void)nis;\n  (void)r;\n  (void)ready;\n  (void)col_u;\n  (void)z;\n  fclose(in);\n"
+  c += "  (void)i;\n  (void)nis;\n  (void)r;\n  (void)ready;\n  (void)col_u;\n  (void)z;\n  "
+       "fclose(in);\n"
        "  if (out != stdout && fclose(out) != 0) {\n    fprintf(stderr, \"%s: cannot write\\n\", "
        "argv[2]);\n    return 1;\n  }\n  return 0;\n}\n";
   return c;
@@ -192,7 +267,7 @@ std::string example_program(const Gen& g) {
                   "   exported by kfw " KFW_VERSION " from " +
                   comment_text(g.opt.preset) + ". */\n";
   c += "#include <math.h>\n#include <stdio.h>\n#include <stdlib.h>\n#include <string.h>\n\n";
-  c += "#include \"" + g.P + ".h\"\n\n" + kHelpers;
+  c += "#include \"" + g.P + ".h\"\n\n" + kHelpers + group_flushes(g);
   // The x0 columns read from their first finite sample.
   std::vector<std::string> firsts;
   for (const auto& x0 : s.x0) {
@@ -202,14 +277,23 @@ std::string example_program(const Gen& g) {
   }
   c += "int main(int argc, char **argv) {\n  static char line[LINE_CHARS];\n"
        "  char *field[MAX_FIELDS];\n  const char *path;\n  FILE *in, *out;\n  " +
-       g.P + "_state s;\n  " + g.P + "_real u[" + std::to_string(std::max(g.nu, 1)) +
-       "] = {0}, z[" + std::to_string(g.roles_max) +
+       g.P + "_state s;\n  " + (g.ages ? "double u_time[" + std::to_string(g.nu) + "];\n  " : "") +
+       g.P + "_real u[" + std::to_string(std::max(g.ages ? 2 * g.nu : g.nu, 1)) + "] = {0}, z[" +
+       std::to_string(g.roles_max) +
        "], nis;\n"
        "  double t, t_prev = 0; /* in double: a float time loses the interval (7.6e-6 s at 100 s) "
        "*/\n"
        "  long k = 0, k0 = " +
        (s.start_channel >= 0 ? "-1" : "0") +
-       "; /* the row the filter starts at */\n  int n, col_t, j, ready, r;\n";
+       "; /* the row the filter starts at */\n  int n, col_t, i, j, ready, r;\n";
+  for (std::size_t k = 0; k < s.groups.size(); ++k) {
+    if (g.ev.group(k).scheme == model::GroupScheme::kEach) continue;
+    const std::string gn = c_name(s.groups[k].name),
+                      gm = std::to_string(s.groups[k].members.size());
+    c += "  int pn_" + gn + " = 0, pm_" + gn + "[" + gm + "]; /* group " +
+         comment_text(s.groups[k].name) + ": the samples waiting */\n  " + g.P + "_real pz_" + gn +
+         "[" + gm + "];\n";
+  }
   if (s.start_channel >= 0) {
     const std::string h = output_header(g);
     c += "  const int columns = " + std::to_string(std::count(h.begin(), h.end(), ',') + 1) + ";\n";

@@ -88,7 +88,9 @@ std::string Gen::symbol(const std::string& name) {
       return "x[" + std::to_string(in(m.state_slots)) + "]";
     case model::kInputSymbol:
       if (const int i = in(m.input_slots); i >= 0) return "u[" + std::to_string(i) + "]";
-      throw std::runtime_error("the input age '" + name + "' is not exported");
+      if (const int i = in(m.input_age_slots); i >= 0)  // an input's age follows the inputs
+        return "u[" + std::to_string(nu + i) + "]";
+      throw std::runtime_error("the input symbol '" + name + "' is not exported");
     case model::kMeasuredSymbol:  // a pre-processed channel's role: the raw sample
       if (chan >= 0) {
         const auto& cols = m.channels[static_cast<std::size_t>(chan)].column_slots;
@@ -150,10 +152,6 @@ std::string refusal(const model::ModelSpec& s, const ParamValues& values, const 
     if (s.modes->renewal && s.modes->renewal->gain.at(values) != 0.0)
       return "an IMM's renewal (model.modes.renewal, " + s.modes->renewal->gain.key +
              " ≠ 0) is not exported";
-  }
-  if (!s.groups.empty()) return "channel groups (model.groups) are not exported";
-  for (const auto& in : s.inputs) {
-    if (!in.age.empty()) return "the input age '" + in.age + "' is not exported";
   }
   for (const auto& c : s.channels) {
     const std::string key = "model.measurements." + c.name;
@@ -257,6 +255,13 @@ std::string header_text(const Gen& g) {
     h += std::string(i ? "," : ":") + " u[" + std::to_string(i) + "] " + comment_text(in.name);
   }
   h += " */\n";
+  if (g.ages) {
+    h += "#define " + M + "_U_SIZE (2 * " + M +
+         "_NU) /* u: the inputs held, then each one's age "
+         "(s since its last sample) */\n";
+  } else {
+    h += "#define " + M + "_U_SIZE " + M + "_NU /* u: the inputs held */\n";
+  }
   if (g.modes > 0)
     h += "#define " + M + "_MODES " + std::to_string(g.modes) + " /* the IMM's modes */\n";
   if (g.cache)
@@ -295,6 +300,25 @@ std::string header_text(const Gen& g) {
          " (raw, its roles): the filter starts at that row, which is not also an update. 0 when "
          "a component is not finite. */\n" +
          sig + ";\n";
+  }
+  for (std::size_t k = 0; k < s.groups.size(); ++k) {
+    const auto scheme = g.ev.group(k).scheme;
+    if (scheme == model::GroupScheme::kEach) continue;
+    const auto& gs = s.groups[k];
+    std::string members;
+    for (std::size_t j = 0; j < gs.members.size(); ++j)
+      members += std::string(j ? ", " : "") + std::to_string(j) + " " +
+                 comment_text(s.channels[static_cast<std::size_t>(gs.members[j])].name);
+    if (scheme == model::GroupScheme::kSequential) {
+      h += "/* Group " + comment_text(gs.name) + " (sequential; members " + members +
+           "): its samples wait for their instant, then go through the members' updates in the "
+           "order they came (see the example). */\n";
+      continue;
+    }
+    h += "/* Group " + comment_text(gs.name) + " (stacked; members " + members +
+         "): the samples waiting for the instant, member[a] and z[a] for a < count, in one "
+         "update at the prior; nis[a] each member's NIS (NaN: not usable). */\n" +
+         detail::group_signature(g, k) + ";\n";
   }
   h += "/* x(k|k-1) and P(k|k-1) from row k-1: u the inputs held at row k-1 (their last finite\n"
        "   values), t = t(k-1), dt = t(k) - t(k-1). " +
@@ -428,6 +452,18 @@ Expected<CExport> export_c(const Scenario& scenario, const ParamValues& values,
     g.opt.steady_dt = *dt;
   }
   g.cache = spec.process.form == model::ProcessForm::kContinuous;
+  for (std::size_t k = 0; k < spec.groups.size(); ++k) {
+    const auto scheme = g.ev.group(k).scheme;
+    if (scheme == model::GroupScheme::kEach) continue;
+    const std::string key = "model.groups." + spec.groups[k].name;
+    if (spec.modes) return Error{what + key + ": a group's instants in an IMM are not exported"};
+    if (scheme == model::GroupScheme::kStacked && view->options.kind == model::FilterKind::kUkf)
+      return Error{what + key + ": the stacked scheme runs in the kf or the ekf, not the ukf"};
+    if (scheme == model::GroupScheme::kStacked)
+      g.mx = std::max(g.mx, static_cast<int>(spec.groups[k].members.size()));
+  }
+  for (int slot : spec.input_age_slots)
+    g.ages = g.ages || slot >= 0;
   std::vector<double> vars = g.ev.vars();
   for (const auto& c : spec.channels) {
     const std::string key = "model.measurements." + c.name + ".missing";

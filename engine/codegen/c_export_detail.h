@@ -46,6 +46,7 @@ struct Gen {
   std::vector<std::vector<int>> component_block;
   bool approximate = false;
   int roles_max = 1;  // the most roles of a channel (the raw sample's size)
+  bool ages = false;  // an input declares an age: u holds NU inputs, then NU ages
   // Per channel: its missing-sample flag in force (model.measurements.C.missing, `when` ≠ 0), and
   // the value that flags a sample (the caller skips such an update; the example does).
   std::vector<char> missing_on;
@@ -86,6 +87,11 @@ std::string start_head(const Gen& g, const std::string& sfx);
 std::string start_lines(const Gen& g, const std::string& x);
 // preprocess_CHANNEL<sfx>(zr, u, t, z) of g.ms's channel c.
 Expected<std::string> preprocess_part(Gen& g, std::size_t c, const std::string& sfx);
+// Channel groups (c_groups.cpp): a stacked group's update (its signature; whether a member reads t
+// or the inputs), and every stacked group's function.
+std::string group_signature(const Gen& g, std::size_t k);
+bool group_reads_step(const Gen& g, std::size_t k);
+std::string group_functions(Gen& g);
 // y[j] = wrap_angle(...) lines for the channel's angle components.
 std::string wrap_innovation(Gen& g, const model::ChannelSpec& ch);
 // s->x[i] = wrap_angle(...) lines for the angle states.

@@ -701,7 +701,7 @@ Expected<std::string> filter_functions(Gen& g) {
   if (g.ukf()) ukf_defs(g);
   auto f = one_filter(g);
   if (!f) return f.err();
-  return *init + *f + api_wrappers(g);
+  return *init + *f + api_wrappers(g) + group_functions(g);
 }
 
 }  // namespace kfw::codegen::detail

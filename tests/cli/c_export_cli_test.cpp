@@ -189,6 +189,11 @@ const Case kCases[] = {
     // The continuous nonlinear process: RK4 in sub-steps, its Jacobian, Van Loan at A(x).
     {"models/van_der_pol.json", "", false},
     {"models/van_der_pol.json", "--set filter=ukf", false},
+    // Seed 004: a group of ranges — stacked (the preset's SC), sequential (SI), each on its own
+    // (AS) — and the heading's input age.
+    {"underwater.json", "", false},
+    {"underwater.json", "--set scheme=2", false},
+    {"underwater.json", "--set scheme=0", false},
 };
 
 TEST_F(CExport, DoubleExportEqualsRunOutToNineDigits) {
@@ -313,17 +318,26 @@ TEST_F(CExport, SteadyEqualsTheSteadyFilterAndTheFullFilterAfterItsTransient) {
 TEST_F(CExport, ExampleUnderAddressAndUndefinedSanitizersReportsNothing) {
   const std::string flags = std::string(kStrict) + " -g -fsanitize=address,undefined " +
                             "-fno-sanitize-recover=all -fno-omit-frame-pointer";
-  std::vector<Case> cases(std::begin(kCases), std::end(kCases));
-  cases.push_back({"models/cv_ct_imm.json", "", false});  // an IMM's mixing and probabilities
-  for (const Case& c : cases) {
-    if (c.broad) continue;  // the same code as cv1d's KF; 55 000 rows under ASan add seconds
-    SCOPED_TRACE(std::string(c.preset) + " " + c.sets);
-    const std::string p = kPresets + c.preset;
-    const std::string csv = data(p, c.sets);
-    for (const std::string& args : {std::string(c.sets), std::string(c.sets) + " --float"}) {
-      const CsvTable est = exported(p, args, "san" + std::to_string(runs_++), csv, "gcc", flags);
-      EXPECT_GT(est.rows.size(), 100u);
-    }
+  // One of each kind of generated code: KF and Van Loan, EKF, UKF (and in float), RK4, missing
+  // flags and an input, an IMM, a stacked group with an input age.
+  const std::pair<const char*, const char*> cases[] = {
+      {"models/singer.json", ""},
+      {"models/range_bearing.json", ""},
+      {"models/range_bearing.json", "--set filter=ukf"},
+      {"models/range_bearing.json", "--set filter=ukf --float"},
+      {"models/van_der_pol.json", ""},
+      {"ballbeam.json", "--set mode=1"},
+      {"models/cv_ct_imm.json", ""},
+      {"underwater.json", "--set sim.duration=30"},
+  };
+  for (const auto& [preset, args] : cases) {
+    SCOPED_TRACE(std::string(preset) + " " + args);
+    const std::string p = kPresets + preset;
+    std::string sets = args;
+    if (const auto f = sets.find(" --float"); f != std::string::npos) sets.erase(f);
+    const std::string csv = data(p, sets);
+    const CsvTable est = exported(p, args, "san" + std::to_string(runs_++), csv, "gcc", flags);
+    EXPECT_GT(est.rows.size(), 100u);
   }
 }
 
@@ -344,15 +358,14 @@ TEST_F(CExport, ReExportIsByteIdentical) {
 
 TEST_F(CExport, AModelThatCannotBeExportedSaysSoInOneLineAndWritesNothing) {
   const std::pair<std::string, std::string> cases[] = {
-      {"underwater.json", ""},                    // channel groups, input ages
+      {"underwater.json", "--set filter=ukf"},    // a stacked group in the UKF (as kfw)
       {"models/range_bearing.json", "--steady"},  // --steady on a nonlinear model
       {"radome.json", "--set Kp=0.1"},            // the IMM's renewal (not yet)
       {"models/cv_imm.json", "--steady"},         // an IMM has no single steady state
       {"models/cv1d.json", "--prefix 9lives"},    // not a C identifier
       {"models/cv1d.json", "--prefix int"},       // a keyword
       {"models/cv1d.json", "--dt 0.1"},           // --dt without --steady
-      {"models/cv1d.json", "--steady --dt -1"},
-      {"models/cv1d.json", "--out-dir /nonexistent/dir"},
+      {"models/cv1d.json", "--steady --dt -1"},  {"models/cv1d.json", "--out-dir /nonexistent/dir"},
   };
   for (const auto& [preset, args] : cases) {
     SCOPED_TRACE(preset + " " + args);
@@ -362,9 +375,9 @@ TEST_F(CExport, AModelThatCannotBeExportedSaysSoInOneLineAndWritesNothing) {
     EXPECT_EQ(std::count(c.text.begin(), c.text.end(), '\n'), 1) << c.text;
     EXPECT_TRUE(fs::is_empty(dir_)) << c.text;
   }
-  const auto c = cli("export-c " + kPresets + "underwater.json --out-dir " + dir_);
-  EXPECT_NE(c.text.find("underwater.json"), std::string::npos) << c.text;
-  EXPECT_NE(c.text.find("model.groups"), std::string::npos) << c.text;
+  const auto c = cli("export-c " + kPresets + "radome.json --set Kp=0.1 --out-dir " + dir_);
+  EXPECT_NE(c.text.find("radome.json"), std::string::npos) << c.text;
+  EXPECT_NE(c.text.find("model.modes.renewal"), std::string::npos) << c.text;
 }
 
 }  // namespace

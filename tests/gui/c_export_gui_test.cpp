@@ -3,10 +3,16 @@
 #include <gtest/gtest.h>
 
 #include <QAction>
+#include <QApplication>
+#include <QCheckBox>
+#include <QDialogButtonBox>
 #include <QDir>
 #include <QFile>
+#include <QLineEdit>
 #include <QMenuBar>
+#include <QPushButton>
 #include <QTemporaryDir>
+#include <QTimer>
 
 #include "common/cli_runner.h"
 #include "main_window.h"
@@ -43,6 +49,38 @@ TEST(CExportGui, TheWindowWritesTheBytesOfTheCommandLine) {
       EXPECT_EQ(a, c_file(cli.path() + f)) << f;
     }
   }
+}
+
+// The dialog asks for the folder, the prefix (the preset's name), the precision and the steady
+// gain, fits a 1280 × 720 screen, and its OK writes the files. KFW_SHOT=DIR saves a picture.
+TEST(CExportGui, TheDialogAsksWhereAndHowAndWrites) {
+  MainWindow w;
+  ASSERT_TRUE(w.loadPreset(QString(KFW_SOURCE_DIR) + "/presets/models/cv1d.json").ok());
+  ASSERT_TRUE(w.waitForRun());
+  QTemporaryDir dir;
+  bool seen = false;
+  QTimer::singleShot(0, [&] {
+    QWidget* d = QApplication::activeModalWidget();
+    if (!d) return;
+    seen = true;
+    const auto edits = d->findChildren<QLineEdit*>();
+    const auto boxes = d->findChildren<QCheckBox*>();
+    EXPECT_EQ(edits.size(), 2);
+    EXPECT_EQ(boxes.size(), 2);
+    EXPECT_LE(d->sizeHint().width(), 1280);
+    EXPECT_LE(d->sizeHint().height(), 720);
+    if (const char* shot = std::getenv("KFW_SHOT")) d->grab().save(QString(shot) + "/c_export.png");
+    if (edits.size() == 2) {
+      EXPECT_EQ(edits[1]->text(), "cv1d");
+      edits[0]->setText(dir.path());
+    }
+    auto* box = d->findChild<QDialogButtonBox*>();
+    if (box) box->button(QDialogButtonBox::Ok)->click();
+  });
+  w.exportFilterAsCWithDialog();
+  EXPECT_TRUE(seen);
+  for (const char* f : {"/cv1d.h", "/cv1d.c", "/cv1d_example.c"})
+    EXPECT_TRUE(QFile::exists(dir.path() + f)) << f;
 }
 
 TEST(CExportGui, AModelItCannotExportIsRefusedWithNothingWritten) {

@@ -270,6 +270,9 @@ void declare_export_c(CLI::App& app, ExportCArgs& a) {
   c->add_flag("--float", a.single, "single precision throughout (no double-precision FPU)");
   c->add_flag("--steady", a.steady,
               "the fixed-gain filter with the DARE gain (linear time-invariant models)");
+  c->add_flag("--params-struct", a.params_struct,
+              "the parameters the filter reads in a struct set at NAME_init (one compiled filter, "
+              "other values; NAME_example takes KEY=VALUE) instead of constants");
   c->add_option("--dt", a.dt,
                 "--steady: the fixed interval (s); default: the data's median interval, else "
                 "the simulation step")

@@ -219,6 +219,7 @@ int cmd_export_c(const ExportCArgs& a, std::ostream& out, std::ostream& err) {
   if (a.prefix) o.prefix = *a.prefix;
   o.single = a.single;
   o.steady = a.steady;
+  o.runtime_params = a.params_struct;
   if (codegen::exports_steady(*ws->scenario, ws->values, a.steady)) {
     std::optional<Dataset> data;
     if (ws->data_path && !a.dt) {

@@ -110,6 +110,7 @@ struct ExportCArgs {
   std::optional<std::string> prefix;  // --prefix NAME; default: the preset's file stem
   bool single = false;                // --float
   bool steady = false;                // --steady
+  bool params_struct = false;         // --params-struct: the parameters in NAME_params
   std::optional<double> dt;           // --dt S: --steady's interval
 };
 

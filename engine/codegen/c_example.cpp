@@ -249,7 +249,7 @@ std::string example_loop(const Gen& g) {
   c += "  (void)i;\n  (void)nis;\n  (void)r;\n  (void)ready;\n  (void)col_u;\n  (void)z;\n  "
        "fclose(in);\n"
        "  if (out != stdout && fclose(out) != 0) {\n    fprintf(stderr, \"%s: cannot write\\n\", "
-       "argv[2]);\n    return 1;\n  }\n  return 0;\n}\n";
+       "out_path);\n    return 1;\n  }\n  return 0;\n}\n";
   return c;
 }
 
@@ -266,7 +266,8 @@ std::string example_program(const Gen& g) {
                   "_example DATA.csv [ESTIMATES.csv]\n"
                   "   exported by kfw " KFW_VERSION " from " +
                   comment_text(g.opt.preset) + ". */\n";
-  c += "#include <math.h>\n#include <stdio.h>\n#include <stdlib.h>\n#include <string.h>\n\n";
+  c += std::string("#include <math.h>\n") + (g.rt() ? "#include <stddef.h>\n" : "") +
+       "#include <stdio.h>\n#include <stdlib.h>\n#include <string.h>\n\n";
   c += "#include \"" + g.P + ".h\"\n\n" + kHelpers + group_flushes(g);
   // The x0 columns read from their first finite sample.
   std::vector<std::string> firsts;
@@ -308,8 +309,40 @@ std::string example_program(const Gen& g) {
   for (std::size_t ch = 0; ch < s.channels.size(); ++ch) {
     if (g.missing_on[ch]) c += "  int col_missing_" + c_name(s.channels[ch].name) + ";\n";
   }
-  c += "  if (argc < 2 || argc > 3) {\n    fprintf(stderr, \"usage: %s DATA.csv "
-       "[ESTIMATES.csv]\\n\", argv[0]);\n    return 2;\n  }\n  path = argv[1];\n";
+  c += "  const char *out_path = 0;\n";
+  if (g.rt()) {
+    c += "  " + g.P +
+         "_params p;\n  static const struct {\n    const char *key;\n"
+         "    size_t offset;\n  } keys[] = {";
+    bool first = true;
+    for (const auto& [name, v] : g.consts) {
+      c += std::string(first ? "" : ",") + "\n      {" + quoted_c(name.substr(4)) + ", offsetof(" +
+           g.P + "_params, " + name + ")}";
+      first = false;
+    }
+    if (first) c += "{\"\", 0}";
+    c += "};\n";
+  }
+  c += "  if (argc < 2) {\n    fprintf(stderr, \"usage: %s DATA.csv [ESTIMATES.csv]" +
+       std::string(g.rt() ? " [KEY=VALUE]..." : "") +
+       "\\n\", argv[0]);\n    return 2;\n  }\n"
+       "  path = argv[1];\n";
+  if (g.rt()) {  // KEY=VALUE: a parameter's value instead of the exported one
+    c += "  " + g.P + "_params_default(&p);\n";
+    c += "  for (i = 2; i < argc; ++i) {\n    const char *eq = strchr(argv[i], '=');\n"
+         "    size_t a;\n    if (!eq) {\n      out_path = argv[i];\n      continue;\n    }\n"
+         "    for (a = 0; a < sizeof keys / sizeof keys[0]; ++a) {\n"
+         "      if (strlen(keys[a].key) == (size_t)(eq - argv[i]) && "
+         "strncmp(keys[a].key, argv[i], (size_t)(eq - argv[i])) == 0) break;\n    }\n"
+         "    if (a == sizeof keys / sizeof keys[0]) {\n      fprintf(stderr, \"%s: no parameter "
+         "of that name\\n\", argv[i]);\n      return 2;\n    }\n"
+         "    *(" +
+         g.P + "_real *)((char *)&p + keys[a].offset) = (" + g.P +
+         "_real)strtod(eq + 1, 0);\n  }\n";
+  } else {
+    c += "  if (argc > 3) {\n    fprintf(stderr, \"usage: %s DATA.csv [ESTIMATES.csv]\\n\", "
+         "argv[0]);\n    return 2;\n  }\n  if (argc == 3) out_path = argv[2];\n";
+  }
   c += "  in = fopen(path, \"r\");\n  if (!in) {\n    fprintf(stderr, \"%s: cannot open\\n\", "
        "path);\n    return 2;\n  }\n";
   c += "  if (!read_line(line, in, path) || (n = split(line, field)) < 0) {\n"
@@ -353,14 +386,14 @@ std::string example_program(const Gen& g) {
     }
     c += "  }\n  rewind(in);\n  (void)read_line(line, in, path);\n";
   }
-  c += "  " + g.P + "_init(&s);\n";
+  c += "  " + g.P + "_init(&s" + (g.rt() ? ", &p" : "") + ");\n";
   for (std::size_t f = 0; f < firsts.size(); ++f) {
     const std::string v = "first" + std::to_string(f);
     c += "  if (isfinite(" + v + ")) " + g.P + "_init_from_" + c_name(firsts[f]) + "(&s, (" + g.P +
          "_real)" + v + ");\n";
   }
-  c += "  out = argc == 3 ? fopen(argv[2], \"w\") : stdout;\n  if (!out) {\n    fprintf(stderr, "
-       "\"%s: cannot write\\n\", argv[2]);\n    return 2;\n  }\n";
+  c += "  out = out_path ? fopen(out_path, \"w\") : stdout;\n  if (!out) {\n    fprintf(stderr, "
+       "\"%s: cannot write\\n\", out_path);\n    return 2;\n  }\n";
   c += "  fputs(" + quoted_c(output_header(g)) + ", out);\n  fputs(\"\\n\", out);\n";
   c += example_loop(g);
   return c;

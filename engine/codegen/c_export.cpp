@@ -164,6 +164,8 @@ std::string refusal(const model::ModelSpec& s, const ParamValues& values, const 
     for (const auto& e : c.h)
       if (reads_dt(e)) return key + ": a channel that reads dt is not exported";
   }
+  if ((o.steady || f.kind == model::FilterKind::kSteady) && o.runtime_params)
+    return "--steady bakes its gain: no runtime parameters (--params-struct)";
   if (o.steady || f.kind == model::FilterKind::kSteady) {
     if (!s.time_invariant())
       return "--steady needs a linear time-invariant model (F, B, Q, H and R of parameters and "
@@ -210,6 +212,7 @@ std::string state_struct(const Gen& g) {
   const std::string name = g.modes > 0 ? g.P + "_filter" : g.P + "_state";
   if (g.modes > 0) s = "/* One mode's filter. */\n" + s;
   s += "  " + R + " P[" + N + "][" + N + "]; /* its covariance */\n";
+  if (g.rt()) s += "  " + g.P + "_params par; /* the parameters in force (NAME_init) */\n";
   s += "  " + R + " dt; /* the interval F, B and Q hold the process for (NaN: none yet) */\n";
   s += "  " + R + " F[" + N + "][" + N + "], Q[" + N + "][" + N + "];\n";
   if (g.nu > 0) s += "  " + R + " B[" + N + "][" + c_macro(g.P) + "_NU];\n";
@@ -229,6 +232,7 @@ std::string state_struct(const Gen& g) {
   const std::string NM = c_macro(g.P) + "_MODES";
   s += "\n/* The IMM: the combined estimate, the mode probabilities and each mode's filter. */\n";
   s += "typedef struct {\n  " + R + " x[" + N + "];\n  " + R + " P[" + N + "][" + N + "];\n";
+  if (g.rt()) s += "  " + g.P + "_params par;\n";
   s += "  " + R + " mu[" + NM + "]; /* mode probabilities:";
   for (std::size_t j = 0; j < g.mode_names.size(); ++j)
     s += std::string(j ? "," : "") + " " + std::to_string(j) + " " + comment_text(g.mode_names[j]);
@@ -283,9 +287,17 @@ std::string header_text(const Gen& g) {
   }
   h += "\n/* What an update returns. */\nenum { " + M + "_APPLIED = 1, " + M + "_GATED = 0, " + M +
        "_SKIPPED = -1, " + M + "_DIVERGED = -2 };\n\n";
+  if (g.rt()) {
+    h += "/* The parameters the filter reads, set at NAME_init (NAME_params_default: the exported\n"
+         "   values; par_KEY_mJ: an IMM mode's own, par_KEY_centre: a grid's centre). */\n"
+         "typedef struct {\n";
+    for (const auto& [name, v] : g.consts)
+      h += "  " + R + " " + name + ";\n";
+    h += "} " + g.P + "_params;\nvoid " + g.P + "_params_default(" + g.P + "_params *p);\n\n";
+  }
   h += state_struct(g) + "\n";
   h += "/* x and P (x alone in a steady-state export) at their initial values. */\nvoid " + g.P +
-       "_init(" + g.P + "_state *s);\n";
+       "_init(" + g.P + "_state *s" + (g.rt() ? ", const " + g.P + "_params *p" : "") + ");\n";
   std::set<std::string> cols;
   for (const auto& x0 : s.x0) {
     if (!x0.first_column.empty() && cols.insert(x0.first_column).second) {
@@ -366,6 +378,16 @@ std::string source_prelude(const Gen& g) {
 }
 
 std::string constants(const Gen& g) {
+  if (g.rt()) {  // the defaults, then par_KEY as the field of the struct being stepped
+    std::string s = "void " + g.P + "_params_default(" + g.P + "_params *p) {\n";
+    for (const auto& [name, v] : g.consts)
+      s += "  p->" + name + " = " + g.lit(v) + ";\n";
+    s += "}\n\n/* par_KEY: the parameter in force, pp the NAME_params of the struct being stepped. "
+         "*/\n";
+    for (const auto& [name, v] : g.consts)
+      s += "#define " + name + " (pp->" + name + ")\n";
+    return s + "\n";
+  }
   std::string s = "/* The tuned parameters (par_NAME_mJ: mode J's own value). */\n";
   for (const auto& [name, v] : g.consts)
     s += "static const real " + name + " = " + g.lit(v) + ";\n";

@@ -20,7 +20,10 @@ struct CExportOptions {
   bool single = false;     // --float: single precision throughout
   bool steady = false;     // --steady: the fixed DARE gain, no covariance on the target
   double steady_dt = 0.0;  // --steady: the fixed interval (s)
-  std::string preset;      // the preset's file name, in the header comment (with kfw's version)
+  // --params-struct: the parameters the filter reads in NAME_params, set at NAME_init (the
+  // native path of the scale issue; one compiled filter, other values) instead of constants.
+  bool runtime_params = false;
+  std::string preset;  // the preset's file name, in the header comment (with kfw's version)
 };
 
 struct CExport {

@@ -53,6 +53,17 @@ struct Gen {
   std::vector<double> missing_equals;
 
   bool ukf() const { return filter.kind == model::FilterKind::kUkf; }
+  // Parameters in a runtime struct (CExportOptions::runtime_params): every function that reads
+  // one has `pp`, the NAME_params in force — from its struct (pp_decl), as a parameter
+  // (pp_param), passed on (pp_arg); par_KEY is a macro for pp->par_KEY.
+  bool rt() const { return opt.runtime_params; }
+  std::string pp_decl() const {
+    return rt() ? "  const " + P + "_params *pp = &s->par;\n  (void)pp;\n" : "";
+  }
+  std::string pp_param() const { return rt() ? ", const " + P + "_params *pp" : ""; }
+  std::string pp_arg() const { return rt() ? ", pp" : ""; }
+  std::string pp_void() const { return rt() ? "  (void)pp;\n" : ""; }
+  std::string ctx_arg() const { return rt() ? "pp" : "0"; }  // rk4's context
   bool steady() const { return opt.steady; }
   std::string lit(double v) const { return c_number(v, opt.single); }
   // The C text of a model symbol in a generated function: par_NAME, x[i], u[j], dt, t.

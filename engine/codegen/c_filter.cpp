@@ -129,14 +129,15 @@ Expected<std::string> xdot_parts(Gen& g) {
   if (!kt) return kt.err();
   auto at = assignments(g, a);
   if (!at) return at.err();
+  const std::string ctx =
+      g.rt() ? "  const " + g.P + "_params *pp = (const " + g.P + "_params *)ctx;\n  (void)pp;\n"
+             : "  (void)ctx;\n";
   std::string s = "/* xdot = f(x, u, t). */\nstatic void xdot" + g.sfx +
-                  "(const real *x, const real *u, real t, real *k) {\n  (void)x;\n  (void)u;\n"
-                  "  (void)t;\n" +
-                  *kt + "}\n\n";
+                  "(const void *ctx, const real *x, const real *u, real t, real *k) {\n" + ctx +
+                  "  (void)x;\n  (void)u;\n  (void)t;\n" + *kt + "}\n\n";
   s += "/* A = df/dx at x, u, t. */\nstatic void xdot_A" + g.sfx +
-       "(const real *x, const real *u, real t, real (*A)[NX]) {\n  (void)x;\n  (void)u;\n"
-       "  (void)t;\n" +
-       *at + "}\n\n";
+       "(const void *ctx, const real *x, const real *u, real t, real (*A)[NX]) {\n" + ctx +
+       "  (void)x;\n  (void)u;\n  (void)t;\n" + *at + "}\n\n";
   std::vector<Assign> noise;
   if (!pr.G.empty()) matrix(noise, pr.G, "G", false);
   matrix(noise, pr.Qc, "Qc", false);
@@ -148,9 +149,9 @@ Expected<std::string> xdot_parts(Gen& g) {
   g.runtime.insert("rk4");
   s += "/* Q by Van Loan's method on the linearisation (A(x), G Qc G') over dt. */\n";
   s += "static void process_noise" + g.sfx +
-       "(const real x[NX], const real *u, real t, real dt, real Q[NX][NX]) {\n"
-       "  real A[NX][NX], W[NX][NX], Fd[NX][NX], G[NX][" +
-       qs + "], Qc[" + qs + "][" + qs + "];\n  int i, j, a, b;\n" + *nt;
+       "(const real x[NX], const real *u, real t, real dt, real Q[NX][NX]" + g.pp_param() +
+       ") {\n" + g.pp_void() + "  real A[NX][NX], W[NX][NX], Fd[NX][NX], G[NX][" + qs + "], Qc[" +
+       qs + "][" + qs + "];\n  int i, j, a, b;\n" + *nt;
   if (pr.G.empty()) {
     s += "  for (i = 0; i < NX; ++i) {\n    for (j = 0; j < NX; ++j) G[i][j] = i == j ? LIT(1.0) : "
          "LIT(0.0);\n  }\n";
@@ -163,7 +164,8 @@ Expected<std::string> xdot_parts(Gen& g) {
        qs +
        "; ++b) gq += G[i][b] * "
        "Qc[b][a];\n        v += gq * G[j][a];\n      }\n      W[i][j] = v;\n    }\n  }\n";
-  s += "  xdot_A" + g.sfx + "(x, u, t, A);\n  van_loan(A, W, dt, Fd, Q);\n}\n\n";
+  s += "  xdot_A" + g.sfx + "(" + g.ctx_arg() +
+       ", x, u, t, A);\n  van_loan(A, W, dt, Fd, Q);\n}\n\n";
   return s;
 }
 
@@ -186,7 +188,7 @@ Expected<std::string> process_parts(Gen& g) {
   const bool nonlinear = g.ms->nonlinear_process();
   if (pr.form == model::ProcessForm::kContinuousNonlinear) return xdot_parts(g);
   std::string s = "/* F, B and Q of parameters and dt: when dt changes. */\n";
-  s += "static void process_dt" + g.sfx + "(" + g.ft + " *s, real dt) {\n";
+  s += "static void process_dt" + g.sfx + "(" + g.ft + " *s, real dt) {\n" + g.pp_decl();
   std::vector<Assign> at_dt;
   if (pr.form == model::ProcessForm::kContinuous) {
     g.runtime.insert("van_loan");
@@ -248,8 +250,8 @@ Expected<std::string> process_parts(Gen& g) {
        std::string(nonlinear && !g.ukf() ? "; fx = f(x)" : "") + ". */\n";
   s += "static void process_step" + g.sfx + "(" + g.ft +
        " *s, const real x[NX], const real *u, real t, "
-       "real dt, real fx[NX]) {\n  (void)s;\n  (void)fx;\n" +
-       kVoidAll + *a + "}\n\n";
+       "real dt, real fx[NX]) {\n" +
+       g.pp_decl() + "  (void)s;\n  (void)fx;\n" + kVoidAll + *a + "}\n\n";
   if (nonlinear && g.ukf()) {
     std::vector<Assign> f;
     for (int i = 0; i < g.n; ++i)
@@ -259,9 +261,10 @@ Expected<std::string> process_parts(Gen& g) {
     if (!fa) return fa.err();
     s += "/* fx = f(x): one sigma point through the process. */\n";
     s += "static void process_f" + g.sfx +
-         "(const real x[NX], const real *u, real t, real dt, real fx[NX]) "
+         "(const real x[NX], const real *u, real t, real dt, real fx[NX]" + g.pp_param() +
+         ") "
          "{\n" +
-         std::string(kVoidAll) + *fa + "}\n\n";
+         g.pp_void() + std::string(kVoidAll) + *fa + "}\n\n";
   }
   return s;
 }
@@ -282,7 +285,9 @@ Expected<std::string> preprocess_text(Gen& g, std::size_t c, const std::string& 
   if (!a) return a.err();
   return "/* Channel " + comment_text(ch.name) + "'s components from its raw sample. */\n" +
          "static int preprocess_" + c_name(ch.name) + sfx +
-         "(const real *zr, const real *u, real t, real z[MX]) {\n  int j;\n  (void)u;\n"
+         "(const real *zr, const real *u, real t, real z[MX]" + g.pp_param() + ") {\n" +
+         g.pp_void() +
+         "  int j;\n  (void)u;\n"
          "  (void)t;\n" +
          *a + "  for (j = 0; j < " + std::to_string(ch.size()) +
          "; ++j) {\n    if (!isfinite(z[j])) return 0;\n  }\n  return 1;\n}\n\n";
@@ -318,7 +323,9 @@ Expected<std::string> channel_parts(Gen& g, std::size_t c) {
   s += "/* Channel " + comment_text(ch.name) + " at x. */\n";
   s += "static void channel_" + name + g.sfx +
        "(const real x[NX], const real *zr, const real *u, real t, real hx[MX], "
-       "real H[MX][NX], real R[MX][MX]) {\n  (void)x;\n  (void)zr;\n  (void)u;\n  (void)t;\n"
+       "real H[MX][NX], real R[MX][MX]" +
+       g.pp_param() + ") {\n" + g.pp_void() +
+       "  (void)x;\n  (void)zr;\n  (void)u;\n  (void)t;\n"
        "  (void)hx;\n  (void)H;\n" +
        *a + "}\n\n";
   if (!ch.linear && g.ukf()) {
@@ -332,8 +339,9 @@ Expected<std::string> channel_parts(Gen& g, std::size_t c) {
     if (!ha) return ha.err();
     s += "static void channel_" + name + "_h" + g.sfx +
          "(const real x[NX], const real *zr, const real *u, real t, "
-         "real hx[MX]) {\n  (void)x;\n  (void)zr;\n  (void)u;\n  (void)t;\n" +
-         *ha + "}\n\n";
+         "real hx[MX]" +
+         g.pp_param() + ") {\n" + g.pp_void() +
+         "  (void)x;\n  (void)zr;\n  (void)u;\n  (void)t;\n" + *ha + "}\n\n";
   }
   return s;
 }
@@ -364,7 +372,10 @@ std::string init_function(Gen& g, std::string& error, const std::string& name) {
     error = a.error();
     return {};
   }
-  std::string s = name + "(" + g.ft + " *s) {\n" + *a;
+  // The model's own NAME_init takes the parameters (runtime mode); an IMM's sets them first.
+  const bool own = g.rt() && g.modes == 0;
+  std::string s = name + "(" + g.ft + " *s" + (own ? ", const " + g.P + "_params *p" : "") +
+                  ") {\n" + (own ? "  s->par = *p;\n" : "") + g.pp_decl() + *a;
   if (!g.steady()) {
     s += "  s->dt = NAN;\n  {\n    int i, j;\n    for (i = 0; i < NX; ++i) {\n"
          "      for (j = 0; j < NX; ++j) s->F[i][j] = s->Q[i][j] = LIT(0.0);\n";
@@ -398,11 +409,12 @@ std::string predict_kf(Gen& g) {
   g.runtime.insert("predict_cov");
   g.runtime.insert("diverged");
   std::string s = "static int filter_predict" + g.sfx + "(" + g.ft +
-                  " *s, const real *u, real t, real dt) {\n  real fx[NX];\n  int i;\n";
+                  " *s, const real *u, real t, real dt) {\n  real fx[NX];\n  int i;\n" +
+                  g.pp_decl();
   if (g.ms->process.form == model::ProcessForm::kContinuousNonlinear) {
-    s += rk4_steps(g) + "  rk4(xdot" + g.sfx + ", xdot_A" + g.sfx +
-         ", s->x, u, t, dt, steps, fx, s->F);\n  process_noise" + g.sfx +
-         "(s->x, u, t, dt, s->Q);\n";
+    s += rk4_steps(g) + "  rk4(xdot" + g.sfx + ", xdot_A" + g.sfx + ", " + g.ctx_arg() +
+         ", s->x, u, t, dt, steps, fx, s->F);\n  process_noise" + g.sfx + "(s->x, u, t, dt, s->Q" +
+         g.pp_arg() + ");\n";
     s += "  predict_cov(s->P, s->F, s->Q);\n  for (i = 0; i < NX; ++i) s->x[i] = fx[i];\n";
     s += wrap_states(g, "  ");
     return s + "  return diverged(s->x, s->P) ? " + c_macro(g.P) + "_DIVERGED : 0;\n}\n\n";
@@ -433,12 +445,12 @@ std::string predict_ukf(Gen& g) {
   const bool nonlinear = g.ms->nonlinear_process();
   g.runtime.insert("sigma_points");
   g.runtime.insert("diverged");
-  std::string s =
-      "static int filter_predict" + g.sfx + "(" + g.ft + " *s, const real *u, real t, real dt) {\n";
+  std::string s = "static int filter_predict" + g.sfx + "(" + g.ft +
+                  " *s, const real *u, real t, real dt) {\n" + g.pp_decl();
   s += "  real X[NX][NS], Y[NX][NS], xs[NX], ys[NX], d[NX];\n  int i, j, r;\n";
   const bool xdot = g.ms->process.form == model::ProcessForm::kContinuousNonlinear;
   if (xdot) {
-    s += rk4_steps(g) + "  process_noise" + g.sfx + "(s->x, u, t, dt, s->Q);\n";
+    s += rk4_steps(g) + "  process_noise" + g.sfx + "(s->x, u, t, dt, s->Q" + g.pp_arg() + ");\n";
   } else {
     s += "  if (!(dt == s->dt)) process_at" + g.sfx + "(s, dt);\n";
     s += "  process_step" + g.sfx + "(s, s->x, u, t, dt, ys);\n" + drop_Q(g);
@@ -446,9 +458,10 @@ std::string predict_ukf(Gen& g) {
   s += "  if (!sigma_points(s->x, s->P, X)) return " + c_macro(g.P) + "_DIVERGED;\n";
   s += "  for (j = 0; j < NS; ++j) {\n    for (i = 0; i < NX; ++i) xs[i] = X[i][j];\n";
   if (xdot) {
-    s += "    rk4(xdot" + g.sfx + ", xdot_A" + g.sfx + ", xs, u, t, dt, steps, ys, 0);\n";
+    s += "    rk4(xdot" + g.sfx + ", xdot_A" + g.sfx + ", " + g.ctx_arg() +
+         ", xs, u, t, dt, steps, ys, 0);\n";
   } else if (nonlinear) {
-    s += "    process_f" + g.sfx + "(xs, u, t, dt, ys);\n";
+    s += "    process_f" + g.sfx + "(xs, u, t, dt, ys" + g.pp_arg() + ");\n";
   } else {
     s += "    for (i = 0; i < NX; ++i) {\n      int k;\n      real v = LIT(0.0);\n"
          "      for (k = 0; k < NX; ++k) v += s->F[i][k] * xs[k];\n      ys[i] = v;\n    }\n";
@@ -473,7 +486,8 @@ std::string update_head(Gen& g, std::size_t c) {
   std::string s = "static int filter_update_" + c_name(g.spec.channels[c].name) + g.sfx + "(" +
                   g.ft +
                   " *s, const real *z, const real *zr, const real *u, real t, real *nis, "
-                  "real *logdet) {\n";
+                  "real *logdet) {\n" +
+                  g.pp_decl();
   return s;
 }
 
@@ -485,7 +499,8 @@ std::string update_kf(Gen& g, std::size_t c) {
   g.runtime.insert("diverged");
   std::string s = update_head(g, c);
   s += "  real hx[MX], H[MX][NX], R[MX][MX], y[MX];\n  int j, r;\n";
-  s += "  channel_" + name + g.sfx + "(s->x, zr, u, t, hx, H, R);\n" + drop_R(g, c);
+  s += "  channel_" + name + g.sfx + "(s->x, zr, u, t, hx, H, R" + g.pp_arg() + ");\n" +
+       drop_R(g, c);
   if (ch.linear) {
     s += "  for (j = 0; j < " + std::to_string(m) +
          "; ++j) { /* zhat = H x */\n    int i;\n"
@@ -531,7 +546,8 @@ std::string update_ukf(Gen& g, std::size_t c) {
   std::string s = update_head(g, c);
   s += "  real hx[MX], H[MX][NX], R[MX][MX], y[MX], X[NX][NS], Z[MX][NS], S[MX][MX], C[NX][MX];\n"
        "  real xs[NX], zhat[MX], dz[MX], d[NX];\n  int i, j, a, r;\n";
-  s += "  channel_" + name + g.sfx + "(s->x, zr, u, t, hx, H, R);\n" + drop_R(g, c);
+  s += "  channel_" + name + g.sfx + "(s->x, zr, u, t, hx, H, R" + g.pp_arg() + ");\n" +
+       drop_R(g, c);
   s += "  if (!sigma_points(s->x, s->P, X)) return " + M + "_DIVERGED;\n";
   s += "  for (j = 0; j < NS; ++j) {\n    for (i = 0; i < NX; ++i) xs[i] = X[i][j];\n";
   if (ch.linear) {
@@ -539,7 +555,7 @@ std::string update_ukf(Gen& g, std::size_t c) {
          "; ++a) {\n      real v = LIT(0.0);\n      for (i = 0; i < "
          "NX; ++i) v += H[a][i] * xs[i];\n      hx[a] = v;\n    }\n";
   } else {
-    s += "    channel_" + name + "_h" + g.sfx + "(xs, zr, u, t, hx);\n";
+    s += "    channel_" + name + "_h" + g.sfx + "(xs, zr, u, t, hx" + g.pp_arg() + ");\n";
   }
   s += "    for (a = 0; a < " + ms + "; ++a) Z[a][j] = hx[a];\n  }\n";
   s += "  for (a = 0; a < " + ms + "; ++a) zhat[a] = sigma_mean(Z[a], role_angle_" + name +
@@ -583,8 +599,8 @@ std::string api_wrappers(Gen& g) {
       s += "  const real *u = 0;\n  const real t = LIT(0.0);\n";
     const std::string name = c_name(g.spec.channels[c].name);
     if (g.spec.channels[c].preprocessed()) {
-      s += "  real zp[MX];\n  if (!preprocess_" + name +
-           "(z, u, t, zp)) {\n    if (nis) *nis = NAN;\n"
+      s += g.pp_decl() + "  real zp[MX];\n  if (!preprocess_" + name + "(z, u, t, zp" + g.pp_arg() +
+           ")) {\n    if (nis) *nis = NAN;\n"
            "    return " +
            c_macro(g.P) + "_SKIPPED;\n  }\n  return filter_update_" + name +
            "(s, zp, z, u, t, nis, 0);\n}\n\n";
@@ -606,10 +622,11 @@ Expected<std::string> preprocess_part(Gen& g, std::size_t c, const std::string& 
 std::string start_head(const Gen& g, const std::string& sfx) {
   const auto c = static_cast<std::size_t>(g.spec.start_channel);
   const auto& ch = g.spec.channels[c];
-  std::string s = init_channel_signature(g) + " {\n  real zp[MX];\n";
+  std::string s = init_channel_signature(g) + " {\n  real zp[MX];\n" + g.pp_decl();
   if (!channel_reads_step(ch)) s += "  const real *u = 0;\n  const real t = LIT(0.0);\n";
   if (ch.preprocessed())
-    return s + "  if (!preprocess_" + c_name(ch.name) + sfx + "(z, u, t, zp)) return 0;\n";
+    return s + "  if (!preprocess_" + c_name(ch.name) + sfx + "(z, u, t, zp" + g.pp_arg() +
+           ")) return 0;\n";
   return s + "  int j;\n  (void)u;\n  (void)t;\n  for (j = 0; j < " + std::to_string(ch.size()) +
          "; ++j) {\n    if (!isfinite(z[j])) return 0;\n    zp[j] = z[j];\n  }\n";
 }

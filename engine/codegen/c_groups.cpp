@@ -28,7 +28,7 @@ std::string stacked_update(Gen& g, std::size_t k) {
   const std::string M = c_macro(g.P), gm = std::to_string(gs.members.size());
   g.runtime.insert("update_vec");
   g.runtime.insert("diverged");
-  std::string s = group_signature(g, k) + " {\n";
+  std::string s = group_signature(g, k) + " {\n" + g.pp_decl();
   if (!group_reads_step(g, k)) s += "  const real *u = 0;\n  const real t = LIT(0.0);\n";
   s += "  real hx[MX], H1[MX][NX], R1[MX][MX], H[MX][NX], y[MX], r[MX], gate[MX], R[MX][MX];\n"
        "  real S[MX][MX], C[NX][MX], Hk[MX][NX], yk[MX], Rk[MX][MX], Sk[MX][MX], Ck[NX][MX];\n"
@@ -39,7 +39,7 @@ std::string stacked_update(Gen& g, std::size_t k) {
     const auto c = static_cast<std::size_t>(gs.members[j]);
     const auto& ch = g.spec.channels[c];
     s += "      case " + std::to_string(j) + ":\n        channel_" + c_name(ch.name) +
-         "(s->x, z + a, u, t, hx, H1, R1);\n";
+         "(s->x, z + a, u, t, hx, H1, R1" + g.pp_arg() + ");\n";
     if (ch.linear) {
       s += "        hx[0] = LIT(0.0);\n        for (i = 0; i < NX; ++i) hx[0] += H1[0][i] * "
            "s->x[i];\n";

@@ -175,9 +175,11 @@ std::string imm_api(Gen& g, const model::ModesSpec& ms, int r) {
   const std::string M = c_macro(g.P);
   std::string s;
   // NAME_init: every mode at x0, P0; μ0.
-  s += "void " + g.P + "_init(" + g.P + "_state *s) {\n";
+  s += "void " + g.P + "_init(" + g.P + "_state *s" +
+       (g.rt() ? ", const " + g.P + "_params *p) {\n  s->par = *p;\n" : ") {\n");
   for (int j = 0; j < r; ++j) {
     const double mu0 = ms.mu0.empty() ? 1.0 / r : ms.mu0[static_cast<std::size_t>(j)];
+    if (g.rt()) s += "  s->mode[" + std::to_string(j) + "].par = *p;\n";
     s += "  filter_init(&s->mode[" + std::to_string(j) + "]);\n  s->log_mu[" + std::to_string(j) +
          "] = " + (mu0 > 0.0 ? g.lit(std::log(mu0)) : std::string("NEG_INF")) + ";\n";
     if (!g.block_of.empty()) s += "  drop_cross(s->mode[" + std::to_string(j) + "].P);\n";
@@ -216,13 +218,13 @@ std::string imm_api(Gen& g, const model::ModesSpec& ms, int r) {
     const auto& ch = g.spec.channels[c];
     const std::string name = c_name(ch.name);
     s += update_signature(g, c) +
-         " {\n  real ll[NM], n[NM], ld[NM], v[NM], lc, zp[MX];\n  int j, r, best;\n";
+         " {\n  real ll[NM], n[NM], ld[NM], v[NM], lc, zp[MX];\n  int j, r, best;\n" + g.pp_decl();
     if (!channel_reads_step(ch)) s += "  const real *u = 0;\n  const real t = LIT(0.0);\n";
     for (int j = 0; j < r; ++j) {
       const std::string jj = std::to_string(j);
       if (ch.preprocessed()) {  // each mode's own pseudo-measurement (seed 001)
-        s += "  if (!preprocess_" + name + "_m" + jj + "(z, u, t, zp)) {\n    ll[" + jj +
-             "] = NEG_INF;\n    n[" + jj + "] = NAN;\n  } else {\n";
+        s += "  if (!preprocess_" + name + "_m" + jj + "(z, u, t, zp" + g.pp_arg() +
+             ")) {\n    ll[" + jj + "] = NEG_INF;\n    n[" + jj + "] = NAN;\n  } else {\n";
       } else {
         s += "  {\n    for (j = 0; j < " + std::to_string(ch.size()) + "; ++j) zp[j] = z[j];\n";
       }

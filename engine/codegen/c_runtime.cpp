@@ -343,9 +343,10 @@ static void van_loan(real A[NX][NX], real W[NX][NX], real dt, real F[NX][NX], re
        R"C(/* The classical RK4 of xdot = f(x, u, t) over dt in `steps` equal sub-steps from x0 at t0, and
    (F given) the exact Jacobian of that step map, the chain rule through the four stages of every
    sub-step with A = df/dx (model/model_continuous.cpp). */
-static void rk4(void (*f)(const real *, const real *, real, real *),
-                void (*jac)(const real *, const real *, real, real (*)[NX]), const real x0[NX],
-                const real *u, real t0, real dt, int steps, real fx[NX], real F[NX][NX]) {
+static void rk4(void (*f)(const void *, const real *, const real *, real, real *),
+                void (*jac)(const void *, const real *, const real *, real, real (*)[NX]),
+                const void *ctx, const real x0[NX], const real *u, real t0, real dt, int steps,
+                real fx[NX], real F[NX][NX]) {
   const real h = dt / (real)steps;
   const real c[4] = {LIT(0.0), LIT(0.5), LIT(0.5), LIT(1.0)};
   real x[NX], xs[NX], k[4][NX], A[NX][NX], D[4][NX][NX], T[NX][NX];
@@ -362,9 +363,9 @@ static void rk4(void (*f)(const real *, const real *, real, real *),
       /* the stage at x + c h k_prev, ts + c h; its D = A (I + c h D_prev) */
       const real tc = stage ? ts + c[stage] * h : ts;
       for (i = 0; i < NX; ++i) xs[i] = stage ? x[i] + c[stage] * h * k[stage - 1][i] : x[i];
-      f(xs, u, tc, k[stage]);
+      f(ctx, xs, u, tc, k[stage]);
       if (!F) continue;
-      jac(xs, u, tc, A);
+      jac(ctx, xs, u, tc, A);
       for (i = 0; i < NX; ++i) {
         for (j = 0; j < NX; ++j) {
           real v = LIT(0.0);

@@ -341,6 +341,25 @@ TEST_F(CExport, ExampleUnderAddressAndUndefinedSanitizersReportsNothing) {
   }
 }
 
+// --params-struct (the generator's second mode, for the native path): the same estimates as the
+// constants, and KEY=VALUE on the example equals kfw-cli run --set.
+TEST_F(CExport, ParamsStructEqualsTheConstantsAndTakesNewValues) {
+  const std::string p = kPresets + "models/range_bearing.json";
+  const std::string csv = data(p, "");
+  const CsvTable baked = exported(p, "", "baked", csv);
+  const CsvTable rt = exported(p, "--params-struct", "rt", csv);
+  std::string where;
+  EXPECT_EQ(worst_error(rt, baked, -INFINITY, false, where), 0.0) << where;
+  const std::string d = dir_ + "/rt";
+  const auto r =
+      run_command(d + "/ex " + csv + " " + d + "/set.csv sigma_a=0.7 sigma_range=12 2>&1");
+  ASSERT_EQ(r.code, 0) << r.text;
+  const CsvTable ref = run(p, "--set sigma_a=0.7 --set sigma_range=12", csv);
+  EXPECT_LE(worst_error(read_csv(d + "/set.csv"), ref, -INFINITY, false, where), 1e-9) << where;
+  const auto bad = run_command(d + "/ex " + csv + " " + d + "/x.csv no_such=1 2>&1");
+  EXPECT_EQ(bad.code, 2) << bad.text;
+}
+
 TEST_F(CExport, ReExportIsByteIdentical) {
   const std::string p = kPresets + "models/range_bearing.json";
   for (const std::string args : {"", " --set filter=ukf --float", " --set sigma_a=0.7"}) {

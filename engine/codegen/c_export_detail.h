@@ -74,6 +74,30 @@ struct Gen {
   }
 };
 
+// One generated assignment: `target` = the expression, `key` naming it in messages.
+struct Assign {
+  std::string target;
+  const model::Expr* e;
+  std::string key;
+};
+
+// The model's matrices as C (c_parts.cpp): "target = expression;" lines with the common
+// sub-expressions computed once before; "[i][j]"; the entries of a matrix whose class is of a
+// step (t, inputs, state) or not; an IMM's approximate structure's zeroed R and Q entries; the
+// process's functions (process_dt, process_at, process_step, process_f, or ẋ's); a channel's
+// (channel_C, channel_C_h, preprocess_C); the RK4 sub-steps over dt.
+Expected<std::string> assignments(Gen& g, const std::vector<Assign>& list,
+                                  const std::string& indent = "  ");
+std::string ij(int i, int j);
+void matrix(std::vector<Assign>& out, const model::MatrixSpec& m, const std::string& target,
+            bool step);
+std::string drop_R(const Gen& g, std::size_t c);
+std::string drop_Q(const Gen& g);
+Expected<std::string> process_parts(Gen& g);
+Expected<std::string> channel_parts(Gen& g, std::size_t c);
+Expected<std::string> preprocess_text(Gen& g, std::size_t c, const std::string& sfx);
+std::string rk4_steps(Gen& g);
+
 // A channel's or column's name as a C identifier (anything else replaced by '_').
 std::string c_name(const std::string& name);
 // Upper case of c_name (macro names).

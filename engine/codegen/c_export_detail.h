@@ -127,6 +127,10 @@ Expected<std::string> preprocess_part(Gen& g, std::size_t c, const std::string& 
 std::string group_signature(const Gen& g, std::size_t k);
 bool group_reads_step(const Gen& g, std::size_t k);
 std::string group_functions(Gen& g);
+// A block computing out = F in + B u (the engine's order: F's row, then each input), F and B
+// named with `m` before them ("s->" or "" for --steady's constants).
+std::string linear_mean(const Gen& g, const std::string& m, const std::string& in,
+                        const std::string& out, const std::string& indent);
 // y[j] = wrap_angle(...) lines for the channel's angle components.
 std::string wrap_innovation(Gen& g, const model::ChannelSpec& ch);
 // s->x[i] = wrap_angle(...) lines for the angle states.

@@ -3,6 +3,7 @@
 #include "codegen/c_expr.h"
 
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -38,19 +39,16 @@ int precedence(Kind k) {
   }
 }
 
+// The shortest text that reads back to the same value (std::to_chars, as document/command_line.cpp
+// and data/csv.cpp write numbers), with a decimal point or an exponent.
 std::string shortest(double v, bool single) {
-  char buf[48];
-  for (int p = 1; p <= 17; ++p) {
-    std::snprintf(buf, sizeof buf, "%.*g", p, v);
-    if (single ? std::strtof(buf, nullptr) == static_cast<float>(v)
-               : std::strtod(buf, nullptr) == v)
-      break;
-  }
-  std::string s = buf;
+  char buf[64];
+  const auto r = single ? std::to_chars(buf, buf + sizeof buf, static_cast<float>(v))
+                        : std::to_chars(buf, buf + sizeof buf, v);
+  std::string s(buf, r.ptr);
   if (s.find_first_of(".e") == std::string::npos) s += ".0";
   return s;
 }
-
 }  // namespace
 
 std::string c_number(double v, bool single) {

@@ -85,18 +85,25 @@ std::string predict_kf(Gen& g) {
   }
   s += "  if (!(dt == s->dt)) process_at" + g.sfx + "(s, dt);\n";
   s += "  process_step" + g.sfx + "(s, s->x, u, t, dt, fx);\n" + drop_Q(g);
-  if (!nonlinear) {
-    s += "  for (i = 0; i < NX; ++i) { /* fx = F x + B u */\n    int j;\n    real v = LIT(0.0);\n"
-         "    for (j = 0; j < NX; ++j) v += s->F[i][j] * s->x[j];\n    fx[i] = v;\n  }\n";
-    if (g.nu > 0) {
-      s += "  {\n    int j;\n    for (j = 0; j < NU; ++j) {\n      for (i = 0; i < NX; ++i) "
-           "fx[i] += s->B[i][j] * u[j];\n    }\n  }\n";
-    }
-  }
+  if (!nonlinear) s += linear_mean(g, "s->", "s->x", "fx", "  ");
   s += "  predict_cov(s->P, s->F, s->Q);\n  for (i = 0; i < NX; ++i) s->x[i] = fx[i];\n";
   s += wrap_states(g, "  ");
   return s + "  return diverged(s->x, s->P) ? " + c_macro(g.P) + "_DIVERGED : 0;\n}\n\n";
 }
+
+}  // namespace
+
+std::string linear_mean(const Gen& g, const std::string& m, const std::string& in,
+                        const std::string& out, const std::string& indent) {
+  const std::string& d = indent;
+  std::string s = d + "{ /* " + out + " = F " + in + " + B u */\n" + d + "  int a, b;\n" + d +
+                  "  for (a = 0; a < NX; ++a) {\n" + d + "    real v = LIT(0.0);\n" + d +
+                  "    for (b = 0; b < NX; ++b) v += " + m + "F[a][b] * " + in + "[b];\n";
+  if (g.nu > 0) s += d + "    for (b = 0; b < NU; ++b) v += " + m + "B[a][b] * u[b];\n";
+  return s + d + "    " + out + "[a] = v;\n" + d + "  }\n" + d + "}\n";
+}
+
+namespace {
 
 std::string angles_array(const std::string& name, const std::vector<int>& kinds) {
   std::string s = "static const int " + name + "[" + std::to_string(kinds.size()) + "] = {";
@@ -127,12 +134,7 @@ std::string predict_ukf(Gen& g) {
   } else if (nonlinear) {
     s += "    process_f" + g.sfx + "(xs, u, t, dt, ys" + g.pp_arg() + ");\n";
   } else {
-    s += "    for (i = 0; i < NX; ++i) {\n      int k;\n      real v = LIT(0.0);\n"
-         "      for (k = 0; k < NX; ++k) v += s->F[i][k] * xs[k];\n      ys[i] = v;\n    }\n";
-    if (g.nu > 0) {
-      s += "    for (r = 0; r < NU; ++r) {\n      for (i = 0; i < NX; ++i) ys[i] += s->B[i][r] * "
-           "u[r];\n    }\n";
-    }
+    s += linear_mean(g, "s->", "xs", "ys", "    ");
   }
   s += "    for (i = 0; i < NX; ++i) Y[i][j] = ys[i];\n  }\n";
   s += "  for (r = 0; r < NX; ++r) s->x[r] = sigma_mean(Y[r], state_angle[r]);\n";

@@ -36,11 +36,8 @@ Expected<std::string> steady_functions(Gen& g) {
   const std::string M = c_macro(g.P);
   s += "int " + g.P + "_predict(" + g.P + "_state *s, const " + g.P + "_real *u, " + g.P +
        "_real t, " + g.P +
-       "_real dt) {\n  real fx[NX];\n  int i, j;\n  (void)u;\n  (void)t;\n"
-       "  (void)dt;\n  for (i = 0; i < NX; ++i) {\n    real v = LIT(0.0);\n    for (j = 0; j < NX; "
-       "++j) v += F[i][j] * s->x[j];\n";
-  if (g.nu > 0) s += "    for (j = 0; j < NU; ++j) v += B[i][j] * u[j];\n";
-  s += "    fx[i] = v;\n  }\n  for (i = 0; i < NX; ++i) s->x[i] = fx[i];\n" +
+       "_real dt) {\n  real fx[NX];\n  int i;\n  (void)u;\n  (void)t;\n  (void)dt;\n" +
+       linear_mean(g, "", "s->x", "fx", "  ") + "  for (i = 0; i < NX; ++i) s->x[i] = fx[i];\n" +
        wrap_state_lines(g, "  ");
   s += "  for (i = 0; i < NX; ++i) {\n    if (!isfinite(s->x[i])) return " + M +
        "_DIVERGED;\n  }\n  return 0;\n}\n\n";

@@ -235,7 +235,9 @@ int cmd_export_c(const ExportCArgs& a, std::ostream& out, std::ostream& err) {
   }
   auto files = codegen::export_c(*ws->scenario, ws->values, o);
   if (!files) return fail(err, files.err());
-  if (auto st = codegen::write_c_export(a.out_dir, o.prefix, *files); !st)
+  std::vector<std::string> inputs{ws->preset.path};
+  if (ws->data_path) inputs.push_back(*ws->data_path);
+  if (auto st = codegen::write_c_export(a.out_dir, o.prefix, *files, inputs); !st)
     return fail(err, st.err());
   const std::filesystem::path dir(a.out_dir);
   out << "wrote " << (dir / (o.prefix + ".h")).string() << ", "

@@ -36,7 +36,10 @@ Status MainWindow::exportFilterAsC(const QString& dir, const QString& prefix, bo
   }
   auto files = codegen::export_c(d.scenario(), d.values(), o);
   if (!files) return files.err();
-  if (auto st = codegen::write_c_export(dir.toStdString(), o.prefix, *files); !st) return st;
+  std::vector<std::string> inputs{d.preset().path};
+  if (d.data()) inputs.push_back(d.data()->path);
+  if (auto st = codegen::write_c_export(dir.toStdString(), o.prefix, *files, inputs); !st)
+    return st;
   status_->setText("Wrote " + q(o.prefix) + ".h, .c and _example.c to " + dir);
   return Ok{};
 }

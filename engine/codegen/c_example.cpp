@@ -392,6 +392,8 @@ std::string example_program(const Gen& g) {
     c += "  if (isfinite(" + v + ")) " + g.P + "_init_from_" + c_name(firsts[f]) + "(&s, (" + g.P +
          "_real)" + v + ");\n";
   }
+  c += "  if (out_path && strcmp(out_path, path) == 0) {\n    fprintf(stderr, \"%s: the estimates "
+       "would overwrite the data\\n\", path);\n    return 2;\n  }\n";
   c += "  out = out_path ? fopen(out_path, \"w\") : stdout;\n  if (!out) {\n    fprintf(stderr, "
        "\"%s: cannot write\\n\", out_path);\n    return 2;\n  }\n";
   c += "  fputs(" + quoted_c(output_header(g)) + ", out);\n  fputs(\"\\n\", out);\n";

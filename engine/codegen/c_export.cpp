@@ -425,7 +425,7 @@ Expected<double> steady_interval(const Scenario& s, const ParamValues& values,
     where = view->spec->sim_dt_key;
   }
   if (!(*dt > 0.0) || !std::isfinite(*dt))
-    return Error{where + ": " + c_number(*dt, false) + " s: --steady needs a positive interval"};
+    return Error{where + ": " + model::number(*dt) + " s: --steady needs a positive interval"};
   return *dt;
 }
 
@@ -531,7 +531,8 @@ Expected<CExport> export_c(const Scenario& scenario, const ParamValues& values,
   return out;
 }
 
-Status write_c_export(const std::string& dir, const std::string& prefix, const CExport& files) {
+Status write_c_export(const std::string& dir, const std::string& prefix, const CExport& files,
+                      const std::vector<std::string>& inputs) {
   std::error_code ec;
   if (!std::filesystem::is_directory(dir, ec))
     return Error{"--out-dir " + dir + ": not a directory"};
@@ -540,6 +541,8 @@ Status write_c_export(const std::string& dir, const std::string& prefix, const C
                                 (base / (prefix + ".c")).string(),
                                 (base / (prefix + "_example.c")).string()};
   OutputSet outs;
+  for (const auto& in : inputs)
+    outs.add_input(in);
   for (const auto& n : names) {
     if (auto st = outs.add(n, "--out-dir"); !st) return st;
   }

@@ -7,6 +7,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/dataset.h"
 #include "core/expected.h"
@@ -55,8 +56,10 @@ std::string default_prefix(const std::string& preset_path);
 // True when `name` is a C identifier that is no C keyword.
 bool is_c_identifier(const std::string& name);
 
-// Declares the three files in `dir` (refused before any work, exit 2, like every output), and
-// writes them together, each atomically (data/output.h).
-Status write_c_export(const std::string& dir, const std::string& prefix, const CExport& files);
+// Declares the three files in `dir` (refused before any work, exit 2, like every output; an
+// output that is one of `inputs`, the preset and its data, is refused too), and writes them
+// together, each atomically (data/output.h).
+Status write_c_export(const std::string& dir, const std::string& prefix, const CExport& files,
+                      const std::vector<std::string>& inputs = {});
 
 }  // namespace kfw::codegen

@@ -394,6 +394,12 @@ TEST_F(CExport, AModelThatCannotBeExportedSaysSoInOneLineAndWritesNothing) {
     EXPECT_EQ(std::count(c.text.begin(), c.text.end(), '\n'), 1) << c.text;
     EXPECT_TRUE(fs::is_empty(dir_)) << c.text;
   }
+  // An output that is an input (the data named like an export) is refused, the data kept.
+  const std::string data_file = write("f.c", "t,z\n0,1\n0.1,2\n");
+  const auto same = cli("export-c " + kPresets + "models/cv1d.json --data " + data_file +
+                        " --prefix f --out-dir " + dir_);
+  EXPECT_EQ(same.code, 2) << same.text;
+  EXPECT_EQ(slurp_text(data_file), "t,z\n0,1\n0.1,2\n");
   const auto c = cli("export-c " + kPresets + "radome.json --set Kp=0.1 --out-dir " + dir_);
   EXPECT_NE(c.text.find("radome.json"), std::string::npos) << c.text;
   EXPECT_NE(c.text.find("model.modes.renewal"), std::string::npos) << c.text;

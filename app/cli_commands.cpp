@@ -92,9 +92,9 @@ int cmd_simulate(const SimulateArgs& a, std::ostream& out, std::ostream& err) {
   if (auto st = outs.add(a.out, "--out"); !st) return fail(err, st.err());
   auto d = ws->scenario->simulate(ws->values);
   if (!d) return fail(err, d.err());
-  std::ostringstream csv;
-  write_csv(csv, *d);
-  if (auto st = outs.stage(a.out, csv.str()); !st) return fail(err, st.err());
+  const auto columns = table_columns(*d);
+  auto write = [&](OutputStream& os) { return write_csv_stream(os, columns, d->rows()); };
+  if (auto st = outs.stage_stream(a.out, write); !st) return fail(err, st.err());
   if (auto st = outs.commit(); !st) return fail(err, st.err());
   out << "wrote " << a.out << " (" << d->rows() << " rows, " << d->names.size() << " columns)\n";
   return kExitOk;
@@ -124,10 +124,10 @@ int cmd_run(const RunArgs& a, std::ostream& out, std::ostream& err) {
   const RunResult& res = **r;
   print_warnings(res, err);
   const std::string text = metrics_to_json(res.metrics, res.undefined) + "\n";
+  const std::vector<TableColumn> columns = o.out ? res.table_view() : std::vector<TableColumn>{};
   if (o.out) {
-    std::ostringstream csv;
-    write_csv(csv, res.table());
-    if (auto st = outs.stage(*o.out, csv.str()); !st) return fail(err, st.err());
+    auto write = [&](OutputStream& os) { return write_csv_stream(os, columns, res.steps()); };
+    if (auto st = outs.stage_stream(*o.out, write); !st) return fail(err, st.err());
   }
   if (o.metrics) {
     if (auto st = outs.stage(*o.metrics, text); !st) return fail(err, st.err());

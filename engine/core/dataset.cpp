@@ -19,6 +19,14 @@ const std::vector<double>& Dataset::col(std::string_view name) const {
   return columns[static_cast<std::size_t>(i)];
 }
 
+std::vector<TableColumn> table_columns(const Dataset& d) {
+  std::vector<TableColumn> out;
+  out.reserve(d.names.size());
+  for (std::size_t c = 0; c < d.names.size(); ++c)
+    out.push_back(TableColumn{d.names[c], d.columns[c].data(), {}, {}});
+  return out;
+}
+
 std::vector<double>& Dataset::add(std::string name, std::size_t n) {
   names.push_back(std::move(name));
   columns.emplace_back(n, kNoSample);

@@ -2,7 +2,9 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <limits>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -29,6 +31,20 @@ struct Dataset {
   // Median sample period of `t`, the filter's Ts when a dataset is loaded.
   double median_dt() const;
 };
+
+// A column of a table that is written without being copied (a streamed --out): a run's array
+// (`data`, `rows` values) or values computed per row (`at`, e.g. an IMM's mode probabilities).
+// `keep` holds whatever the pointer lives in when the table was built for the write.
+struct TableColumn {
+  std::string name;
+  const double* data = nullptr;
+  std::function<double(std::size_t)> at;
+  std::shared_ptr<const void> keep;
+  double value(std::size_t r) const { return data ? data[r] : at(r); }
+};
+
+// Every column of `d` by pointer (d outlives the columns).
+std::vector<TableColumn> table_columns(const Dataset& d);
 
 // What a scenario needs from a dataset.
 struct ColumnSpec {

@@ -13,6 +13,14 @@ namespace kfw {
 
 void register_all_scenarios(ScenarioRegistry& registry);  // generated: scenario_list.cpp
 
+std::vector<TableColumn> RunResult::table_view() const {
+  auto d = std::make_shared<const Dataset>(table());
+  std::vector<TableColumn> cols = table_columns(*d);
+  for (auto& c : cols)
+    c.keep = d;
+  return cols;
+}
+
 Expected<Metrics> Scenario::gain(const ParamValues&, const Dataset*) const {
   return Error{"scenario '" + name() + "' has no steady-state gain"};
 }

@@ -78,6 +78,9 @@ struct RunResult {
   std::size_t steps() const { return t.size(); }
   // Per-step output as a CSV table (estimates, covariance diagonal, innovations, ...).
   virtual Dataset table() const = 0;
+  // The same columns without copying them, for a streamed write (valid while this result lives);
+  // the default copies table() once.
+  virtual std::vector<TableColumn> table_view() const;
   // The innovation channels and the NEES, for the consistency panel (empty: none offered).
   virtual std::vector<InnovationChannel> channels() const { return {}; }
   virtual NeesSeries nees_series() const { return {}; }

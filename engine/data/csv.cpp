@@ -9,6 +9,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 namespace kfw {
@@ -103,14 +104,42 @@ void write_csv(std::ostream& out, const Dataset& d) {
   }
 }
 
+Status write_csv_stream(OutputStream& out, const std::vector<TableColumn>& columns,
+                        std::size_t rows) {
+  constexpr std::size_t kCell = 32;  // a shortest double is at most 24 characters
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    if (c) out.write(",");
+    out.write(columns[c].name);
+  }
+  out.write("\n");
+  for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      char* b = out.reserve(kCell);
+      char* p = b;
+      if (c) *p++ = ',';
+      const double v = columns[c].value(r);
+      if (std::isfinite(v)) p = std::to_chars(p, b + kCell, v).ptr;
+      out.wrote(static_cast<std::size_t>(p - b));
+    }
+    *out.reserve(1) = '\n';
+    out.wrote(1);
+    if (out.error()) return failure(std::string("write failed: ") + std::strerror(out.error()));
+  }
+  return Ok{};
+}
+
 Status write_text_file_atomic(const std::string& path, const std::string& text) {
   return write_file_atomic(path, text);  // unique temporary beside the target (output.h)
 }
 
 Status write_csv_file(const std::string& path, const Dataset& d) {
-  std::ostringstream os;
-  write_csv(os, d);
-  return write_text_file_atomic(path, os.str());
+  OutputSet out;
+  if (auto st = out.add(path); !st) return st;
+  const auto columns = table_columns(d);
+  auto st = out.stage_stream(
+      path, [&](OutputStream& os) { return write_csv_stream(os, columns, d.rows()); });
+  if (!st) return st;
+  return out.commit();
 }
 
 }  // namespace kfw

@@ -13,6 +13,7 @@
 #include "core/dataset.h"
 #include "core/expected.h"
 #include "core/limits.h"
+#include "data/output.h"
 
 namespace kfw {
 
@@ -44,6 +45,10 @@ Expected<Dataset> read_csv(const std::string& path, const CsvOptions& opt = {});
 
 // Writes with full precision; NaN as an empty cell.
 void write_csv(std::ostream& out, const Dataset& d);
+// Streams the columns row by row into a staged output: the same bytes as write_csv of a Dataset
+// with these columns, in O(1) memory.
+Status write_csv_stream(OutputStream& out, const std::vector<TableColumn>& columns,
+                        std::size_t rows);
 // Writes to path atomically (temporary file, then rename); the old file survives a failure.
 Status write_csv_file(const std::string& path, const Dataset& d);
 Status write_text_file_atomic(const std::string& path, const std::string& text);

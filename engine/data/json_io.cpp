@@ -3,6 +3,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <memory>
+#include <ostream>
 #include <sstream>
 #include <unordered_map>
 #include <vector>
@@ -264,6 +267,28 @@ Expected<nlohmann::ordered_json> read_ordered_json_document(const std::string& p
   auto text = read_json_text(path, what);
   if (!text) return text.err();
   return parse_ordered_json_document(*text, path);
+}
+
+namespace {
+template <class Json>
+Status stage_json_doc(OutputSet& outs, const std::string& path, Json doc, int indent) {
+  auto held = std::make_shared<const Json>(std::move(doc));
+  return outs.stage_stream(path, [held, indent](OutputStream& out) -> Status {
+    OutputStreamBuf buf(out);
+    std::ostream os(&buf);
+    os << std::setw(indent) << *held << '\n';
+    return Ok{};
+  });
+}
+}  // namespace
+
+Status stage_json(OutputSet& outs, const std::string& path, nlohmann::json doc, int indent) {
+  return stage_json_doc(outs, path, std::move(doc), indent);
+}
+
+Status stage_json(OutputSet& outs, const std::string& path, nlohmann::ordered_json doc,
+                  int indent) {
+  return stage_json_doc(outs, path, std::move(doc), indent);
 }
 
 }  // namespace kfw

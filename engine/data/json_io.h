@@ -10,6 +10,7 @@
 
 #include "core/expected.h"
 #include "core/limits.h"
+#include "data/output.h"
 
 namespace kfw {
 
@@ -28,6 +29,11 @@ Expected<nlohmann::ordered_json> parse_ordered_json_document(const std::string& 
                                                              const std::string& path);
 Expected<nlohmann::ordered_json> read_ordered_json_document(const std::string& path,
                                                             const char* what);
+
+// Stages `doc` as the content of a declared output, streamed at commit (no text copy in memory):
+// the bytes of doc.dump(indent) followed by a newline.
+Status stage_json(OutputSet& outs, const std::string& path, nlohmann::json doc, int indent);
+Status stage_json(OutputSet& outs, const std::string& path, nlohmann::ordered_json doc, int indent);
 
 // "parameters.Q.value", "model.h[0]": a child key appended to a dotted path, for messages (the
 // key printable: control bytes as \xNN, a long key cut).

@@ -5,9 +5,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <fstream>
 #include <system_error>
@@ -112,10 +114,12 @@ void remove_stale_temporaries(const fs::path& target) {
   }
 }
 
-// Writes `text` to a new ".NAME.kfw-XXXXXX" beside `target`, fsynced, and returns it still open
-// and locked (flock) until the caller has renamed it: the lock tells later writers it is live.
+// Writes the content (`text`, or what `writer` streams) to a new ".NAME.kfw-XXXXXX" beside
+// `target`, fsynced, and returns it still open and locked (flock) until the caller has renamed
+// it: the lock tells later writers it is live.
 Expected<std::pair<fs::path, int>> write_temporary(const fs::path& target, const std::string& path,
-                                                   const std::string& text) {
+                                                   const std::string& text,
+                                                   const OutputWriter& writer = {}) {
   remove_stale_temporaries(target);
   std::string name = (directory_of(target) / (temp_prefix(target) + "XXXXXX")).string();
   const int fd = ::mkstemp(name.data());
@@ -124,29 +128,70 @@ Expected<std::pair<fs::path, int>> write_temporary(const fs::path& target, const
                    shown(directory_of(target)) + ": " + errno_text(errno));
   }
   ::flock(fd, LOCK_EX | LOCK_NB);  // a new file: nobody else holds it
-  auto fail = [&](const std::string& what) -> Error {
-    const int e = errno;
+  auto fail = [&](const std::string& what, int e) -> Error {
     ::close(fd);
     ::unlink(name.c_str());
-    return failure(truncate_token(path) + ": " + what + ": " + errno_text(e));
+    return failure(truncate_token(path) + ": " + what + (e ? ": " + errno_text(e) : ""));
   };
-  if (::fchmod(fd, file_mode(target)) != 0) return fail("cannot set permissions");
-  const char* p = text.data();
-  std::size_t left = text.size();
-  while (left > 0) {
-    const ssize_t n = ::write(fd, p, left);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return fail("write failed");
-    }
-    p += n;
-    left -= static_cast<std::size_t>(n);
+  if (::fchmod(fd, file_mode(target)) != 0) return fail("cannot set permissions", errno);
+  OutputStream out(fd);
+  if (writer) {
+    if (auto st = writer(out); !st) return fail(st.error(), 0);
+  } else {
+    out.write(text);
   }
-  if (::fsync(fd) != 0) return fail("fsync failed");
+  if (!out.flush()) return fail("write failed", out.error());
+  if (::fsync(fd) != 0) return fail("fsync failed", errno);
   return std::pair<fs::path, int>(fs::path(name), fd);
 }
 
 }  // namespace
+
+OutputStream::OutputStream(int fd) : fd_(fd), buf_(new char[kBuffer]) {}
+
+bool OutputStream::flush() {
+  const char* p = buf_.get();
+  std::size_t left = used_;
+  used_ = 0;
+  while (left > 0 && error_ == 0) {
+    const ssize_t n = ::write(fd_, p, left);
+    if (n < 0) {
+      if (errno != EINTR) error_ = errno;
+      continue;
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  return error_ == 0;
+}
+
+char* OutputStream::reserve(std::size_t n) {
+  if (used_ + n > kBuffer) flush();
+  return buf_.get() + used_;
+}
+
+void OutputStream::write(std::string_view bytes) {
+  while (!bytes.empty()) {
+    if (used_ == kBuffer) flush();
+    const std::size_t k = std::min(bytes.size(), kBuffer - used_);
+    std::memcpy(buf_.get() + used_, bytes.data(), k);
+    used_ += k;
+    bytes.remove_prefix(k);
+  }
+}
+
+OutputStreamBuf::int_type OutputStreamBuf::overflow(int_type c) {
+  if (c != traits_type::eof()) {
+    const char ch = traits_type::to_char_type(c);
+    out_.write(std::string_view(&ch, 1));
+  }
+  return traits_type::not_eof(c);
+}
+
+std::streamsize OutputStreamBuf::xsputn(const char* s, std::streamsize n) {
+  out_.write(std::string_view(s, static_cast<std::size_t>(n)));
+  return n;
+}
 
 Expected<fs::path> OutputSet::target_of(const std::string& path) {
   fs::path p(path);
@@ -215,6 +260,18 @@ Status OutputSet::stage(const std::string& path, std::string text) {
   for (auto& e : entries_) {
     if (e.path == path) {
       e.text = std::move(text);
+      e.writer = nullptr;
+      return Ok{};
+    }
+  }
+  return failure(truncate_token(path) + ": output staged without being declared");
+}
+
+Status OutputSet::stage_stream(const std::string& path, OutputWriter writer) {
+  for (auto& e : entries_) {
+    if (e.path == path) {
+      e.text = std::string();
+      e.writer = std::move(writer);
       return Ok{};
     }
   }
@@ -239,7 +296,7 @@ Status OutputSet::commit() {
   };
   for (const auto& e : entries_) {
     if (!e.text) continue;
-    auto temp = write_temporary(e.target, e.path, *e.text);
+    auto temp = write_temporary(e.target, e.path, *e.text, e.writer);
     if (!temp) {
       remove_from(0);
       close_all();

@@ -15,12 +15,18 @@ std::size_t ModelResult::cov_index(std::size_t i, std::size_t j) const {
   return i * (2 * n - i + 1) / 2 + (j - i);
 }
 
-Dataset ModelResult::table() const {
-  Dataset d;
-  d.source = "model run (" + filter + ")";
+std::vector<TableColumn> ModelResult::table_view() const {
+  std::vector<TableColumn> d;
+  const std::size_t rows = t.size();
   auto put = [&](std::string name, const std::vector<double>& v) {
-    d.names.push_back(std::move(name));
-    d.columns.push_back(v);
+    if (v.size() >= rows) {
+      d.push_back(TableColumn{std::move(name), v.data(), {}, {}});
+    } else {  // a shorter series reads as missing past its end
+      d.push_back(TableColumn{std::move(name),
+                              nullptr,
+                              [&v](std::size_t k) { return k < v.size() ? v[k] : kNoSample; },
+                              {}});
+    }
   };
   put("t", t);
   const std::size_t n = x.size();
@@ -54,18 +60,30 @@ Dataset ModelResult::table() const {
   for (const auto& [name, v] : loop_columns)
     put(name, v);
   if (imm) {
-    const std::size_t r = imm->modes(), steps = t.size();
-    for (std::size_t j = 0; j < r; ++j) {
-      std::vector<double> m(steps);
-      for (std::size_t k = 0; k < steps; ++k)
-        m[k] = imm->mu_at(k, j);
-      put("mu." + imm->names[j], m);
+    for (std::size_t j = 0; j < imm->modes(); ++j) {
+      const ImmSeries* series = &*imm;
+      d.push_back(TableColumn{"mu." + imm->names[j],
+                              nullptr,
+                              [series, j](std::size_t k) { return series->mu_at(k, j); },
+                              {}});
     }
     put("imm.map", imm->map);
     for (const auto& a : imm->axes) {
       put("imm." + a.param, a.estimate);
       put("imm." + a.param + ".centre", a.centre);
     }
+  }
+  return d;
+}
+
+Dataset ModelResult::table() const {
+  Dataset d;
+  d.source = "model run (" + filter + ")";
+  for (const auto& c : table_view()) {
+    d.names.push_back(c.name);
+    auto& v = d.columns.emplace_back(t.size());
+    for (std::size_t k = 0; k < v.size(); ++k)
+      v[k] = c.value(k);
   }
   return d;
 }

@@ -88,6 +88,7 @@ struct ModelResult final : RunResult {
   std::size_t n() const { return x.size(); }
 
   Dataset table() const override;
+  std::vector<TableColumn> table_view() const override;
   std::vector<InnovationChannel> channels() const override;
   NeesSeries nees_series() const override;
   std::vector<StateSeries> states() const override;

@@ -54,8 +54,8 @@ fuzz: setup
 # SANITIZE_GUI=OFF leaves the GUI and its tests out (the engine and CLI tests only).
 # SANITIZE_SKIP_SLOW=1 leaves out the tests matching SAN_SLOW, the two over a minute under ASan:
 # the tuning over the real 68 000-row IMU log (31 s in Release, 505 s under ASan) and radome's
-# renewal acceptance over 10 seeds of a 49-mode IMM (2.3 s, 317 s); `make test` runs them in
-# Release.
+# renewal acceptance over 10 seeds of a 49-mode IMM (2.3 s, 317 s); and the real single-node Slurm
+# array (10 s of scheduling, no code of ours to check twice). `make test` runs them in Release.
 # .ci/run: `make test`, then `make sanitize SANITIZE_GUI=OFF SANITIZE_SKIP_SLOW=1`.
 # The test binaries run in JOBS gtest shards each (tests/run_sharded.sh), not one process per test
 # as ctest does: an ASan process starts in 0.1 s and checks for leaks at exit in 0.4 s (GCC's
@@ -66,7 +66,7 @@ fuzz: setup
 SAN_CXX ?= clang++
 SANITIZE_GUI ?= ON
 SANITIZE_SKIP_SLOW ?=
-SAN_SLOW := Tuning.RealLog*:ImmModelRadome.TheBuiltInsRenewalTestHoldsForTheFile
+SAN_SLOW := Tuning.RealLog*:ImmModelRadome.TheBuiltInsRenewalTestHoldsForTheFile:ScaleSlurm.RealSlurm*
 SAN_BINS := kfw_engine_tests kfw_cli_tests $(if $(filter ON,$(SANITIZE_GUI)),kfw_gui_tests)
 SAN_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
   LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \

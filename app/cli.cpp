@@ -114,6 +114,15 @@ constexpr const char* kProgressHelp =
     "progress on stderr even when it is not a terminal (a line every 10 %, for CI logs); "
     "SIGINT/SIGTERM stop the job: nothing written, exit 130/143";
 
+// --jobs N: how many threads a parallel command uses (results do not depend on it).
+void add_jobs(CLI::App* c, int& jobs) {
+  c->add_option("--jobs", jobs,
+                "worker threads (default: every core this process may use, as taskset or a "
+                "Slurm allocation leaves it); the output is the same for every N")
+      ->type_name("N")
+      ->check(CLI::Range(1, 4096));
+}
+
 void declare_run(CLI::App& app, RunArgs& a) {
   CLI::App* c =
       app.add_subcommand("run", "run the filter over a dataset and print its metrics (JSON)");
@@ -128,14 +137,17 @@ void declare_run(CLI::App& app, RunArgs& a) {
   add_path(c, "--out-dir", a.seeds.out_dir, "DIR", "with --seeds: one estimates file per seed");
   c->add_flag("--table", a.seeds.table, "with --seeds: a readable table instead of JSON");
   c->add_flag("--progress", a.seeds.progress, kProgressHelp);
+  add_jobs(c, a.seeds.jobs);
 }
 
 void declare_merge(CLI::App& app, MergeArgs& a) {
   CLI::App* c = app.add_subcommand(
-      "merge", "merge the parts of a sharded run (run --seeds --shard, sweep --shard)");
-  c->add_option("PART", a.parts, "the part files (JSON, one per shard)")
-      ->type_name("PART.json")
-      ->required();
+      "merge",
+      "merge the parts of a sharded run (run --seeds --shard, sweep --shard, tune --shard)");
+  c->add_option("PART", a.parts, "the part files (JSON, one per shard)")->type_name("PART.json");
+  add_path(c, "--resume", a.resume, "DIR",
+           "instead: list DIR's missing or invalid part_<i>.json and print the array indices to "
+           "resubmit (\"3,7-9\"; empty when complete)");
   add_path(c, "--metrics", a.output.metrics, "FILE.json", "write the merged result (JSON) too");
   add_path(c, "--out", a.output.out, "FILE.json|FILE.csv", "sweep parts: write the merged sweep");
   c->add_flag("--table", a.table, "a readable table instead of JSON");
@@ -208,8 +220,12 @@ void declare_tune(CLI::App& app, TuneArgs& a) {
   add_tune_search(c, a);
   add_path(c, "--seeds", a.seeds, "SET",
            "tune over the datasets of these simulator seeds (a tuning set, like --data)");
-  add_path(c, "--out", a.out, "FILE.json", "write the tuned preset");
+  add_path(c, "--out", a.out, "FILE.json", "write the tuned preset (--shard: the part)");
   c->add_flag("--progress", a.progress, kProgressHelp);
+  add_jobs(c, a.jobs);
+  add_path(c, "--shard", a.shard, "i/N",
+           "one of N independent starts (1: the preset's values, i > 1: a Halton point of the "
+           "search box) into --out PART.json; kfw-cli merge keeps the best");
 }
 
 void declare_sweep(CLI::App& app, SweepArgs& a) {
@@ -241,6 +257,7 @@ void declare_sweep(CLI::App& app, SweepArgs& a) {
   add_path(c, "--shard", a.shard, "i/N",
            "run only shard i of N (grid points k with k mod N = i-1)");
   c->add_flag("--progress", a.progress, kProgressHelp);
+  add_jobs(c, a.jobs);
 }
 
 void declare_params(CLI::App& app, ParamsArgs& a) {
@@ -464,7 +481,18 @@ int dispatch(const Cli& cli, std::ostream& out, std::ostream& err) {
   if (cmd == "preset") return cmd_preset(cli.preset, out, err);
   if (cmd == "export-c") return cmd_export_c(cli.export_c, out, err);
   if (cmd == "list") return cmd_list(out);
-  if (cmd == "merge") return cmd_merge(cli.merge, out, err);
+  if (cmd == "merge") {
+    if (cli.merge.resume) {
+      if (!cli.merge.parts.empty() || cli.merge.output.out || cli.merge.output.metrics) {
+        return fail(err,
+                    Error{"--resume: lists what to resubmit; give no PART, --out or --metrics"});
+      }
+      return cmd_merge_resume(*cli.merge.resume, out, err);
+    }
+    if (cli.merge.parts.empty())
+      return fail(err, Error{"merge: PART is required (or --resume DIR)"});
+    return cmd_merge(cli.merge, out, err);
+  }
   if (cmd == "inspect") return cmd_inspect(cli.inspect, out, err);
   if (cmd == "noise") return cmd_noise(cli.noise, out, err);
   if (cmd == "upgrade") return cmd_upgrade(cli.upgrade, out, err);

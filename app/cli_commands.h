@@ -14,6 +14,8 @@
 #include "data/mapping.h"
 #include "data/output.h"
 #include "document/workspace.h"
+#include "experiment/grammar.h"
+#include "experiment/tuning.h"
 
 namespace kfw {
 
@@ -32,6 +34,9 @@ int cmd_list(std::ostream& out);
 int cmd_run_seeds(const RunArgs& a, std::ostream& out, std::ostream& err);
 // merge PART...: parts of one kind ("montecarlo", ...) into one result.
 int cmd_merge(const MergeArgs& a, std::ostream& out, std::ostream& err);
+// merge --resume DIR (app/cli_resume.cpp): prints the array indices of DIR's missing or invalid
+// parts ("3,7-9"; an empty line when every part is complete), each with its reason on `err`.
+int cmd_merge_resume(const std::string& dir, std::ostream& out, std::ostream& err);
 int cmd_inspect(const InspectArgs& a, std::ostream& out, std::ostream& err);
 // noise: every linked column's white-noise level and the parameter values it proposes.
 int cmd_noise(const NoiseArgs& a, std::ostream& out, std::ostream& err);
@@ -59,6 +64,14 @@ std::string preset_content_hash(const Workspace& ws);
 // merge's handler for sweep parts ("kind": "sweep", app/cli_sweep.cpp).
 Status merge_sweep_parts(const std::vector<nlohmann::json>& docs, const MergeArgs& a,
                          OutputSet& outs, std::ostream& out, std::ostream& err);
+
+// tune --shard i/N: shard 1 keeps the start, shard i > 1 starts the searched keys at point i − 1
+// of a Halton sequence in the search box (app/cli_tune_shard.cpp).
+Status start_tune_shard(const Shard& shard, const std::vector<SearchParam>& params,
+                        ParamValues& start);
+// merge's handler for tune parts: the best start's preset (--out) and report.
+Status merge_tune_parts(const std::vector<nlohmann::json>& docs, const MergeArgs& a,
+                        OutputSet& outs, std::ostream& out, std::ostream& err);
 
 // The --seeds set, refused with --data or a preset whose data come from a file (--seeds
 // simulates each seed).

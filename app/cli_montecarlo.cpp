@@ -14,6 +14,7 @@
 #include "document/workspace.h"
 #include "experiment/grammar.h"
 #include "experiment/monte_carlo.h"
+#include "experiment/tune_part.h"
 
 namespace kfw {
 
@@ -26,7 +27,7 @@ Status report(const MonteCarloSummary& s, const std::optional<std::string>& metr
   for (const auto& r : s.stopped)
     err << "kfw-cli: warning: seed " << r.seed << " stopped: " << one_line(r.error) << "\n";
   if (metrics) {
-    if (auto st = outs.stage(*metrics, summary_to_json(s, true).dump(2) + "\n"); !st) return st;
+    if (auto st = stage_json(outs, *metrics, summary_to_json(s, true), 2); !st) return st;
   }
   if (auto st = outs.commit(); !st) return st;
   if (table) {
@@ -60,7 +61,7 @@ Status merge_montecarlo(const std::vector<nlohmann::json>& docs, const MergeArgs
   // --out: the merged part itself (one shard of all the seeds), mergeable again.
   if (a.output.out) {
     if (auto st = outs.add(*a.output.out, "--out"); !st) return st;
-    if (auto st = outs.stage(*a.output.out, part_to_json(*merged).dump(2) + "\n"); !st) return st;
+    if (auto st = stage_json(outs, *a.output.out, part_to_json(*merged), 2); !st) return st;
   }
   const MonteCarloSummary s = summarize_monte_carlo(*merged);
   if (auto st = require_completed(s); !st) return st;
@@ -72,7 +73,9 @@ using MergeHandler = Status (*)(const std::vector<nlohmann::json>&, const MergeA
                                 std::ostream&, std::ostream&);
 const std::map<std::string, MergeHandler>& merge_handlers() {
   static const std::map<std::string, MergeHandler> handlers = {
-      {kMonteCarloKind, &merge_montecarlo}, {"sweep", &merge_sweep_parts},  // app/cli_sweep.cpp
+      {kMonteCarloKind, &merge_montecarlo},
+      {"sweep", &merge_sweep_parts},       // app/cli_sweep.cpp
+      {kTunePartKind, &merge_tune_parts},  // app/cli_tune_shard.cpp
   };
   return handlers;
 }
@@ -132,6 +135,7 @@ int cmd_run_seeds(const RunArgs& a, std::ostream& out, std::ostream& err) {
   }
   MonteCarloOptions opt;
   opt.keep_results = mc.out_dir.has_value();
+  opt.threads = mc.jobs;
   CliJob job(err, mc.progress, "seeds");
   opt.cancel = job.cancel();
   opt.progress = [&job](std::size_t done, std::size_t total) { job.progress(done, total); };
@@ -144,15 +148,15 @@ int cmd_run_seeds(const RunArgs& a, std::ostream& out, std::ostream& err) {
   for (const auto& [seed, path] : per_seed) {
     for (const auto& r : part->runs) {
       if (r.seed != seed || !r.result) continue;
-      std::ostringstream csv;
-      write_csv(csv, r.result->table());
-      if (auto st = outs.stage(path, csv.str()); !st) return fail(err, st.err());
+      const RunResult* res = r.result.get();
+      auto write = [res, view = res->table_view()](OutputStream& os) {
+        return write_csv_stream(os, view, res->steps());
+      };
+      if (auto st = outs.stage_stream(path, write); !st) return fail(err, st.err());
     }
   }
   if (o.out) {
-    if (auto st = outs.stage(*o.out, part_to_json(*part).dump(1) + "\n"); !st) {
-      return fail(err, st.err());
-    }
+    if (auto st = stage_json(outs, *o.out, part_to_json(*part), 1); !st) return fail(err, st.err());
   }
   const MonteCarloSummary s = summarize_monte_carlo(*part);
   if (mc.shard) {

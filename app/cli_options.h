@@ -47,6 +47,7 @@ struct RunSeedsArgs {
   std::optional<std::string> out_dir;  // --out-dir DIR: one estimates file per seed
   bool table = false;                  // --table: a readable table instead of JSON
   bool progress = false;               // --progress: progress on stderr even when not a terminal
+  int jobs = 0;                        // --jobs N: worker threads; 0: every core it may use
 };
 
 struct RunArgs {
@@ -56,11 +57,13 @@ struct RunArgs {
   RunSeedsArgs seeds;
 };
 
-// merge PART...: parts of one kind ("montecarlo", "sweep") into one result.
+// merge PART...: parts of one kind ("montecarlo", "sweep", "tune") into one result; --resume DIR:
+// which parts of DIR are missing or invalid.
 struct MergeArgs {
   std::vector<std::string> parts;
-  OutputArgs output;   // --out: the merged sweep; --metrics: the merged result
-  bool table = false;  // --table
+  OutputArgs output;                  // --out: the merged sweep; --metrics: the merged result
+  bool table = false;                 // --table
+  std::optional<std::string> resume;  // --resume DIR
 };
 
 struct GainArgs {
@@ -84,6 +87,8 @@ struct TuneArgs {
   std::optional<std::string> seeds;  // --seeds SET: a tuning set of simulated datasets
   std::optional<std::string> out;    // --out FILE.json: the tuned preset
   bool progress = false;             // --progress
+  int jobs = 0;                      // --jobs N: worker threads; 0: every core it may use
+  std::optional<std::string> shard;  // --shard i/N: one start, a part into --out
 };
 
 struct SweepArgs {
@@ -96,6 +101,7 @@ struct SweepArgs {
   std::size_t max_points = kDefaultMaxPoints;
   std::optional<std::string> shard;  // --shard i/N
   bool progress = false;             // --progress
+  int jobs = 0;                      // --jobs N: worker threads; 0: every core it may use
 };
 
 struct ParamsArgs {

@@ -14,6 +14,7 @@
 #include "core/metrics.h"
 #include "core/suggest.h"
 #include "data/csv.h"
+#include "data/json_io.h"
 #include "experiment/grammar.h"
 #include "experiment/monte_carlo.h"
 #include "experiment/sweep.h"
@@ -106,25 +107,24 @@ Status finish_sweep(const Doc& doc, const MetricSpec& spec, const std::optional<
   }
   if (path) {
     const bool json = std::filesystem::path(*path).extension() == ".json";
-    std::string text;
     if (json) {
-      text = doc.dump(1) + "\n";
+      if (auto st = stage_json(outs, *path, doc, 1); !st) return st;
     } else {
-      Dataset table;
-      table.source = *path;
+      auto table = std::make_shared<Dataset>();
+      table->source = *path;
       for (const auto& ax : axes)
-        table.add(ax.at("key").get<std::string>(), points.size());
-      table.add(metric, points.size());
+        table->add(ax.at("key").get<std::string>(), points.size());
+      table->add(metric, points.size());
       for (std::size_t i = 0; i < points.size(); ++i) {
         for (std::size_t k = 0; k < axes.size(); ++k)
-          table.columns[k][i] = points[i].at("at").at(k).get<double>();
-        table.columns[axes.size()][i] = point_value(points[i]);
+          table->columns[k][i] = points[i].at("at").at(k).get<double>();
+        table->columns[axes.size()][i] = point_value(points[i]);
       }
-      std::ostringstream csv;
-      write_csv(csv, table);
-      text = csv.str();
+      auto write = [table](OutputStream& os) {
+        return write_csv_stream(os, table_columns(*table), table->rows());
+      };
+      if (auto st = outs.stage_stream(*path, write); !st) return st;
     }
-    if (auto st = outs.stage(*path, text); !st) return st;
   }
   if (auto st = outs.commit(); !st) return st;
   Json j;
@@ -207,8 +207,11 @@ int cmd_sweep(const SweepArgs& a, std::ostream& out, std::ostream& err) {
   // With --seeds each point is scored by the metric's mean over the seeds.
   CliJob job(err, a.progress, "points");
   const std::size_t in_part = shard_size(*total, shard);
-  auto r = seeds ? sweep_over_seeds(*ws->scenario, ws->values, axes, *seeds)
-                 : sweep(*ws->scenario, *d, ws->values, axes, 0, job.cancel(), shard,
+  MonteCarloOptions per_point;
+  per_point.threads = a.jobs;
+  per_point.cancel = job.cancel();
+  auto r = seeds ? sweep_over_seeds(*ws->scenario, ws->values, axes, *seeds, per_point)
+                 : sweep(*ws->scenario, *d, ws->values, axes, a.jobs, job.cancel(), shard,
                          [&job, in_part](std::size_t done) { job.progress(done, in_part); });
   job.finish();
   if (const int code = job.interrupted()) return fail(err, Error{job.interrupted_message(), code});

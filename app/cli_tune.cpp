@@ -12,6 +12,8 @@
 #include "core/dataset.h"
 #include "core/metrics.h"
 #include "core/suggest.h"
+#include "data/json_io.h"
+#include "experiment/tune_part.h"
 #include "experiment/tuning.h"
 
 namespace kfw {
@@ -131,6 +133,7 @@ Expected<TuneOptions> tune_options(const TuneArgs& a) {
   opt.aggregate = *aggregate;
   opt.budget = a.budget;
   opt.tol = a.tol;
+  opt.threads = a.jobs;
   return opt;
 }
 
@@ -319,6 +322,16 @@ int cmd_tune(const TuneArgs& a, std::ostream& out, std::ostream& err) {
   if (!params) return fail(err, params.err());
   auto opt = tune_options(a);
   if (!opt) return fail(err, opt.err());
+  std::optional<Shard> shard;
+  if (a.shard) {
+    auto s = parse_shard(*a.shard, "--shard");
+    if (!s) return fail(err, s.err());
+    if (!a.out)
+      return fail(err, Error{"--shard: needs --out PART.json (kfw-cli merge joins them)"});
+    shard = *s;
+  }
+  const ParamValues preset_values = ws->values;
+  if (shard) start_tune_shard(*shard, *params, ws->values);
   OutputSet outs = outputs_for(*ws);
   for (const auto& f : *files)
     outs.add_input(f);
@@ -350,7 +363,26 @@ int cmd_tune(const TuneArgs& a, std::ostream& out, std::ostream& err) {
       p.data_path = std::filesystem::absolute(set->names.front()).string();
     }
     p.path = *a.out;  // the data path is written relative to where the file goes
-    if (auto st = outs.stage(*a.out, preset_to_json(p)); !st) return fail(err, st.err());
+    if (shard) {
+      TunePart part{ws->scenario->name(),
+                    a.target.preset,
+                    preset_content_hash(*ws),
+                    preset_values,
+                    *shard,
+                    {},
+                    objective->name,
+                    r->objective,
+                    r->best,
+                    preset_to_json(p),
+                    j};
+      for (const auto& sp : *params)
+        part.start[sp.key] = ws->values.at(sp.key);
+      if (auto st = stage_json(outs, *a.out, tune_part_to_json(part), 1); !st) {
+        return fail(err, st.err());
+      }
+    } else if (auto st = outs.stage(*a.out, preset_to_json(p)); !st) {
+      return fail(err, st.err());
+    }
   }
   if (auto st = outs.commit(); !st) return fail(err, st.err());
   out << j.dump(2) << "\n";

@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
+#include <optional>
 #include <sstream>
 #include <thread>
 #include <tuple>
 
 #include "core/statistics.h"
 #include "core/suggest.h"
+#include "experiment/parallel.h"
 
 namespace kfw {
 
@@ -226,38 +229,55 @@ Expected<MonteCarloPart> run_monte_carlo(const Scenario& s, const ParamValues& b
   }
   if (auto st = table.check(base); !st) return st.err();
 
+  // Each seed's outcome is folded into the part as soon as every seed before it is folded: the
+  // sums are in seed order whatever the threads did, the fold runs beside the runs instead of
+  // after them, and a seed's per-step series is freed at once (memory O(threads), not O(seeds)).
   std::vector<std::optional<Expected<SeedOutcome>>> results(mine.size());
+  std::vector<std::atomic<bool>> ready(mine.size());
   std::atomic<std::size_t> next{0}, done{0};
+  std::atomic<bool> failed{false};
+  std::mutex fold_mutex;
+  std::size_t folded = 0;  // guarded by fold_mutex
+  std::optional<Error> first_error;
+  auto fold = [&] {  // fold_mutex held
+    for (; folded < mine.size() && ready[folded].load(std::memory_order_acquire); ++folded) {
+      auto& r = *results[folded];
+      if (!r) {
+        first_error = r.err();
+        failed = true;
+        return;
+      }
+      SeedOutcome& o = *r;
+      if (!o.run.stopped()) accumulate(part, o.series);
+      part.runs.push_back(std::move(o.run));
+      results[folded].reset();
+    }
+  };
   auto worker = [&] {
     for (;;) {
       const std::size_t i = next.fetch_add(1);
-      if (i >= mine.size()) return;
+      if (i >= mine.size() || failed) return;
       if (options.cancel && options.cancel->load()) return;
       results[i] = run_seed(s, base, mine[i], options.keep_results, options.cancel);
+      ready[i].store(true, std::memory_order_release);
+      if (std::unique_lock lock(fold_mutex, std::try_to_lock); lock) fold();
       const std::size_t n = done.fetch_add(1) + 1;
       if (options.progress) options.progress(n, mine.size());
     }
   };
-  unsigned threads = options.threads > 0 ? static_cast<unsigned>(options.threads)
-                                         : std::max(1u, std::thread::hardware_concurrency());
-  threads =
-      std::min<unsigned>(threads, static_cast<unsigned>(std::max<std::size_t>(mine.size(), 1)));
+  const auto threads =
+      std::min<std::size_t>(static_cast<std::size_t>(worker_count(options.threads)),
+                            std::max<std::size_t>(mine.size(), 1));
   {
     std::vector<std::jthread> pool;
-    for (unsigned k = 1; k < threads; ++k)
+    for (std::size_t k = 1; k < threads; ++k)
       pool.emplace_back(worker);
     worker();
   }
+  if (!first_error) fold();  // what finished while another thread was folding
   if (options.cancel && options.cancel->load()) return failure("cancelled");
-
-  // In seed order whatever the threads did: the sums do not depend on scheduling.
-  for (auto& r : results) {
-    if (!r || !*r) return r ? r->err() : failure("cancelled");
-    SeedOutcome& o = **r;
-    if (!o.run.stopped()) accumulate(part, o.series);
-    part.runs.push_back(std::move(o.run));
-    o.series = {};
-  }
+  if (first_error) return *first_error;
+  if (folded < mine.size()) return failure("cancelled");
   return part;
 }
 

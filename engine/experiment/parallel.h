@@ -8,7 +8,8 @@
 
 namespace kfw {
 
-// `requested` threads, or every core (std::thread::hardware_concurrency, at least 1) for 0.
+// `requested` threads, or for 0 every core this process may run on (its CPU affinity: taskset,
+// a Slurm allocation or a cpuset; at least 1).
 int worker_count(int requested = 0);
 
 // Calls fn(i) for i in [0, n) on up to `threads` threads (0: every core); returns when all are

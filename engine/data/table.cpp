@@ -266,6 +266,13 @@ std::string positional_name(std::size_t index0) {
 }
 
 Expected<Table> parse_table(std::string text, const std::string& source, const TableOptions& opt) {
+  return parse_table(InputBytes::of(std::move(text)), source, opt);
+}
+
+namespace {
+Expected<Table> parse_table_text(std::shared_ptr<const InputBytes> bytes, const std::string& source,
+                                 const TableOptions& opt) {
+  const std::string_view text = bytes->view();
   Table t;
   t.source = source;
   if (const void* nul = std::memchr(text.data(), '\0', text.size())) {
@@ -421,7 +428,20 @@ Expected<Table> parse_table(std::string text, const std::string& source, const T
     }
   }
   if (t.rows() == 0) return Error{source + ": no data rows after the header"};  // header only
-  t.text_ = std::move(text);
+  t.bytes_ = std::move(bytes);
+  t.text_ = text;
+  return t;
+}
+}  // namespace
+
+Expected<Table> parse_table(std::shared_ptr<const InputBytes> bytes, const std::string& source,
+                            const TableOptions& opt) {
+  auto t = parse_table_text(bytes, source, opt);
+  if (bytes->changed()) {
+    return Error{source +
+                 ": the file was truncated while being read (another program is writing "
+                 "it?); read it again when it is complete"};
+  }
   return t;
 }
 
@@ -430,7 +450,7 @@ Expected<std::string> read_file_bytes(const std::string& path, std::size_t max_l
 }
 
 Expected<Table> read_table(const std::string& path, const TableOptions& opt) {
-  auto bytes = read_file_bytes(path, kMaxCsvLineBytes);
+  auto bytes = InputBytes::open(path, limits::Input::kData, kMaxCsvLineBytes);
   if (!bytes) return bytes.err();
   return parse_table(std::move(*bytes), path, opt);
 }

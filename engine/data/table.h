@@ -9,11 +9,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "core/expected.h"
+#include "data/input_file.h"
 
 namespace kfw {
 
@@ -58,8 +60,10 @@ struct Table {
   std::string separator_name() const;
   bool has_header() const { return header_line > 0; }
 
-  // Filled by the reader: the text and where each row starts (cells are re-read on demand).
-  std::string text_;
+  // Filled by the reader: the file's bytes (mapped or read, data/input_file.h) and where each row
+  // starts (cells are re-read on demand).
+  std::shared_ptr<const InputBytes> bytes_;
+  std::string_view text_;
   std::vector<std::size_t> row_start_;
   std::vector<std::uint32_t> row_line_;
 };
@@ -80,6 +84,10 @@ std::string positional_name(std::size_t index0);
 // Errors name FILE:LINE[:COL]: an empty file, a header only, a binary file (NUL byte), ragged
 // rows, an empty or duplicate header name, an unterminated quote, the line and column limits.
 Expected<Table> parse_table(std::string text, const std::string& source,
+                            const TableOptions& opt = {});
+// The same over a file's bytes (a mapped file is never copied; one truncated while it was read
+// is an error naming it).
+Expected<Table> parse_table(std::shared_ptr<const InputBytes> bytes, const std::string& source,
                             const TableOptions& opt = {});
 Expected<Table> read_table(const std::string& path, const TableOptions& opt = {});
 

@@ -17,6 +17,7 @@
 #include "core/suggest.h"
 #include "latency_bench.h"
 #include "main_window.h"
+#include "native/native_model.h"
 #include "plot_export.h"
 
 #ifndef KFW_VERSION
@@ -113,6 +114,8 @@ kfw::Expected<kfw::ExportSpec> export_spec(const kfw::AppOptions& o) {
 
 int main(int argc, char** argv) {
   kfw::retain_freed_memory();
+  if (const std::string notice = kfw::native::enable_from_environment(); !notice.empty())
+    std::fprintf(stderr, "kfw: notice: %s\n", notice.c_str());
   QStringList raw;
   for (int i = 1; i < argc; ++i)
     raw << QString::fromLocal8Bit(argv[i]);

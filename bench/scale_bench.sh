@@ -10,7 +10,7 @@
 #   run --seeds, sweep and tune with --jobs 1 and every core.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
-build=${1:-$here/build}
+build=$(cd "${1:-$here/build}" && pwd)
 work=${2:-${TMPDIR:-/tmp}/kfw_scale_bench}
 cli=$build/app/kfw-cli
 gui=$build/app/kfw

@@ -556,11 +556,13 @@ ExprGroup& ExprGroup::operator=(ExprGroup&&) noexcept = default;
 void ExprGroup::add(const std::string& text, double* target) {
   if (!source_.empty()) source_ += ",";
   source_ += fast_powers(text);
+  texts_.push_back(text);
   targets_.push_back(target);
 }
 
 Status ExprGroup::bind(const Symbols& symbols, double* vars) {
   if (targets_.empty()) return Ok{};
+  vars_ = vars;
   parser_ = std::make_unique<mu::Parser>();
   try {
     setup_parser(*parser_);
@@ -585,10 +587,31 @@ Status ExprGroup::bind(const Symbols& symbols, double* vars) {
 
 void ExprGroup::eval() {
   if (targets_.empty()) return;
+  if (native_) {
+    native_(vars_, out_.data());
+    for (std::size_t i = 0; i < targets_.size(); ++i)
+      *targets_[i] = out_[i];
+    return;
+  }
   int n = 0;
   const double* r = parser_->Eval(n);
   for (std::size_t i = 0; i < targets_.size(); ++i)
     *targets_[i] = r[i];
+}
+
+namespace {
+ExprGroupsHook& hook_slot() {
+  static ExprGroupsHook hook;
+  return hook;
+}
+}  // namespace
+
+void set_expr_groups_hook(ExprGroupsHook hook) {
+  hook_slot() = std::move(hook);
+}
+
+const ExprGroupsHook& expr_groups_hook() {
+  return hook_slot();
 }
 
 }  // namespace kfw::model

@@ -4,6 +4,7 @@
 // language_functions(). GiNaC is used only while a model is loaded; runs use muparser only.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -134,10 +135,30 @@ class ExprGroup {
   // Evaluates every expression and writes each result to its target.
   void eval();
 
+  // The native path (native/native_model.h): the expressions as added, and a compiled function
+  // that computes them all from the symbols' values by slot (out[i]: the i-th expression).
+  using NativeFn = void (*)(const double* vars, double* out);
+  const std::vector<std::string>& texts() const { return texts_; }
+  void set_native(NativeFn fn) {
+    native_ = fn;
+    out_.assign(targets_.size(), 0.0);
+  }
+  bool native() const { return native_ != nullptr; }
+
  private:
   std::unique_ptr<mu::Parser> parser_;
   std::string source_;
+  std::vector<std::string> texts_;
   std::vector<double*> targets_;
+  double* vars_ = nullptr;
+  NativeFn native_ = nullptr;
+  std::vector<double> out_;
 };
+
+// Called by every model evaluator once its expressions are bound, with its groups and symbols:
+// the native path installs itself here (native/native_model.h; empty: muparser evaluates).
+using ExprGroupsHook = std::function<void(const std::vector<ExprGroup*>&, const Symbols&)>;
+void set_expr_groups_hook(ExprGroupsHook hook);
+const ExprGroupsHook& expr_groups_hook();
 
 }  // namespace kfw::model

@@ -199,7 +199,22 @@ Expected<std::unique_ptr<ModelEval>> ModelEval::create(const ModelSpec& spec,
                                                        const ParamValues& values) {
   std::unique_ptr<ModelEval> ev(new ModelEval(spec));
   if (auto st = ev->bind(values); !st) return st.err();
+  if (const auto& hook = expr_groups_hook()) hook(ev->groups(), spec.symbols);
   return ev;
+}
+
+std::vector<ExprGroup*> ModelEval::groups() {
+  std::vector<ExprGroup*> g{&param_,   &p_dt_,    &p_step_,     &F_state_,
+                            &f_state_, &Q_state_, &xdot_state_, &A_state_};
+  for (auto& level : process_subs_.levels)
+    g.push_back(&level);
+  for (auto& c : channels_) {
+    for (ExprGroup* e : {&c.dt, &c.step, &c.h, &c.H_state, &c.R_state})
+      g.push_back(e);
+    for (auto& level : c.subs.levels)
+      g.push_back(&level);
+  }
+  return g;
 }
 
 void ModelEval::set_inputs(const double* u) {

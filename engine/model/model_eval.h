@@ -185,6 +185,8 @@ class ModelEval {
   MatX A, Bc, G, Qc;
 
   double dt() const { return dt_; }
+  // Every expression group, for the native path (expression.h expr_groups_hook).
+  std::vector<ExprGroup*> groups();
   // Every symbol's current value, by slot.
   const std::vector<double>& vars() const { return vars_; }
 

@@ -92,9 +92,11 @@ TEST(ScaleNative, EveryPresetEqualsTheMuparserRun) {
   ASSERT_GE(presets.size(), 15u);
   std::vector<Dataset> data, oracle;
   std::vector<Workspace> spaces;
+  std::vector<std::string> names;
   for (const auto& p : presets) {
     auto ws = open_workspace(p, std::nullopt, {});
     ASSERT_TRUE(ws) << ws.error();
+    if (ws->data_path && !fs::exists(*ws->data_path)) continue;  // ../shared absent (a bare clone)
     auto d = load_dataset(*ws);  // simulated by muparser once: both runs filter the same data
     ASSERT_TRUE(d) << p << ": " << d.error();
     auto r = ws->scenario->run(*d, ws->values);
@@ -102,10 +104,12 @@ TEST(ScaleNative, EveryPresetEqualsTheMuparserRun) {
     oracle.push_back((*r)->table());
     data.push_back(std::move(*d));
     spaces.push_back(std::move(*ws));
+    names.push_back(p);
   }
   NativeOn on;
-  for (std::size_t i = 0; i < presets.size(); ++i) {
-    SCOPED_TRACE(presets[i]);
+  ASSERT_GE(spaces.size(), 15u);
+  for (std::size_t i = 0; i < spaces.size(); ++i) {
+    SCOPED_TRACE(names[i]);
     const auto before = native::stats();
     auto r = spaces[i].scenario->run(data[i], spaces[i].values);
     ASSERT_TRUE(r) << r.error();

@@ -149,7 +149,9 @@ void declare_merge(CLI::App& app, MergeArgs& a) {
            "instead: list DIR's missing or invalid part_<i>.json and print the array indices to "
            "resubmit (\"3,7-9\"; empty when complete)");
   add_path(c, "--metrics", a.output.metrics, "FILE.json", "write the merged result (JSON) too");
-  add_path(c, "--out", a.output.out, "FILE.json|FILE.csv", "sweep parts: write the merged sweep");
+  add_path(c, "--out", a.output.out, "FILE.json|FILE.csv",
+           "write the merged sweep (sweep parts), the merged part (Monte Carlo) or the best "
+           "start's tuned preset (tune parts)");
   c->add_flag("--table", a.table, "a readable table instead of JSON");
 }
 

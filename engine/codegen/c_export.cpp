@@ -356,16 +356,7 @@ std::string source_prelude(const Gen& g) {
   std::string s = header_comment(g, g.P + ".c");
   s += "#include <math.h>\n\n#include \"" + g.P + ".h\"\n\n";
   s += "typedef " + g.P + "_real real;\n";
-  const bool f = g.opt.single;
-  s += f ? "#define LIT(v) v##f\n" : "#define LIT(v) v\n";
-  for (const char* fn :
-       {"SQRT", "FABS", "SIN", "COS", "LOG", "LOG2", "EXP", "CEIL", "LDEXP", "REMAINDER"}) {
-    std::string name = fn;
-    for (char& c : name)
-      c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (name == "fabs") name = "fabs";
-    s += "#define " + std::string(fn) + " " + name + (f ? "f" : "") + "\n";
-  }
+  s += c_math_macros(g.opt.single);
   s += "#define NX " + M + "_N\n#define MX " + std::to_string(g.mx) + "\n";
   if (g.nu > 0) s += "#define NU " + M + "_NU\n";
   s += "#define NS (2 * NX + 1)\n";

@@ -2,6 +2,8 @@
 // names, operation for operation where the order of rounding matters.
 #include "codegen/c_runtime.h"
 
+#include <cctype>
+
 #include <map>
 #include <vector>
 
@@ -524,6 +526,18 @@ static real sigma_mean(const real row[NS], int angle) {
 }
 
 }  // namespace
+
+std::string c_math_macros(bool single) {
+  std::string s = single ? "#define LIT(v) v##f\n" : "#define LIT(v) v\n";
+  for (const char* fn :
+       {"SQRT", "FABS", "SIN", "COS", "LOG", "LOG2", "EXP", "CEIL", "LDEXP", "REMAINDER"}) {
+    std::string name = fn;
+    for (char& c : name)
+      c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    s += "#define " + std::string(fn) + " " + name + (single ? "f" : "") + "\n";
+  }
+  return s;
+}
 
 std::string c_runtime(std::set<std::string> wanted) {
   const auto& all = pieces();

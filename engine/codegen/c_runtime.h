@@ -12,6 +12,10 @@
 
 namespace kfw::codegen {
 
+// LIT(v) and the math functions the runtime calls (SQRT, SIN, …) for the precision: the
+// `#define` lines a file that includes c_runtime() puts after its `real` typedef.
+std::string c_math_macros(bool single);
+
 // The pieces named in `wanted` and those they call, in one fixed order.
 std::string c_runtime(std::set<std::string> wanted);
 

@@ -1,13 +1,12 @@
 #include "data/csv.h"
 
+#include "core/cores.h"
 #include "core/suggest.h"
 #include "data/import.h"
 #include "data/output.h"
 #include "data/table.h"
 
 #include <fast_float/fast_float.h>
-
-#include <sched.h>
 
 #include <algorithm>
 #include <charconv>
@@ -132,10 +131,7 @@ void format_rows(const std::vector<TableColumn>& columns, std::size_t first, std
 // The cores this process may run on (its affinity), at most 8: formatting more in parallel than
 // the disk takes gains nothing.
 std::size_t format_threads() {
-  cpu_set_t set;
-  CPU_ZERO(&set);
-  const int n = ::sched_getaffinity(0, sizeof set, &set) == 0 ? CPU_COUNT(&set) : 1;
-  return static_cast<std::size_t>(std::clamp(n, 1, 8));
+  return static_cast<std::size_t>(std::clamp(usable_cores(), 1, 8));
 }
 
 }  // namespace

@@ -1,21 +1,17 @@
 #include "experiment/parallel.h"
 
-#include <sched.h>
-
 #include <algorithm>
 #include <atomic>
 #include <thread>
 #include <vector>
 
+#include "core/cores.h"
+
 namespace kfw {
 
 int worker_count(int requested) {
   if (requested > 0) return requested;
-  // The cores this process may run on (taskset, a Slurm allocation, a cpuset), not the machine's.
-  cpu_set_t set;
-  CPU_ZERO(&set);
-  if (::sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
-  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return usable_cores();
 }
 
 void parallel_for(std::size_t n, int threads, const std::function<void(std::size_t)>& fn) {

@@ -556,7 +556,7 @@ ExprGroup& ExprGroup::operator=(ExprGroup&&) noexcept = default;
 void ExprGroup::add(const std::string& text, double* target) {
   if (!source_.empty()) source_ += ",";
   source_ += fast_powers(text);
-  texts_.push_back(text);
+  if (expr_groups_hook()) texts_.push_back(text);  // only the native path reads them
   targets_.push_back(target);
 }
 

@@ -135,8 +135,9 @@ class ExprGroup {
   // Evaluates every expression and writes each result to its target.
   void eval();
 
-  // The native path (native/native_model.h): the expressions as added, and a compiled function
-  // that computes them all from the symbols' values by slot (out[i]: the i-th expression).
+  // The native path (native/native_model.h): the expressions as added (kept only while a hook is
+  // installed), and a compiled function that computes them all from the symbols' values by slot
+  // (out[i]: the i-th expression).
   using NativeFn = void (*)(const double* vars, double* out);
   const std::vector<std::string>& texts() const { return texts_; }
   void set_native(NativeFn fn) {

@@ -89,14 +89,7 @@ Expected<std::string> model_source(const std::vector<ExprGroup*>& groups,
     helpers.insert(set.helpers().begin(), set.helpers().end());
   }
   std::string s = "/* kfw native path: a model's expression groups (engine/native). */\n";
-  s += "#include <math.h>\n\ntypedef double real;\n#define LIT(v) v\n";
-  for (const char* fn :
-       {"SQRT", "FABS", "SIN", "COS", "LOG", "LOG2", "EXP", "CEIL", "LDEXP", "REMAINDER"}) {
-    std::string name = fn;
-    for (char& c : name)
-      c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    s += "#define " + std::string(fn) + " " + name + "\n";
-  }
+  s += "#include <math.h>\n\ntypedef double real;\n" + codegen::c_math_macros(false);
   s += "\n" + codegen::c_runtime(helpers);
   for (std::size_t k = 0; k < groups.size(); ++k) {
     if (!groups[k]->empty())

@@ -27,7 +27,9 @@ constexpr const char* kPresetHelp = "a preset file or a preset name in presets/ 
 constexpr const char* kExitCodes =
     "Exit codes: 0 the command did its work; 2 the command, an argument, a preset, a data file\n"
     "or an output path is invalid (checked before any work, so nothing is written); 1 the work\n"
-    "failed (a write error, a run that breaks down numerically). Errors are one line.\n";
+    "failed (a write error, a run that breaks down numerically). Errors are one line.\n"
+    "KFW_NATIVE=1: model expressions compiled by the system's C compiler, cached in\n"
+    "$XDG_CACHE_HOME/kfw (docs/speed.md \"Native path\"); without a compiler, a notice.\n";
 
 // Commands offered by scenarios (Scenario::commands()): name -> who offers it (a model file's
 // commands, model/model_stats.h, as "model files that declare it").

@@ -100,6 +100,8 @@ int cmd_merge_resume(const std::string& dir, std::ostream& out, std::ostream& er
     }
   }
   if (valid.empty()) {
+    for (const auto& [i, why] : problems)
+      err << "kfw-cli: part_" << i << ".json: invalid: " << why << "\n";
     return fail(err, Error{"--resume: " + dir +
                            ": no complete part (part_<i>.json) to take the shard count from; "
                            "submit the whole array again"});

@@ -51,6 +51,10 @@ else
   kfw_cli=$(cd "$(dirname "$kfw_cli")" && pwd)/$(basename "$kfw_cli")
   [ -x "$kfw_cli" ] || { echo "slurm_submit: $kfw_cli: no kfw-cli (make build, or set KFW_CLI)" >&2; exit 2; }
   args=("$@")
+  case "${args[0]}" in
+    sweep | run | tune) ;;
+    *) echo "slurm_submit: '${args[0]}' has no shards (sweep, run --seeds, tune)" >&2; exit 2 ;;
+  esac
   printf '%s\0' "$kfw_cli" "$shards" "${args[@]}" >"$outdir/kfw_job.args"
   spec="1-$shards"
 fi
